@@ -1,0 +1,30 @@
+"""teleo's pure language engine: prioritized teleoreactive logic programs (seed 000, ICARUS).
+
+Imports the standard library only; the only I/O is ``load_program`` reading a file.
+"""
+
+from .engine import CycleResult, Engine, as_percepts
+from .errors import Diagnostic, EvalError, GoalError, LangError, ProgramError, StateError
+from .explanation import Decision, GoalPath, GoalReport, GoalStatus, PassOver, PathStep
+from .loader import load_program, load_program_text, parse_percepts
+from .program import ConceptClause, GoalSpec, Program, Skill
+from .state import EngineState, StoredStep
+from .terms import (
+    Action,
+    ActionTemplate,
+    Belief,
+    Expr,
+    Literal,
+    Percept,
+    PerceptPattern,
+    Test,
+    Var,
+)
+
+__all__ = [
+    "Action", "ActionTemplate", "Belief", "ConceptClause", "CycleResult", "Decision",
+    "Diagnostic", "Engine", "EngineState", "EvalError", "Expr", "GoalError", "GoalPath",
+    "GoalReport", "GoalSpec", "GoalStatus", "LangError", "Literal", "PassOver", "PathStep",
+    "Percept", "PerceptPattern", "Program", "ProgramError", "Skill", "StateError", "StoredStep",
+    "Test", "Var", "as_percepts", "load_program", "load_program_text", "parse_percepts",
+]

@@ -1,0 +1,167 @@
+"""Semantic checks that turn parsed parts into a Program, reporting every problem at once:
+undefined concepts, arity mismatches, unbound variables, unstratified negation (seed 000)."""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import replace
+
+from .errors import Diagnostic, ProgramError
+from .parser import Parts
+from .program import ConceptClause, Program, Skill
+from .stratify import dependency_graph, negative_cycle, sccs
+from .terms import Literal, Loc, Test, Var
+
+
+class Checker:
+    """Collects diagnostics for one program."""
+
+    def __init__(self, parts: Parts):
+        self.parts = parts
+        self.diags = parts.diags
+        self.arity: dict[str, int] = {}
+        self.arity_loc: dict[str, Loc | None] = {}
+
+    def err(self, loc: Loc | None, msg: str, severity: str = "error") -> None:
+        src, line, col = (loc.source, loc.line, loc.col) if loc else ("<program>", 0, 0)
+        self.diags.append(Diagnostic(src, line, col, msg, severity))
+
+    def run(self) -> Program:
+        concepts: dict[str, list[ConceptClause]] = {}
+        for c in self.parts.concepts:
+            group = concepts.setdefault(c.head.pred, [])
+            group.append(replace(c, index=len(group) + 1))
+            self.define(c.head)
+        for clauses in concepts.values():
+            for c in clauses:
+                self.check_concept(c)
+        skills = []
+        by_pred: dict[str, list[Skill]] = {}
+        for n, s in enumerate(self.parts.skills):
+            group = by_pred.setdefault(s.head.pred, [])
+            s = replace(s, index=len(group) + 1, number=n)
+            group.append(s)
+            skills.append(s)
+            self.check_skill(s)
+        for g in self.parts.goals:
+            self.use(g.literal, "goal")
+        self.check_resources(skills)
+        strata = self.stratify(concepts)
+        errors = [d for d in self.diags if d.severity == "error"]
+        if errors:
+            raise ProgramError(sorted(self.diags, key=_order))
+        return Program(
+            concepts={k: tuple(v) for k, v in concepts.items()}, arity=dict(self.arity),
+            skills=tuple(skills), goals=tuple(self.parts.goals), resources=self.parts.resources,
+            strata=strata, warnings=tuple(sorted(self.diags, key=_order)),
+            sources=tuple(self.parts.sources),
+            skills_by_pred={k: tuple(v) for k, v in by_pred.items()})
+
+    # -- names and arities -------------------------------------------------------------------
+    def define(self, head: Literal) -> None:
+        n = len(head.args)
+        if head.pred in self.arity and self.arity[head.pred] != n:
+            self.err(head.loc, f"concept {head.pred} defined with {n} argument(s) here but with "
+                     f"{self.arity[head.pred]} at {self.arity_loc[head.pred]}")
+            return
+        self.arity.setdefault(head.pred, n)
+        self.arity_loc.setdefault(head.pred, head.loc)
+
+    def use(self, lit: Literal, what: str) -> bool:
+        if lit.pred not in self.arity:
+            close = difflib.get_close_matches(lit.pred, list(self.arity), n=1, cutoff=0.7)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            self.err(lit.loc, f"undefined concept '{lit.pred}' in {lit} ({what}){hint}")
+            return False
+        want = self.arity[lit.pred]
+        if len(lit.args) != want:
+            self.err(lit.loc, f"{lit} ({what}): concept {lit.pred} takes {want} argument(s), "
+                     f"got {len(lit.args)} (defined at {self.arity_loc[lit.pred]})")
+            return False
+        return True
+
+    # -- clauses -----------------------------------------------------------------------------
+    def check_concept(self, c: ConceptClause) -> None:
+        bound: set[Var] = set()
+        for p in c.percepts:
+            bound |= p.variables()
+        for lit in c.relations:
+            self.use(lit, f":relations of concept {c.head.pred}#{c.index}")
+            if not lit.negated:
+                bound |= lit.variables()
+        for t in c.tests:
+            self.unbound(t.variables() - bound, t.loc, f"test {t} of concept {c.head}",
+                         "bind it in :percepts or a positive :relations entry", bound)
+        self.unbound(c.head.variables() - bound, c.head.loc, f"head {c.head}",
+                     "bind it in :percepts or a positive :relations entry", bound)
+
+    def check_skill(self, s: Skill) -> None:
+        self.use(s.head, f"head of skill {s.name}")
+        bound = set(s.head.variables())
+        for p in s.percepts:
+            bound |= p.variables()
+        for part, conds in ((":start", s.start), (":requires", s.requires)):
+            for cond in conds:
+                if isinstance(cond, Literal):
+                    self.use(cond, f"{part} of skill {s.name}")
+                    if not cond.negated:
+                        bound |= cond.variables()
+        for part, conds in ((":start", s.start), (":requires", s.requires)):
+            for cond in conds:
+                if isinstance(cond, Test):
+                    self.unbound(cond.variables() - bound, cond.loc, f"test {cond} in {part}",
+                                 "bind it in the head, :percepts or a positive condition",
+                                 bound)
+        for g in s.subgoals:
+            self.use(g, f":subgoals of skill {s.name}")
+            self.unbound(g.variables() - bound, g.loc, f"subgoal {g}",
+                         "bind it in the head, :percepts, :start or :requires", bound)
+        for a in s.actions:
+            self.unbound(a.variables() - bound, a.loc, f"action {a}",
+                         "bind it in the head, :percepts, :start or :requires", bound)
+
+    def unbound(self, vs: set[Var], loc: Loc | None, where: str, hint: str,
+                bound: set[Var] = frozenset()) -> None:
+        names = sorted(v.name for v in bound)
+        for v in sorted(vs, key=lambda v: v.name):
+            close = difflib.get_close_matches(v.name, names, n=1, cutoff=0.6)
+            typo = f" (did you mean ?{close[0]}?)" if close else ""
+            self.err(loc, f"variable ?{v.name} in {where} is bound nowhere{typo}; {hint}")
+
+    def check_resources(self, skills: list[Skill]) -> None:
+        table = self.parts.resources
+        if table is None:
+            return
+        seen: set[str] = set()
+        for s in skills:
+            for a in s.actions:
+                if a.name not in table and a.name not in seen:
+                    seen.add(a.name)
+                    self.err(a.loc, f"action {a.name} is not listed in (resources ...); it is "
+                             "treated as using every resource", "warning")
+
+    def stratify(self, concepts: dict[str, list[ConceptClause]]):
+        graph = dependency_graph(c for cl in concepts.values() for c in cl)
+        out = []
+        for comp in sccs(graph):
+            comp = [p for p in comp if p in concepts]
+            if not comp:
+                continue
+            found = negative_cycle(graph, comp)
+            if found is not None:
+                lit, cycle = found
+                self.err(lit.loc, "negation is not stratified: " + " -> ".join(cycle)
+                         + f" (the cycle passes through {lit}); a concept may not depend on "
+                         "the negation of itself")
+            recursive = len(comp) > 1 or comp[0] in graph.get(comp[0], {})
+            out.append((tuple(comp), recursive))
+        return tuple(out)
+
+
+def _order(d: Diagnostic) -> tuple:
+    return (d.source, d.line, d.col, d.message)
+
+
+def build_program(parts: Parts) -> Program:
+    """Check ``parts``; return the Program or raise ProgramError with every diagnostic."""
+    return Checker(parts).run()

@@ -1,0 +1,96 @@
+"""The Engine: inference + executive for one program, as pure functions of explicit state."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
+
+from .errors import GoalError
+from .executive import Executive
+from .explanation import Decision
+from .goals import GoalEntry, parse_goal
+from .inference import Inference
+from .program import Program
+from .state import EngineState
+from .store import BeliefSet, PerceptIndex, store_of
+from .terms import Percept
+
+
+@dataclass(frozen=True, slots=True)
+class CycleResult:
+    """What one cycle produced: beliefs, the decision (actions + explanation), the next state."""
+
+    beliefs: BeliefSet
+    decision: Decision
+    state: EngineState
+
+
+def as_percepts(percepts: Iterable) -> list[Percept]:
+    """Percept objects from Percepts or neutral lists ``["self", "ME", "speed", 20.0]``."""
+    return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
+
+
+class Engine:
+    """Runs a Program cycle by cycle. Holds only compiled, immutable program data."""
+
+    def __init__(self, program: Program):
+        self.program = program
+        self.inference = Inference(program)
+        self.executive = Executive(program)
+
+    # -- goals ---------------------------------------------------------------------------
+    def initial_state(self) -> EngineState:
+        """Program goals with priorities 1..n in file order, ids p1..pn."""
+        goals = tuple(GoalEntry(f"p{i + 1}", g.literal, i + 1, i, "program")
+                      for i, g in enumerate(self.program.goals))
+        return EngineState(goals, (), len(goals), 0)
+
+    def add_goal(self, state: EngineState, goal: str, priority: int | None = None,
+                 goal_id: str | None = None) -> EngineState:
+        """Add ``goal`` (text such as ``(package-delivered PACKET2)``); it ranks after every goal
+        with priority <= ``priority`` (default: last). Raises GoalError."""
+        lit = parse_goal(goal, self.program)
+        if priority is None:
+            priority = max((e.priority for e in state.goals), default=0) + 1
+        if not isinstance(priority, int) or isinstance(priority, bool):
+            raise GoalError(f"goal {goal}: priority must be an int, got {priority!r}")
+        gid = goal_id or f"g{state.next_seq + 1}"
+        if any(e.id == gid for e in state.goals):
+            raise GoalError(f"goal id {gid!r} is already in use")
+        entry = GoalEntry(gid, lit, priority, state.next_seq, "user")
+        return replace(state, goals=state.goals + (entry,), next_seq=state.next_seq + 1)
+
+    def remove_goal(self, state: EngineState, goal_id: str) -> EngineState:
+        """Drop a goal and its remembered path. Raises GoalError for an unknown id."""
+        state.entry(goal_id)
+        return replace(state, goals=tuple(e for e in state.goals if e.id != goal_id),
+                       paths=tuple(p for p in state.paths if p[0] != goal_id))
+
+    def set_priority(self, state: EngineState, goal_id: str, priority: int) -> EngineState:
+        """Move a goal: it ranks after every goal with priority <= ``priority``."""
+        old = state.entry(goal_id)
+        new = replace(old, priority=priority, seq=state.next_seq)
+        return replace(state, goals=tuple(new if e.id == goal_id else e for e in state.goals),
+                       next_seq=state.next_seq + 1)
+
+    # -- cycle ---------------------------------------------------------------------------
+    def infer(self, percepts: Iterable) -> BeliefSet:
+        """Every concept instance that holds for this cycle's percepts."""
+        return self.inference.beliefs(_index(percepts))
+
+    def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable):
+        """The executive step: (Decision, next EngineState)."""
+        return self.executive.decide(state, _index(percepts), store_of(beliefs))
+
+    def cycle(self, state: EngineState, percepts: Iterable) -> CycleResult:
+        """infer + decide on the same percepts."""
+        index = _index(percepts)
+        beliefs = self.inference.beliefs(index)
+        decision, new_state = self.executive.decide(state, index, beliefs.store)
+        return CycleResult(beliefs, decision, new_state)
+
+
+def _index(percepts: Iterable) -> PerceptIndex:
+    if isinstance(percepts, PerceptIndex):
+        return percepts
+    return PerceptIndex(as_percepts(percepts))

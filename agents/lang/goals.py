@@ -1,0 +1,116 @@
+"""Goal entries, the prioritized goal list and goal instances (seed 000, "Adding Goal Priorities").
+
+Priority: lower number = more important. Program goals get 1..n in file order; an entry with
+priority P ranks after every entry whose priority is <= P that was placed before it (ties keep
+insertion order, ``seq``).
+
+Instances of a goal with variables, e.g. ``(at-desired-speed ?any)`` ("every instance"): for each
+clause of the goal's concept, the clause head is unified with the goal and the clause's
+``:percepts`` are matched against this cycle's percepts; each match fixes the goal variables that
+the head takes from percepts. The distinct results are the instances; the goal is satisfied when
+every instance holds. Variables no percept fixes stay variables and are existential (some belief
+must match). A clause without ``:percepts`` contributes the goal itself (existential).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .errors import GoalError
+from .matcher import binding_key, holds, solve
+from .program import Program
+from .sexpr import Atom, SList, read
+from .store import FactStore, PerceptIndex
+from .terms import Literal, Var, sort_key
+
+
+@dataclass(frozen=True, slots=True)
+class GoalEntry:
+    """One goal in the list: ``origin`` is "program" or "user"."""
+
+    id: str
+    literal: Literal
+    priority: int
+    seq: int
+    origin: str = "user"
+
+    @property
+    def text(self) -> str:
+        return str(self.literal)
+
+
+def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
+    """Goals most important first: by priority, then insertion order."""
+    return sorted(entries, key=lambda e: (e.priority, e.seq))
+
+
+def parse_goal(text: str, program: Program | None = None) -> Literal:
+    """Read a goal such as ``(package-delivered PACKET2)``; check concept and arity if given a
+    program. Raises GoalError with the reason."""
+    forms, diags = read(text, "<goal>")
+    errors = [d for d in diags if d.severity == "error"]
+    if errors:
+        raise GoalError(f"goal {text!r}: {errors[0].message}")
+    if len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:
+        raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)")
+    items = forms[0].items
+    if not all(isinstance(x, Atom) for x in items) or not isinstance(items[0].value, str):
+        raise GoalError(f"goal {text!r}: expected (concept arg ...) with constants or variables")
+    lit = Literal(items[0].value, tuple(x.value for x in items[1:]))
+    if program is not None:
+        if lit.pred not in program.arity:
+            raise GoalError(f"goal {text}: undefined concept '{lit.pred}'")
+        if program.arity[lit.pred] != len(lit.args):
+            raise GoalError(f"goal {text}: concept {lit.pred} takes "
+                            f"{program.arity[lit.pred]} argument(s), got {len(lit.args)}")
+    return lit
+
+
+def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Literal]:
+    """The instances of ``goal`` this cycle, sorted (see module docstring)."""
+    gvars = goal.variables()
+    if not gvars:
+        return [goal]
+    found: dict[tuple, Literal] = {}
+    for clause in program.concepts.get(goal.pred, ()):
+        b = _unify_head(clause.head, goal)
+        if b is None:
+            continue
+        if not clause.percepts:
+            found[_key(goal)] = goal
+            continue
+        for sol in solve(list(clause.percepts), b, pidx, FactStore()):
+            args = []
+            for g, h in zip(goal.args, clause.head.args, strict=True):
+                value = sol.get(h, h) if isinstance(h, Var) else h
+                args.append(g if isinstance(value, Var) else (g if not isinstance(g, Var)
+                                                              else value))
+            inst = Literal(goal.pred, tuple(args))
+            found.setdefault(_key(inst), inst)
+    return [found[k] for k in sorted(found)]
+
+
+def satisfied(inst: Literal, store: FactStore) -> bool:
+    """True if a belief matches the instance (remaining variables existential)."""
+    return holds(inst, {}, store)
+
+
+def _unify_head(head: Literal, goal: Literal) -> dict | None:
+    b: dict = {}
+    for h, g in zip(head.args, goal.args, strict=True):
+        if isinstance(g, Var):
+            continue
+        if isinstance(h, Var):
+            if h in b and b[h] != g:
+                return None
+            b[h] = g
+        elif h != g:
+            return None
+    return b
+
+
+def _key(lit: Literal) -> tuple:
+    return tuple((1, a.name) if isinstance(a, Var) else (0, sort_key(a)) for a in lit.args)
+
+
+__all__ = ["GoalEntry", "ordered", "parse_goal", "instances", "satisfied", "binding_key"]

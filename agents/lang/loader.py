@@ -1,0 +1,103 @@
+"""Loading programs and percepts from text; ``read_text`` is the only function touching files."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from .checks import build_program
+from .errors import Diagnostic, LangError, ProgramError
+from .parser import Parts, parse_forms
+from .program import Program
+from .sexpr import Atom, SList, read, to_text
+from .terms import Percept, is_const
+
+
+def read_text(path: str | Path) -> str:
+    """Contents of ``path`` (UTF-8); raises ProgramError naming the file if it cannot be read."""
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ProgramError([Diagnostic(str(path), 0, 0, f"cannot read file: {exc.strerror}")]) \
+            from None
+
+
+def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str]) -> Program:
+    """Parse and check program ``text`` (plus further (text, source) pairs forming one program)."""
+    parts = Parts()
+    for t, src in ((text, source), *more):
+        forms, diags = read(t, src)
+        parts.diags.extend(diags)
+        parts.sources.append(src)
+        parse_forms(forms, src, parts)
+    return build_program(parts)
+
+
+def load_program(path: str | Path, *more: str | Path) -> Program:
+    """Load a program file; further files are read into the same program (e.g. a table of skills
+    plus the concepts it uses). Raises ProgramError with every diagnostic."""
+    texts = [(read_text(p), str(p)) for p in (path, *more)]
+    return load_program_text(texts[0][0], texts[0][1], *texts[1:])
+
+
+def parse_percepts(text: str, source: str = "<percepts>") -> tuple[Percept, ...]:
+    """Percepts from text: the seed's Table 3 form ``((street B) (self ME speed 20.0) ...)``,
+    a sequence of ``(type id attr value ...)`` forms, or JSON
+    neutral lists ``[["street", "B"], ...]``.
+    Raises ProgramError with every problem found."""
+    if text.lstrip().startswith(("[", "{")):
+        return _json_percepts(text, source)
+    forms, diags = read(text, source)
+    nodes = []
+    for f in forms:
+        if isinstance(f, SList) and f.items and all(isinstance(x, SList) for x in f.items):
+            nodes.extend(f.items)
+        else:
+            nodes.append(f)
+    out = []
+    for n in nodes:
+        p = _percept(n, source, diags)
+        if p is not None:
+            out.append(p)
+    if any(d.severity == "error" for d in diags):
+        raise ProgramError(diags)
+    return tuple(out)
+
+
+def _percept(node: object, source: str, diags: list[Diagnostic]) -> Percept | None:
+    def bad(msg: str) -> None:
+        diags.append(Diagnostic(source, node.line, node.col, msg))
+    if not isinstance(node, SList) or len(node.items) < 2:
+        bad(f"expected a percept (type id attr value ...), got {to_text(node)}")
+        return None
+    if not all(isinstance(x, Atom) and is_const(x.value) for x in node.items):
+        bad(f"percept {to_text(node)}: items must be symbols or numbers (no variables or lists)")
+        return None
+    vals = [x.value for x in node.items]
+    if len(vals) % 2:
+        bad(f"percept {to_text(node)}: attribute {vals[-1]} has no value")
+        return None
+    try:
+        return Percept.from_list(vals)
+    except LangError as exc:
+        bad(str(exc))
+        return None
+
+
+def _json_percepts(text: str, source: str) -> tuple[Percept, ...]:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ProgramError([Diagnostic(source, exc.lineno, exc.colno, f"bad JSON: {exc.msg}")]) \
+            from None
+    if isinstance(data, dict):
+        data = data.get("percepts", [])
+    out, diags = [], []
+    for i, item in enumerate(data if isinstance(data, list) else [data]):
+        try:
+            out.append(Percept.from_list(item))
+        except LangError as exc:
+            diags.append(Diagnostic(source, 1, 1, f"item {i}: {exc}"))
+    if diags:
+        raise ProgramError(diags)
+    return tuple(out)

@@ -1,0 +1,175 @@
+"""Dict-binding matcher used by the executive and goal expansion (small, explainable joins):
+percept patterns, concept literals (with negation: unbound variables inside ``not`` are
+existential) and tests, solved left to right with tests/negations delayed until bound."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from itertools import islice
+
+from .arith import compile_test
+from .store import MISSING, FactStore, PerceptIndex
+from .terms import Literal, PerceptPattern, Test, Var, sort_key
+
+_TESTS: dict[int, object] = {}
+
+
+def subst(term: object, b: dict) -> object:
+    """``term`` with bound variables replaced by their values."""
+    return b.get(term, term) if isinstance(term, Var) else term
+
+
+def ground(lit: Literal, b: dict) -> Literal:
+    """``lit`` with bound variables replaced (unbound ones stay Vars)."""
+    return Literal(lit.pred, tuple(subst(a, b) for a in lit.args), lit.negated, lit.loc)
+
+
+def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[dict]:
+    """Extensions of ``b`` matching pattern ``p`` against one percept each."""
+    pid = subst(p.id, b)
+    free = isinstance(pid, Var)
+    if not free:
+        cands = pidx.by_id.get((p.type, pid), ())
+    else:
+        key = next(((a, subst(t, b)) for a, t in p.attrs if _bound(t, b)), None)
+        cands = pidx.by_type.get(p.type, ()) if key is None else \
+            pidx.attr_index(p.type, key[0]).get(key[1], ())
+    for per in cands:
+        nb = dict(b)
+        if free:
+            nb[pid] = per.id
+        for attr, t in p.attrs:
+            v = per._map.get(attr, MISSING)
+            t = subst(t, nb)
+            if v is MISSING or (not isinstance(t, Var) and t != v):
+                break
+            if isinstance(t, Var):
+                nb[t] = v
+        else:
+            yield nb
+
+
+def match_fact(lit: Literal, b: dict, store: FactStore) -> Iterator[dict]:
+    """Extensions of ``b`` under which positive ``lit`` is a fact in ``store``."""
+    args = [subst(a, b) for a in lit.args]
+    pos = tuple(i for i, a in enumerate(args) if not isinstance(a, Var))
+    if len(pos) == len(args):
+        if tuple(args) in store.get(lit.pred):
+            yield b
+        return
+    cands = store.index(lit.pred, pos).get(tuple(args[i] for i in pos), ()) if pos \
+        else store.get(lit.pred)
+    for t in cands:
+        nb = dict(b)
+        ok = True
+        for i, a in enumerate(args):
+            if isinstance(a, Var):
+                if a in nb and nb[a] != t[i]:
+                    ok = False
+                    break
+                nb[a] = t[i]
+        if ok:
+            yield nb
+
+
+def holds(lit: Literal, b: dict, store: FactStore) -> bool:
+    """True if some fact matches ``lit`` (unbound variables existential)."""
+    return next(match_fact(Literal(lit.pred, lit.args), b, store), None) is not None
+
+
+def test_holds(t: Test, b: dict) -> bool:
+    fn = _TESTS.get(id(t.expr))
+    if fn is None:
+        fn = _TESTS[id(t.expr)] = (compile_test(t.expr, lambda v: v), t.expr)
+    return fn[0](b)
+
+
+def ready(cond: object, b: dict) -> bool:
+    """Tests may run once all their variables are bound; everything else at once."""
+    return not isinstance(cond, Test) or all(v in b for v in cond.variables())
+
+
+def step(cond: object, b: dict, pidx: PerceptIndex, store: FactStore) -> Iterator[dict]:
+    """Extensions of ``b`` satisfying one condition."""
+    if isinstance(cond, PerceptPattern):
+        yield from match_percept(cond, b, pidx)
+    elif isinstance(cond, Test):
+        if test_holds(cond, b):
+            yield b
+    elif cond.negated:
+        if not holds(cond, b, store):
+            yield b
+    else:
+        yield from match_fact(cond, b, store)
+
+
+def solve(conds: list, b: dict, pidx: PerceptIndex, store: FactStore) -> Iterator[dict]:
+    """All extensions of ``b`` satisfying every condition. The most constrained condition goes
+    first (bound tests and negations, fully bound literals, percepts by id, ...)."""
+    if not conds:
+        yield b
+        return
+    i = _pick(conds, b)
+    rest = conds[:i] + conds[i + 1:]
+    for nb in step(conds[i], b, pidx, store):
+        yield from solve(rest, nb, pidx, store)
+
+
+def _bound(t: object, b: dict) -> bool:
+    return not isinstance(t, Var) or t in b
+
+
+def _score(c: object, b: dict, conds: list) -> int:
+    if isinstance(c, Test):
+        return 100 if ready(c, b) else -1
+    if isinstance(c, PerceptPattern):
+        if _bound(c.id, b):
+            return 70
+        return 40 if any(_bound(t, b) for _, t in c.attrs) else 10
+    if c.negated:
+        return 90 if _neg_ready(c, b, conds) else -1
+    nb = sum(1 for a in c.args if _bound(a, b))
+    if nb == len(c.args):
+        return 80
+    return 50 + nb if nb else 5
+
+
+def _pick(conds: list, b: dict) -> int:
+    best, best_score = 0, -2
+    for k, c in enumerate(conds):
+        sc = _score(c, b, conds)
+        if sc > best_score:
+            best, best_score = k, sc
+            if sc >= 100:
+                break
+    return best
+
+
+def _neg_ready(c: Literal, b: dict, conds: list) -> bool:
+    """A negation waits until variables that other positive conditions bind are bound."""
+    for o in conds:
+        if o is c or isinstance(o, Test) or getattr(o, "negated", False):
+            continue
+        if any(v not in b for v in c.variables() & o.variables()):
+            return False
+    return True
+
+
+def first_failure(conds: list, b: dict, pidx: PerceptIndex, store: FactStore):
+    """(condition, bindings, several) for the first condition (in written order) after which no
+    extension of ``b`` exists, or None when all hold. ``bindings`` are those of the conditions
+    before it when they have one solution; when they have several (``several`` is True) they are
+    ``b`` itself, so explanations never depend on hashing or on which match came first."""
+    last, several = b, False
+    for k in range(1, len(conds) + 1):
+        sols = list(islice(solve(conds[:k], b, pidx, store), 2))
+        if not sols:
+            return conds[k - 1], last, several
+        several = several or len(sols) > 1
+        last = b if several else sols[0]
+    return None
+
+
+def binding_key(b: dict) -> tuple:
+    """Deterministic order of bindings (by variable name, then value)."""
+    return tuple((v.name, sort_key(x)) for v, x in sorted(b.items(), key=lambda kv: kv[0].name))

@@ -1,0 +1,100 @@
+"""Indexed stores of percepts (by type, id, attribute value) and of facts (by bound argument
+positions), shared by inference and the executive. Indexes are built lazily and cached."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from .terms import Belief, Percept
+
+MISSING = object()
+
+
+class PerceptIndex:
+    """Percepts of one cycle indexed by type, (type, id) and, on demand, (type, attr) -> value."""
+
+    __slots__ = ("by_type", "by_id", "_attr")
+
+    def __init__(self, percepts: Iterable[Percept]):
+        self.by_type: dict[str, list[Percept]] = {}
+        self.by_id: dict[tuple, list[Percept]] = {}
+        self._attr: dict[tuple, dict] = {}
+        for p in percepts:
+            self.by_type.setdefault(p.type, []).append(p)
+            self.by_id.setdefault((p.type, p.id), []).append(p)
+
+    def attr_index(self, type_: str, attr: str) -> dict:
+        """value -> percepts of ``type_`` whose ``attr`` has that value."""
+        key = (type_, attr)
+        ix = self._attr.get(key)
+        if ix is None:
+            ix = {}
+            for p in self.by_type.get(type_, ()):
+                v = p._map.get(attr, MISSING)
+                if v is not MISSING:
+                    ix.setdefault(v, []).append(p)
+            self._attr[key] = ix
+        return ix
+
+
+class FactStore:
+    """Facts as pred -> set of argument tuples, with cached indexes on bound positions."""
+
+    __slots__ = ("facts", "_ix")
+
+    def __init__(self, facts: dict[str, set] | None = None):
+        self.facts: dict[str, set] = facts if facts is not None else {}
+        self._ix: dict[tuple, dict] = {}
+
+    def get(self, pred: str) -> set:
+        """All argument tuples of ``pred`` (empty set if none)."""
+        return self.facts.get(pred) or _EMPTY
+
+    def add(self, pred: str, tuples: Iterable[tuple]) -> None:
+        """Add facts of ``pred`` and drop its cached indexes."""
+        self.facts.setdefault(pred, set()).update(tuples)
+        for key in [k for k in self._ix if k[0] == pred]:
+            del self._ix[key]
+
+    def index(self, pred: str, positions: tuple[int, ...]) -> dict:
+        """key tuple (values at ``positions``) -> list of argument tuples."""
+        key = (pred, positions)
+        ix = self._ix.get(key)
+        if ix is None:
+            ix = {}
+            for t in self.facts.get(pred, ()):
+                ix.setdefault(tuple(t[i] for i in positions), []).append(t)
+            self._ix[key] = ix
+        return ix
+
+    def beliefs(self) -> frozenset[Belief]:
+        return frozenset(Belief(p, t) for p, ts in self.facts.items() for t in ts)
+
+
+_EMPTY: set = set()
+
+
+class BeliefSet(frozenset):
+    """frozenset of Belief that also carries the FactStore it came from (saves re-indexing)."""
+
+    store: FactStore
+
+    def __new__(cls, store: FactStore):
+        new = tuple.__new__
+        self = super().__new__(cls, (new(Belief, (p, t)) for p, ts in store.facts.items()
+                                     for t in ts))
+        self.store = store
+        return self
+
+
+def store_of(beliefs: Iterable[Belief]) -> FactStore:
+    """The FactStore behind ``beliefs`` (built if they are a plain collection)."""
+    store = getattr(beliefs, "store", None)
+    if isinstance(store, FactStore):
+        return store
+    facts: dict[str, set] = {}
+    for b in beliefs:
+        if not isinstance(b, Belief):
+            b = Belief.from_list(b)
+        facts.setdefault(b.pred, set()).add(tuple(b.args))
+    return FactStore(facts)

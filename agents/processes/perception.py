@@ -1,0 +1,47 @@
+"""The perception process of one agent: world state of t in, the agent's percepts of t out.
+
+    python -m agents.processes.perception --run RUN --agent ME [bus flags]
+
+Percepts are agent-centred and limited in range (seed 000, Table 3); the mapping is the
+world's pure `world.perception.perceive`.
+"""
+
+from __future__ import annotations
+
+import click
+
+from agents.processes.common import run_stage, setup_logging
+from bus import keys
+from bus.config import BusConfig, bus_options
+from bus.messages import Envelope, Message, Percepts
+
+
+def make_step(run: str, agent: str, process: str):
+    """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]."""
+    from world.perception import perceive
+    from world.snapshot import WorldSnapshot
+
+    state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
+
+    def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        snapshot = WorldSnapshot.from_dict(inputs[state_key].snapshot)
+        percepts = tuple(list(p) for p in perceive(snapshot, agent))
+        return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts))]
+
+    return step
+
+
+@click.command()
+@click.option("--run", required=True, help="Run id.")
+@click.option("--agent", required=True, help="Agent id, e.g. ME.")
+@bus_options
+def main(run: str, agent: str, bus_config: BusConfig) -> None:
+    """Perception of one agent."""
+    process = f"{agent}.perception"
+    log = setup_logging(process)
+    run_stage(bus_config, run, process, [keys.world_state(run)], [keys.percepts(run, agent)],
+              make_step(run, agent, process), log)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,191 @@
+"""Bus benchmark: median and p99 of (a) a round trip between two processes and (b) a full
+lockstep cycle through the clock and three pass-through stages with 200 percepts.
+
+    .venv/bin/python bench/bus.py [--rounds 2000] [--cycles 500]
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import statistics
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import click
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from bus import keys  # noqa: E402
+from bus.clock import Clock  # noqa: E402
+from bus.codec import encode  # noqa: E402
+from bus.config import BusConfig, bus_options  # noqa: E402
+from bus.messages import Beliefs, Envelope, Percepts, WorldState  # noqa: E402
+from bus.node import open_node  # noqa: E402
+from bus.passthrough import STAGES  # noqa: E402
+from bus.router import spawn_router  # noqa: E402
+
+RUN, AGENT = "bench", "A"
+
+
+def percepts_200() -> list[list]:
+    """200 percepts shaped like the driving domain's (seed 000, Table 3)."""
+    rows: list[list] = [["self", "ME", "speed", 20.0, "limit", 25, "segment", "S2724"]]
+    for i in range(199):
+        rows.append(["lane-line", f"L{i}", "dist", 1.5 + i * 0.01, "angle", 2.0 * i,
+                     "segment", f"S{2700 + i}", "color", "yellow"])
+    return rows
+
+
+def figures(name: str, samples_ms: list[float]) -> str:
+    s = sorted(samples_ms)
+    p99 = s[min(len(s) - 1, int(0.99 * len(s)))]
+    return (f"{name}: median {statistics.median(s):.3f} ms, p99 {p99:.3f} ms "
+            f"(n={len(s)})")
+
+
+def spawn(*args: str) -> subprocess.Popen:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    return subprocess.Popen([sys.executable, *args], cwd=ROOT, env=env)
+
+
+def round_trips(cfg: BusConfig, n: int) -> list[float]:
+    pong = spawn(__file__, "pong", *cfg.to_args())
+    try:
+        with open_node(cfg, RUN, "ping") as node:
+            inbox = node.subscribe(keys.beliefs(RUN, AGENT))
+            node.declare([keys.percepts(RUN, AGENT)])
+            if not node.presence.wait_for(lambda a: "pong" in a, 30):
+                raise SystemExit("pong process did not come up")
+            node.wait_matching([keys.percepts(RUN, AGENT)], 30)
+            out = []
+            for i in range(n + 100):
+                msg = Percepts(node.envelope(i), AGENT, (["self", "ME", "speed", 20.0],))
+                t0 = time.perf_counter()
+                node.publish(keys.percepts(RUN, AGENT), msg)
+                if inbox.get(timeout=5) is None:
+                    raise SystemExit(f"round trip {i} lost")
+                if i >= 100:
+                    out.append((time.perf_counter() - t0) * 1e3)
+            return out
+    finally:
+        pong.terminate()
+        pong.wait(10)
+
+
+def cycles(cfg: BusConfig, n: int) -> list[float]:
+    procs = [spawn("-m", "bus.passthrough", "--run", RUN, "--agent", AGENT, "--stage", s,
+                   *cfg.to_args()) for s in STAGES]
+    pipeline = [f"{AGENT}.{s}" for s in STAGES]
+    snapshot = {"percepts": {AGENT: percepts_200()}}
+    try:
+        with open_node(cfg, RUN, "world") as node:
+            clock = Clock(node, {AGENT: pipeline}, deadline_s=10.0)
+            clock.wait_ready(set(pipeline), timeout=30)
+            out = []
+            for t in range(n + 20):
+                t0 = time.perf_counter()
+                report = clock.run_cycle(t, WorldState(node.envelope(t), snapshot, {}, []))
+                if not report.clean:
+                    raise SystemExit(f"cycle {t} not clean: {report}")
+                if t >= 20:
+                    out.append((time.perf_counter() - t0) * 1e3)
+            return out
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            p.wait(10)
+
+
+@click.group(invoke_without_command=True)
+@click.option("--rounds", default=2000, show_default=True)
+@click.option("--cycles", "n_cycles", default=500, show_default=True)
+@click.pass_context
+def main(ctx: click.Context, rounds: int, n_cycles: int) -> None:
+    if ctx.invoked_subcommand is not None:
+        return
+    with spawn_router() as router:
+        cfg = BusConfig(connect=(router.endpoint,))
+        rt = round_trips(cfg, rounds)
+        click.echo(figures("round trip, 2 processes (peers meshed via a router hub)", rt))
+        click.echo(figures("lockstep cycle, clock + 3 stages, 200 percepts", cycles(cfg, n_cycles)))
+        click.echo(figures("  same 4 hops, raw bytes forwarded (no codec, no Stage)",
+                           raw_cycles(cfg, n_cycles)))
+
+
+def raw_cycles(cfg: BusConfig, n: int) -> list[float]:
+    """The transport-only floor of the cycle: the same payload forwarded as raw bytes."""
+    chain = [keys.world_state(RUN), keys.percepts(RUN, AGENT), keys.beliefs(RUN, AGENT),
+             keys.actions(RUN, AGENT)]
+    procs = [spawn(__file__, "forward", chain[i], chain[i + 1], f"fwd{i}", *cfg.to_args())
+             for i in range(3)]
+    env = Percepts(Envelope.now(RUN, 0, "world"), AGENT, ())
+    payload = encode(WorldState(env.env, {"percepts": {AGENT: percepts_200()}}, {}, []))
+    try:
+        with open_node(cfg, RUN, "world-raw") as node:
+            inbox = node.subscribe(chain[-1], raw=True)
+            node.declare([chain[0]])
+            if not node.presence.wait_for(lambda a: {"fwd0", "fwd1", "fwd2"} <= a, 30):
+                raise SystemExit("forwarders did not come up")
+            node.wait_matching([chain[0]], 30)
+            out = []
+            for t in range(n + 20):
+                t0 = time.perf_counter()
+                node.put_raw(chain[0], payload)
+                if inbox.receive(timeout=5) is None:
+                    raise SystemExit(f"raw cycle {t} lost")
+                if t >= 20:
+                    out.append((time.perf_counter() - t0) * 1e3)
+            return out
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            p.wait(10)
+
+
+@main.command()
+@click.argument("key_in")
+@click.argument("key_out")
+@click.argument("name")
+@bus_options
+def forward(key_in: str, key_out: str, name: str, bus_config: BusConfig) -> None:
+    """Forward raw payloads from KEY_IN to KEY_OUT (the bare-transport baseline)."""
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    with open_node(bus_config, RUN, name) as node:
+        inbox = node.subscribe(key_in, raw=True)
+        node.declare([key_out])
+        node.wait_matching([key_out], 30)
+        node.announce()
+        while not stop.is_set():
+            item = inbox.receive(0.1)
+            if item is not None:
+                node.put_raw(key_out, item.payload)
+
+
+@main.command()
+@bus_options
+def pong(bus_config: BusConfig) -> None:
+    """Echo Percepts back as Beliefs (the other end of the round trip)."""
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    with open_node(bus_config, RUN, "pong") as node:
+        inbox = node.subscribe(keys.percepts(RUN, AGENT))
+        node.declare([keys.beliefs(RUN, AGENT)])
+        node.wait_matching([keys.beliefs(RUN, AGENT)], 30)
+        node.announce()
+        while not stop.is_set():
+            msg = inbox.get(timeout=0.1)
+            if msg is not None:
+                node.publish(keys.beliefs(RUN, AGENT),
+                             Beliefs(node.envelope(msg.env.cycle), AGENT, msg.percepts))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,149 @@
+"""The one module that builds teleo key expressions (docs/CONTRACTS.md, bus section).
+
+Layout (keys are static; the cycle number travels in the payload envelope, so declared
+publishers and matching status keep working across cycles):
+
+    teleo/<run>/world/state                  WorldState
+    teleo/<run>/world/events                 WorldEvent
+    teleo/<run>/agent/<agent>/percepts       Percepts
+    teleo/<run>/agent/<agent>/beliefs        Beliefs
+    teleo/<run>/agent/<agent>/actions        Actions
+    teleo/<run>/agent/<agent>/intention      Intention
+    teleo/<run>/agent/<agent>/goals          queryable: GoalRequest -> GoalReply
+    teleo/<run>/agent/<agent>/goal-list      GoalList (goal-entry process, once per cycle)
+    teleo/<run>/stats/<process>              ProcessStats
+    teleo/<run>/proc/<process>               liveliness tokens
+"""
+
+from __future__ import annotations
+
+from bus.errors import KeyFormatError
+
+ROOT = "teleo"
+_FORBIDDEN = set("/*$?#@ ")
+
+
+def check_chunk(name: str, what: str = "name") -> str:
+    """Return `name` if it is usable as one key chunk, else raise KeyFormatError."""
+    if not isinstance(name, str) or not name:
+        raise KeyFormatError(f"{what} must be a non-empty string, got {name!r}")
+    bad = sorted(set(name) & _FORBIDDEN)
+    if bad:
+        raise KeyFormatError(f"{what} {name!r} contains forbidden character(s) {''.join(bad)!r}")
+    return name
+
+
+def run_root(run: str) -> str:
+    """`teleo/<run>`: the prefix of everything in one run."""
+    return f"{ROOT}/{check_chunk(run, 'run')}"
+
+
+def run_all(run: str) -> str:
+    """`teleo/<run>/**`: every data key of one run (what `teleo record` subscribes to)."""
+    return f"{run_root(run)}/**"
+
+
+def world_state(run: str) -> str:
+    return f"{run_root(run)}/world/state"
+
+
+def world_events(run: str) -> str:
+    return f"{run_root(run)}/world/events"
+
+
+def _agent(run: str, agent: str, leaf: str) -> str:
+    return f"{run_root(run)}/agent/{check_chunk(agent, 'agent')}/{leaf}"
+
+
+def percepts(run: str, agent: str) -> str:
+    return _agent(run, agent, "percepts")
+
+
+def beliefs(run: str, agent: str) -> str:
+    return _agent(run, agent, "beliefs")
+
+
+def actions(run: str, agent: str) -> str:
+    return _agent(run, agent, "actions")
+
+
+def intention(run: str, agent: str) -> str:
+    return _agent(run, agent, "intention")
+
+
+def goals(run: str, agent: str) -> str:
+    return _agent(run, agent, "goals")
+
+
+def goal_list(run: str, agent: str) -> str:
+    """The agent's goal list of each cycle, published by the goal-entry process."""
+    return _agent(run, agent, "goal-list")
+
+
+def all_actions(run: str) -> str:
+    """`teleo/<run>/agent/*/actions`: every agent's actions (the clock subscribes to this)."""
+    return f"{run_root(run)}/agent/*/actions"
+
+
+def stats(run: str, process: str) -> str:
+    return f"{run_root(run)}/stats/{check_chunk(process, 'process')}"
+
+
+def all_stats(run: str) -> str:
+    return f"{run_root(run)}/stats/*"
+
+
+def proc(run: str, process: str) -> str:
+    """Liveliness token key of one process."""
+    return f"{run_root(run)}/proc/{check_chunk(process, 'process')}"
+
+
+def all_procs(run: str) -> str:
+    return f"{run_root(run)}/proc/*"
+
+
+def process_of_token(run: str, key: str) -> str | None:
+    """The process name of a liveliness token key of this run, or None if it is not one."""
+    prefix = f"{run_root(run)}/proc/"
+    if not key.startswith(prefix):
+        return None
+    name = key[len(prefix):]
+    return name if name and "/" not in name else None
+
+
+def kind_of_key(key: str) -> frozenset[str]:
+    """The message kinds allowed on `key` (empty if the key is not a teleo data key).
+
+    The codec uses it to reject a message of the wrong kind on a key.
+    """
+    parts = key.split("/")
+    if len(parts) < 4 or parts[0] != ROOT:
+        return frozenset()
+    tail = tuple(parts[2:])
+    if tail == ("world", "state"):
+        return frozenset({"WorldState"})
+    if tail == ("world", "events"):
+        return frozenset({"WorldEvent"})
+    if len(tail) == 2 and tail[0] == "stats":
+        return frozenset({"ProcessStats"})
+    if len(tail) == 3 and tail[0] == "agent":
+        return _AGENT_LEAVES.get(tail[2], frozenset())
+    return frozenset()
+
+
+def agent_of_key(key: str) -> str | None:
+    """The agent chunk of an agent key (`teleo/<run>/agent/<agent>/...`), else None."""
+    parts = key.split("/")
+    if len(parts) >= 5 and parts[0] == ROOT and parts[2] == "agent":
+        return parts[3]
+    return None
+
+
+_AGENT_LEAVES = {
+    "percepts": frozenset({"Percepts"}),
+    "beliefs": frozenset({"Beliefs"}),
+    "actions": frozenset({"Actions"}),
+    "intention": frozenset({"Intention"}),
+    "goals": frozenset({"GoalRequest", "GoalReply"}),
+    "goal-list": frozenset({"GoalList"}),
+}

@@ -1,0 +1,146 @@
+"""Message kinds on the bus (docs/CONTRACTS.md, bus section): frozen dataclasses, each
+with an envelope. Payload data uses the neutral forms (plain lists and dicts, msgpack-able).
+
+The kind name of each class is its `KIND` and is what the codec writes on the wire.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import ClassVar
+
+SCHEMA_VERSION = 1
+"""Major schema version written in every envelope; a receiver drops any other version."""
+
+GOAL_OPS = ("post", "cancel", "priority", "list", "update")
+"""Allowed `GoalRequest.op` values."""
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """Who sent what for which cycle.
+
+    v: schema version; run: run id; cycle: cycle number (>= 0; -1 for messages outside
+    the cycle, e.g. goal requests); sender: process name; sent_ns: wall clock at send [ns].
+    """
+
+    v: int
+    run: str
+    cycle: int
+    sender: str
+    sent_ns: int
+
+    @classmethod
+    def now(cls, run: str, cycle: int, sender: str) -> Envelope:
+        """An envelope of the current schema version stamped with the current time."""
+        return cls(SCHEMA_VERSION, run, cycle, sender, time.time_ns())
+
+
+@dataclass(frozen=True)
+class WorldState:
+    """World state of a cycle, with each agent's action outcomes of the previous cycle."""
+
+    KIND: ClassVar[str] = "WorldState"
+    env: Envelope
+    snapshot: dict
+    outcomes: dict  # agent -> list of outcome dicts {"action", "status", "reason"}
+    events: list
+
+
+@dataclass(frozen=True)
+class Percepts:
+    KIND: ClassVar[str] = "Percepts"
+    env: Envelope
+    agent: str
+    percepts: tuple  # tuple of percept lists, e.g. ["self", "ME", "speed", 20.0]
+
+
+@dataclass(frozen=True)
+class Beliefs:
+    KIND: ClassVar[str] = "Beliefs"
+    env: Envelope
+    agent: str
+    beliefs: tuple  # tuple of belief lists, e.g. ["at-street", "ME", "B"]
+
+
+@dataclass(frozen=True)
+class Actions:
+    """Actions of one agent for one cycle; an empty tuple is the no-op."""
+
+    KIND: ClassVar[str] = "Actions"
+    env: Envelope
+    agent: str
+    actions: tuple  # tuple of action lists, e.g. ["*gas", 6.25]
+
+
+@dataclass(frozen=True)
+class Intention:
+    KIND: ClassVar[str] = "Intention"
+    env: Envelope
+    agent: str
+    decision: dict  # the engine's Decision.to_dict()
+
+
+@dataclass(frozen=True)
+class GoalRequest:
+    KIND: ClassVar[str] = "GoalRequest"
+    env: Envelope
+    op: str  # one of GOAL_OPS
+    agent: str
+    goal: str = ""
+    priority: int = 0
+    goal_id: str = ""
+
+
+@dataclass(frozen=True)
+class GoalReply:
+    KIND: ClassVar[str] = "GoalReply"
+    env: Envelope
+    ok: bool
+    reason: str
+    goals: tuple = ()  # tuple of goal dicts
+
+
+@dataclass(frozen=True)
+class GoalList:
+    """An agent's goal list for one cycle (the executive's goal input of that cycle)."""
+
+    KIND: ClassVar[str] = "GoalList"
+    env: Envelope
+    agent: str
+    goals: tuple = ()  # tuple of {"id", "goal", "priority", "status"} dicts
+
+
+@dataclass(frozen=True)
+class ProcessStats:
+    """Per-cycle figures of one process, for the clock (which stage is late) and the inspector.
+
+    compute_ms: time spent computing this cycle [ms]; late: cycles this process has
+    skipped so far because a newer cycle had already arrived (it fell behind) [count].
+    """
+
+    KIND: ClassVar[str] = "ProcessStats"
+    env: Envelope
+    process: str
+    compute_ms: float
+    late: int
+
+
+@dataclass(frozen=True)
+class WorldEvent:
+    KIND: ClassVar[str] = "WorldEvent"
+    env: Envelope
+    event: dict
+
+
+Message = (
+    WorldState | Percepts | Beliefs | Actions | Intention | GoalRequest | GoalReply | GoalList
+    | ProcessStats | WorldEvent
+)
+
+MESSAGE_TYPES: dict[str, type] = {
+    cls.KIND: cls
+    for cls in (WorldState, Percepts, Beliefs, Actions, Intention, GoalRequest, GoalReply,
+                GoalList, ProcessStats, WorldEvent)
+}

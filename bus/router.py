@@ -1,0 +1,140 @@
+"""A Python zenoh session in router mode: the hub for local runs and tests (zenohd is not on
+PyPI). `python -m bus.router --listen tcp/127.0.0.1:7447`, `teleo router`, or from code
+`spawn_router()`, which starts it as a subprocess and reads back its actual endpoint.
+
+On start the router prints one line `TELEO-ROUTER <endpoint> ...` on stdout (the endpoints
+it really listens on, read from its adminspace, so port 0 works) and runs until
+SIGINT/SIGTERM.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import selectors
+import signal
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import zenoh
+
+from bus.config import BusConfig, Mode
+from bus.errors import RouterError
+
+log = logging.getLogger(__name__)
+READY_PREFIX = "TELEO-ROUTER"
+
+
+def router_config(listen: Sequence[str], connect: Sequence[str] = ()) -> BusConfig:
+    """The config of a hub listening on `listen` (and linked to other routers in `connect`)."""
+    return BusConfig(mode=Mode.ROUTER, listen=tuple(listen), connect=tuple(connect))
+
+
+def locators(session: zenoh.Session, timeout: float = 2.0) -> list[str]:
+    """The endpoints this router session actually listens on, from its adminspace."""
+    for reply in session.get(f"@/{session.zid()}/router", timeout=timeout):
+        if reply.ok is not None:
+            return list(json.loads(reply.ok.payload.to_bytes()).get("locators", []))
+    return []
+
+
+def serve(cfg: BusConfig, stop: threading.Event, ready_out: object = None) -> None:
+    """Run a router session from `cfg` until `stop` is set; writes the ready line to
+    `ready_out` (a text stream, default stdout)."""
+    out = sys.stdout if ready_out is None else ready_out
+    with zenoh.open(cfg.to_zenoh()) as session:
+        eps = locators(session) or list(cfg.listen)
+        out.write(f"{READY_PREFIX} {' '.join(eps)}\n")
+        out.flush()
+        log.info("router %s listening on %s", session.zid(), eps)
+        stop.wait()
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """`python -m bus.router [--listen EP[,EP]] [--connect EP[,EP]]`."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="python -m bus.router", description=__doc__)
+    parser.add_argument("--listen", default="tcp/127.0.0.1:7447")
+    parser.add_argument("--connect", default="")
+    args = parser.parse_args(argv)
+    split = [e.strip() for e in args.listen.split(",") if e.strip()]
+    conn = [e.strip() for e in args.connect.split(",") if e.strip()]
+    run_until_signalled(router_config(split, conn))
+
+
+def run_until_signalled(cfg: BusConfig) -> None:
+    """Serve `cfg` until SIGINT or SIGTERM (then close the session and return)."""
+    stop = threading.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: stop.set())
+    serve(cfg, stop)
+
+
+@dataclass
+class RouterProcess:
+    """A router running as a subprocess; `endpoint` is where the others connect."""
+
+    proc: subprocess.Popen
+    endpoint: str
+    endpoints: tuple[str, ...]
+
+    def stop(self, timeout: float = 5.0) -> int:
+        """SIGTERM, then SIGKILL after `timeout` [s]; returns the exit code."""
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait(timeout)
+        if self.proc.stdout is not None:
+            self.proc.stdout.close()
+        return self.proc.returncode
+
+    def __enter__(self) -> RouterProcess:
+        return self
+
+    def __exit__(self, *_exc: object) -> None:
+        self.stop()
+
+
+def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0) -> RouterProcess:
+    """Start `python -m bus.router` as a subprocess listening on `listen` (port 0: a free
+    port) and wait until it reports its endpoints; raises RouterError if it does not."""
+    env = dict(os.environ)
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH", "")) if p)
+    proc = subprocess.Popen([sys.executable, "-m", "bus.router", "--listen", listen],
+                            stdout=subprocess.PIPE, text=True, env=env)
+    line = _read_line(proc, timeout)
+    if not line.startswith(READY_PREFIX):
+        proc.kill()
+        proc.wait()
+        raise RouterError(f"router on {listen} did not report ready within {timeout:g} s "
+                          f"(exit code {proc.poll()}, got {line!r})")
+    eps = tuple(line.split()[1:])
+    tcp = [e for e in eps if e.startswith("tcp/")]
+    return RouterProcess(proc, (tcp or list(eps))[0], eps)
+
+
+def _read_line(proc: subprocess.Popen, timeout: float) -> str:
+    assert proc.stdout is not None
+    deadline = time.monotonic() + timeout
+    with selectors.DefaultSelector() as sel:
+        sel.register(proc.stdout, selectors.EVENT_READ)
+        while time.monotonic() < deadline:
+            if sel.select(max(0.0, deadline - time.monotonic())):
+                return proc.stdout.readline().strip()
+            if proc.poll() is not None:
+                break
+    return ""
+
+
+if __name__ == "__main__":
+    main()

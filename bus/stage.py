@@ -1,0 +1,120 @@
+"""The agent-side loop of one stage (perception, inference or executive).
+
+    stage = Stage(node, "ME.inference", [keys.percepts(run, "ME")], step,
+                  outputs=[keys.beliefs(run, "ME")])
+    stage.run(stop)          # stop: threading.Event set from SIGINT/SIGTERM handlers
+
+`step(cycle, {input_key: msg}) -> [(key, msg), ...]` is called once per cycle with the
+inputs of exactly that cycle. The stage publishes its ProcessStats, then what `step` returned.
+A cycle seen again (the clock re-sent state t for a restarted stage) re-emits the cached
+outputs without calling `step` again; cycles older than the last handled one are dropped;
+when it has fallen behind it skips to the newest complete cycle and counts the skipped
+ones in ProcessStats.late.
+"""
+
+from __future__ import annotations
+
+import logging
+import signal
+import threading
+import time
+from collections.abc import Callable, Sequence
+
+from bus import keys
+from bus.cycle import Joined, Joiner, pick
+from bus.messages import Message, ProcessStats
+from bus.node import Inbox, Node
+
+log = logging.getLogger(__name__)
+
+def stop_on_signals() -> threading.Event:
+    """An Event set by SIGINT or SIGTERM (installs the handlers; call from the main thread)."""
+    stop = threading.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: stop.set())
+    return stop
+
+
+StepFn = Callable[[int, dict[str, Message]], list[tuple[str, Message]]]
+
+
+class Stage:
+    """Joins `inputs` (exact keys) by cycle, calls `step_fn`, publishes outputs and stats.
+
+    outputs: keys that must have a subscriber before the stage announces itself (the
+    start-up barrier); other keys returned by `step_fn` are declared on first use.
+    """
+
+    def __init__(self, node: Node, process: str, inputs: Sequence[str], step_fn: StepFn,
+                 outputs: Sequence[str] = (), ready_timeout: float = 10.0) -> None:
+        self.node = node
+        self.process = keys.check_chunk(process, "process")
+        self.step_fn = step_fn
+        self.outputs = tuple(outputs)
+        self.ready_timeout = ready_timeout
+        self.joiner = Joiner(inputs)
+        self.late = 0
+        self.cycles_done = 0
+        self._stats_key = keys.stats(node.run, self.process)
+        self._cache: list[tuple[str, Message]] = []
+        self._inbox: Inbox | None = None
+
+    @property
+    def inbox(self) -> Inbox:
+        if self._inbox is None:
+            raise RuntimeError(f"stage {self.process}: start() not called")
+        return self._inbox
+
+    def start(self) -> None:
+        """Subscribe, declare publishers, wait (bounded) for `outputs` to match, announce."""
+        inbox = Inbox()
+        for key in self.joiner.inputs:
+            self.node.subscribe(key, inbox=inbox)
+        self.node.declare([*self.outputs, self._stats_key])
+        unmatched = self.node.wait_matching(self.outputs, self.ready_timeout)
+        if unmatched:
+            log.warning("%s: no subscriber yet on %s after %.1f s; announcing anyway",
+                        self.process, sorted(unmatched), self.ready_timeout)
+        self._inbox = inbox
+        self.node.announce()
+
+    def run(self, stop: threading.Event, poll_s: float = 0.1) -> None:
+        """Handle cycles until `stop` is set (checked every `poll_s` [s] when idle)."""
+        if self._inbox is None:
+            self.start()
+        while not stop.is_set():
+            self.step_once(poll_s)
+
+    def step_once(self, timeout: float) -> int | None:
+        """Wait up to `timeout` [s] for input, handle the newest complete cycle in the
+        inbox; return its number, or None if no cycle completed."""
+        first = self.inbox.receive(timeout)
+        if first is None:
+            return None
+        batch = [self.joiner.add(first.key, first.msg)]
+        while (more := self.inbox.receive(0)) is not None:
+            batch.append(self.joiner.add(more.key, more.msg))
+        joined, skipped = pick(batch)
+        if joined is None:
+            return None
+        self.late += skipped
+        self._handle(joined)
+        return joined.cycle
+
+    def _handle(self, joined: Joined) -> None:
+        if joined.repeat:
+            log.info("%s: cycle %d seen again; re-emitting cached outputs", self.process,
+                     joined.cycle)
+            outs, compute_ms = self._cache, 0.0
+        else:
+            t0 = time.perf_counter()
+            outs = list(self.step_fn(joined.cycle, joined.inputs))
+            compute_ms = (time.perf_counter() - t0) * 1e3
+            self._cache = outs
+            self.cycles_done += 1
+        self.joiner.done(joined.cycle)
+        # stats first, so the clock has every stage's figures when the actions arrive
+        self.node.publish(self._stats_key, ProcessStats(
+            self.node.envelope(joined.cycle), self.process, compute_ms, self.late))
+        for key, msg in outs:
+            self.node.publish(key, msg)

@@ -1,0 +1,127 @@
+"""Codec: every message kind round-trips; anything malformed raises CodecError naming the key."""
+
+from __future__ import annotations
+
+import msgpack
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from bus import keys
+from bus.codec import decode, encode
+from bus.errors import CodecError
+from bus.messages import (
+    GOAL_OPS,
+    Actions,
+    Beliefs,
+    Envelope,
+    GoalList,
+    GoalReply,
+    GoalRequest,
+    Intention,
+    Percepts,
+    ProcessStats,
+    WorldEvent,
+    WorldState,
+)
+
+text = st.text(max_size=12)
+ints = st.integers(min_value=-(2**63), max_value=2**63 - 1)
+floats = st.floats(allow_nan=False)
+atoms = st.one_of(text, ints, floats)
+rows = st.lists(st.lists(atoms, max_size=8), max_size=10).map(tuple)
+plain = st.recursive(
+    st.one_of(st.none(), st.booleans(), ints, floats, text),
+    lambda inner: st.one_of(st.lists(inner, max_size=4),
+                            st.dictionaries(text, inner, max_size=4)),
+    max_leaves=12)
+maps = st.dictionaries(text, plain, max_size=5)
+envs = st.builds(Envelope, v=st.just(1), run=text, cycle=st.integers(-1, 2**40),
+                 sender=text, sent_ns=st.integers(0, 2**63 - 1))
+
+MESSAGES = {
+    "world_state": (lambda: keys.world_state("r"), st.builds(
+        WorldState, envs, maps, st.dictionaries(text, st.lists(maps, max_size=3), max_size=3),
+        st.lists(maps, max_size=3))),
+    "percepts": (lambda: keys.percepts("r", "ME"), st.builds(Percepts, envs, text, rows)),
+    "beliefs": (lambda: keys.beliefs("r", "ME"), st.builds(Beliefs, envs, text, rows)),
+    "actions": (lambda: keys.actions("r", "ME"), st.builds(Actions, envs, text, rows)),
+    "intention": (lambda: keys.intention("r", "ME"), st.builds(Intention, envs, text, maps)),
+    "goal_request": (lambda: keys.goals("r", "ME"), st.builds(
+        GoalRequest, envs, st.sampled_from(GOAL_OPS), text, text, ints, text)),
+    "goal_reply": (lambda: keys.goals("r", "ME"), st.builds(
+        GoalReply, envs, st.booleans(), text, st.lists(maps, max_size=3).map(tuple))),
+    "goal_list": (lambda: keys.goal_list("r", "ME"), st.builds(
+        GoalList, envs, text, st.lists(maps, max_size=3).map(tuple))),
+    "stats": (lambda: keys.stats("r", "ME.inference"), st.builds(
+        ProcessStats, envs, text, floats, ints)),
+    "event": (lambda: keys.world_events("r"), st.builds(WorldEvent, envs, maps)),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(MESSAGES))
+def test_every_kind_round_trips(kind):
+    key_fn, strategy = MESSAGES[kind]
+
+    @settings(max_examples=25, deadline=None,
+              suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+    @given(strategy)
+    def round_trip(msg):
+        assert decode(key_fn(), encode(msg)) == msg
+
+    round_trip()
+
+
+ENV = Envelope(1, "r", 3, "ME.perception", 123)
+KEY = keys.percepts("r", "ME")
+
+
+def body(**changes):
+    base = {"kind": "Percepts", "env": {"v": 1, "run": "r", "cycle": 3, "sender": "x",
+                                        "sent_ns": 1}, "agent": "ME", "percepts": [["a", 1]]}
+    base.update(changes)
+    return msgpack.packb(base)
+
+
+@pytest.mark.parametrize("payload, problem", [
+    (b"\xc1garbage", "malformed msgpack"),
+    (b"", "malformed msgpack"),
+    (msgpack.packb([1, 2]), "expected a msgpack map"),
+    (msgpack.packb({1: 2}), "malformed msgpack"),
+    (body(env={"v": 2, "run": "r", "cycle": 3, "sender": "x", "sent_ns": 1}),
+     "unknown schema version 2"),
+    (body(kind="Nope"), "unknown message kind"),
+    (body(kind="Beliefs", beliefs=[]), "wrong message kind 'Beliefs'"),
+    (body(percepts=[["a", True]]), "Percepts.percepts"),
+    (body(percepts=[["a", None]]), "Percepts.percepts"),
+    (body(percepts="abc"), "expected array"),
+    (body(agent=7), "Percepts.agent: expected str"),
+    (body(env={"v": 1, "run": "r"}), "malformed envelope"),
+])
+def test_bad_payloads_raise_codec_error_naming_the_key(payload, problem):
+    with pytest.raises(CodecError, match=problem) as err:
+        decode(KEY, payload)
+    assert err.value.key == KEY
+    assert str(err.value).startswith(KEY)
+
+
+def test_missing_field_is_an_error_and_unknown_fields_are_ignored():
+    raw = msgpack.unpackb(body())
+    del raw["agent"]
+    with pytest.raises(CodecError, match="lacks field 'agent'"):
+        decode(KEY, msgpack.packb(raw))
+    msg = decode(KEY, body(added_in_v1_1="ignored"))
+    assert msg == Percepts(Envelope(1, "r", 3, "x", 1), "ME", (["a", 1],))
+
+
+def test_goal_request_op_is_checked_and_defaults_apply():
+    raw = msgpack.unpackb(encode(GoalRequest(ENV, "list", "ME")))
+    assert decode(keys.goals("r", "ME"), msgpack.packb(raw)) == GoalRequest(ENV, "list", "ME")
+    raw["op"] = "explode"
+    with pytest.raises(CodecError, match="GoalRequest.op 'explode'"):
+        decode(keys.goals("r", "ME"), msgpack.packb(raw))
+
+
+def test_unencodable_message_is_a_codec_error():
+    with pytest.raises(CodecError, match="not msgpack-able"):
+        encode(Intention(ENV, "ME", {"x": object()}))

@@ -1,0 +1,29 @@
+"""A clock and three pass-through stages as real processes on a loopback zenoh bus."""
+
+from __future__ import annotations
+
+from bus_helpers import AGENT, PIPELINE, Stages
+
+from bus.clock import Clock
+from bus.cycle import CycleMode
+from bus.messages import WorldState
+from bus.node import open_node
+
+N = 25
+
+
+def state(node, t: int) -> WorldState:
+    return WorldState(node.envelope(t), {"cycle": t}, {}, [])
+
+
+def test_lockstep_cycles_reach_every_stage_once_in_order(cfg, run_id, stages: Stages):
+    with open_node(cfg, run_id, "world") as node:
+        clock = Clock(node, {AGENT: PIPELINE}, mode=CycleMode.LOCKSTEP, deadline_s=10.0)
+        stages.start_agent()
+        clock.wait_ready(set(PIPELINE), timeout=30)
+        reports = [clock.run_cycle(t, state(node, t)) for t in range(N)]
+    assert all(r.clean for r in reports)
+    assert [r.actions[AGENT] for r in reports] == [(["*pass", t, 1],) for t in range(N)]
+    assert set(reports[-1].stage_ms) == set(PIPELINE)
+    for process in PIPELINE:
+        assert stages.cycles(process) == list(range(N))

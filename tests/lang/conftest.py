@@ -1,0 +1,40 @@
+"""Shared fixtures for the language engine tests: paths to the seed tables and test programs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from agents.lang import Engine, load_program, parse_percepts
+
+HERE = Path(__file__).parent
+FIX = HERE / "fixtures"
+PROGRAMS = HERE / "programs"
+ROOT = HERE.parent.parent
+
+
+@pytest.fixture(scope="session")
+def table3():
+    """The percepts of seed 000, Table 3, read verbatim."""
+    return parse_percepts((FIX / "table3_percepts.txt").read_text(), "table3_percepts.txt")
+
+
+@pytest.fixture(scope="session")
+def blocks():
+    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+
+
+@pytest.fixture(scope="session")
+def minidrive():
+    return Engine(load_program(PROGRAMS / "minidrive.tlp"))
+
+
+@pytest.fixture(scope="session")
+def minidrive_res():
+    return Engine(load_program(PROGRAMS / "minidrive_resources.tlp"))
+
+
+def me(speed=15.0, limit=25, heading=0.0, position=0):
+    """The ego car as a neutral percept list."""
+    return ["self", "ME", "speed", speed, "limit", limit, "heading", heading, "position", position]

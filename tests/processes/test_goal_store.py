@@ -1,0 +1,111 @@
+"""The goal-entry process's store: validation, statuses mirrored from intentions, persistence."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from agents.processes.goal_store import GoalState, GoalStore, GoalStoreError, load, save
+
+
+def accept_all(agent: str, goal: str, priority: int) -> str:
+    return ""
+
+
+def known_concepts(agent: str, goal: str, priority: int) -> str:
+    name = goal.strip("()").split()[0]
+    return "" if name == "package-delivered" else f"unknown concept {name}"
+
+
+def test_post_assigns_ids_in_order_and_starts_pending():
+    store, first = GoalStore().post("ME", "(package-delivered  P1)", 3, 0, accept_all)
+    store, second = store.post("ME", "(package-delivered P2)", 2, 5, accept_all)
+    assert (first.id, second.id) == ("g1", "g2")
+    assert first.goal == "(package-delivered P1)"  # whitespace normalised
+    assert store.goal_list("ME") == (
+        {"id": "g1", "goal": "(package-delivered P1)", "priority": 3, "status": "pending"},
+        {"id": "g2", "goal": "(package-delivered P2)", "priority": 2, "status": "pending"},
+    )
+
+
+def test_refused_goal_names_the_reason_and_is_not_stored():
+    with pytest.raises(GoalStoreError, match="unknown concept flying"):
+        GoalStore().post("ME", "(flying ME)", 1, 0, known_concepts)
+    with pytest.raises(GoalStoreError, match="priority must be >= 1"):
+        GoalStore().post("ME", "(package-delivered P1)", 0, 0, accept_all)
+
+
+def test_duplicate_of_a_live_goal_is_refused():
+    store, _ = GoalStore().post("ME", "(package-delivered P1)", 3, 0, accept_all)
+    with pytest.raises(GoalStoreError, match="already posted for ME as g1"):
+        store.post("ME", "(package-delivered P1)", 3, 0, accept_all)
+    # another agent may want the same thing
+    store.post("OTHER", "(package-delivered P1)", 3, 0, accept_all)
+
+
+def test_statuses_follow_the_executive_and_cancel_withdraws():
+    store, _ = GoalStore().post("ME", "(package-delivered P1)", 3, 0, accept_all)
+    store, _ = store.post("ME", "(package-delivered P2)", 4, 0, accept_all)
+    decision = {"goals": [{"id": "law1", "status": "satisfied"},
+                          {"id": "g1", "status": "active"},
+                          {"id": "g2", "status": "suspended"}]}
+    store = store.update_from_intention("ME", decision, 7)
+    assert [g.status for g in store.goals] == [GoalState.ACTIVE, GoalState.SUSPENDED]
+    store = store.update_from_intention("ME", {"goals": [{"id": "g1", "status": "satisfied"}]}, 9)
+    assert store.get("g1").status is GoalState.ACHIEVED and store.get("g1").updated_cycle == 9
+    store = store.cancel("g2", 10)
+    assert [g["id"] for g in store.goal_list("ME")] == ["g1"]
+    # a cancelled goal stays cancelled whatever the executive still reports
+    store = store.update_from_intention("ME", {"goals": [{"id": "g2", "status": "active"}]}, 11)
+    assert store.get("g2").status is GoalState.CANCELLED
+
+
+def test_priority_changes_and_unknown_ids_are_explained():
+    store, _ = GoalStore().post("ME", "(package-delivered P1)", 3, 0, accept_all)
+    assert store.set_priority("g1", 1, 2).get("g1").priority == 1
+    with pytest.raises(GoalStoreError, match="no goal 'g9'"):
+        store.cancel("g9", 0)
+
+
+def test_save_and_load_round_trip(tmp_path):
+    store, _ = GoalStore().post("ME", "(package-delivered P1)", 3, 0, accept_all)
+    store = store.mark_scripted([0, 2]).update_from_intention(
+        "ME", {"goals": [{"id": "g1", "status": "impasse"}]}, 4)
+    path = tmp_path / "goals.json"
+    save(store, path)
+    assert load(path) == store
+    assert load(tmp_path / "absent.json") == GoalStore()
+
+
+ops = st.lists(st.tuples(st.sampled_from(["post", "cancel", "priority", "report"]),
+                         st.integers(1, 5), st.sampled_from(["satisfied", "active", "pending"])),
+               max_size=30)
+
+
+@given(ops)
+def test_any_history_survives_a_restart(history):
+    """Property: whatever happened, saving and loading gives back exactly the same goals."""
+    import tempfile
+    from pathlib import Path
+
+    store = GoalStore()
+    for op, n, status in history:
+        try:
+            if op == "post":
+                store, _ = store.post("ME", f"(package-delivered P{n})", n, 0, accept_all)
+            elif op == "cancel":
+                store = store.cancel(f"g{n}", 1)
+            elif op == "priority":
+                store = store.set_priority(f"g{n}", n, 1)
+            else:
+                store = store.update_from_intention("ME", {"goals": [{"id": f"g{n}",
+                                                                       "status": status}]}, 2)
+        except GoalStoreError:
+            pass
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "goals.json"
+        save(store, path)
+        assert load(path) == store
+    ids = [g.id for g in store.goals]
+    assert len(ids) == len(set(ids))

@@ -1,0 +1,130 @@
+"""`teleo check`, `teleo infer`, `teleo step`: the language engine on the command line (thin)."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import click
+
+from agents.lang import (
+    Engine,
+    EngineState,
+    LangError,
+    ProgramError,
+    load_program,
+    parse_percepts,
+)
+from agents.lang.loader import read_text
+from agents.lang.terms import sort_key
+
+_include = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
+                        help="Extra file read into the same program (e.g. concepts a table of "
+                             "skills uses). Repeatable.")
+
+
+def _fail(exc: LangError) -> None:
+    """Print a language error to stderr and exit 1."""
+    click.echo(str(exc), err=True)
+    sys.exit(1)
+
+
+def _load(path: str, includes: tuple[str, ...]):
+    try:
+        program = load_program(path, *includes)
+    except ProgramError as exc:
+        _fail(exc)
+    for w in program.warnings:
+        click.echo(str(w), err=True)
+    return program
+
+
+def _percepts(path: str):
+    try:
+        return parse_percepts(read_text(path), source=path)
+    except LangError as exc:
+        _fail(exc)
+
+
+def _sorted_beliefs(beliefs) -> list:
+    return sorted(beliefs, key=lambda b: (b.pred, [sort_key(a) for a in b.args]))
+
+
+@click.command()
+@click.argument("programs", nargs=-1, required=True, type=click.Path())
+@_include
+def check(programs: tuple[str, ...], includes: tuple[str, ...]) -> None:
+    """Check PROGRAMS; exit 0 when every one is valid, 1 with all errors otherwise."""
+    failed = 0
+    for path in programs:
+        try:
+            program = load_program(path, *includes)
+        except ProgramError as exc:
+            failed += 1
+            click.echo(str(exc), err=True)
+            n = len(exc.errors)
+            click.echo(f"{path}: {n} error{'s' if n != 1 else ''}", err=True)
+            continue
+        for w in program.warnings:
+            click.echo(str(w), err=True)
+        n_concepts = sum(len(c) for c in program.concepts.values())
+        click.echo(f"{path}: ok ({n_concepts} concepts, {len(program.skills)} skills, "
+                   f"{len(program.goals)} goals)")
+    sys.exit(1 if failed else 0)
+
+
+@click.command()
+@click.argument("program", type=click.Path())
+@click.option("--percepts", "percepts_file", required=True, type=click.Path(),
+              help="Percept file: Table 3 s-expressions or JSON neutral lists.")
+@_include
+def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
+    """Print every belief PROGRAM infers from the percepts, one s-expression a line, sorted."""
+    engine = Engine(_load(program, includes))
+    for b in _sorted_beliefs(engine.infer(_percepts(percepts_file))):
+        click.echo(str(b))
+
+
+@click.command()
+@click.argument("program", type=click.Path())
+@click.option("--percepts", "percepts_file", required=True, type=click.Path(),
+              help="Percept file: Table 3 s-expressions or JSON neutral lists.")
+@click.option("--state", "state_file", type=click.Path(), help="Engine state (JSON) to start from.")
+@click.option("--save-state", "save_file", type=click.Path(), help="Write the next state here.")
+@click.option("--goal", "goals", multiple=True,
+              help="Add a user goal, e.g. '(package-delivered PACKET2)'; append :P for priority "
+                   "P, e.g. '(clear B):1'. Repeatable.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
+@_include
+def step(program: str, percepts_file: str, state_file: str | None, save_file: str | None,
+         goals: tuple[str, ...], as_json: bool, includes: tuple[str, ...]) -> None:
+    """Run one cycle: print beliefs, goal statuses, the skill path, actions and why."""
+    engine = Engine(_load(program, includes))
+    percepts = _percepts(percepts_file)
+    try:
+        state = (EngineState.from_dict(json.loads(read_text(state_file))) if state_file
+                 else engine.initial_state())
+        for g in goals:
+            text, _, prio = g.rpartition(":") if g.rstrip().endswith(tuple("0123456789")) \
+                and ":" in g else (g, "", "")
+            state = engine.add_goal(state, text or g, int(prio) if prio else None)
+        result = engine.cycle(state, percepts)
+    except (LangError, json.JSONDecodeError) as exc:
+        click.echo(f"{state_file or program}: {exc}", err=True)
+        sys.exit(1)
+    if save_file:
+        Path(save_file).write_text(json.dumps(result.state.to_dict(), indent=1) + "\n")
+    beliefs = _sorted_beliefs(result.beliefs)
+    if as_json:
+        click.echo(json.dumps({"beliefs": [b.to_list() for b in beliefs],
+                               "decision": result.decision.to_dict(),
+                               "state": result.state.to_dict()}, indent=1))
+        return
+    click.echo("beliefs:")
+    for b in beliefs:
+        click.echo(f"  {b}")
+    click.echo(result.decision.explain())
+
+
+commands = [check, infer, step]

@@ -1,0 +1,115 @@
+"""`teleo simulate SCENARIO`: the whole cognitive cycle in one process, without the bus.
+
+The same pure pieces the processes run (world.Simulation, world.perception.perceive, the
+language engine), called in the order of one cycle (DESIGN.md, "One cognitive cycle"). It is
+what a program author iterates with, and what the driving program's tests run: a lockstep run
+over the bus gives the same actions cycle for cycle, since each stage is a pure function of
+its inputs.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import click
+
+from agents.lang import Engine, EngineState, load_program
+from tools.scenario import Scenario, load_scenario
+from world.perception import perceive
+from world.scenario import load_world_config
+from world.simulation import Simulation
+from world.snapshot import WorldSnapshot
+
+
+@dataclass
+class SimRun:
+    """The outcome of an in-process run: per-cycle records and the final snapshot."""
+
+    records: list[dict[str, Any]] = field(default_factory=list)
+    snapshots: list[WorldSnapshot] = field(default_factory=list)
+    final: WorldSnapshot | None = None
+
+
+def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
+                 states: dict[str, EngineState]) -> None:
+    for k, g in enumerate(scenario.goals):
+        if g.at_cycle != cycle:
+            continue
+        engine, state = engines[g.agent], states[g.agent]
+        goal_id = g.goal_id or f"s{k + 1}"
+        if g.op == "post":
+            states[g.agent] = engine.add_goal(state, g.goal, priority=g.priority, goal_id=goal_id)
+        elif g.op == "cancel":
+            states[g.agent] = engine.remove_goal(state, goal_id)
+        else:
+            states[g.agent] = engine.set_priority(state, goal_id, g.priority)
+
+
+def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
+             keep_every: int = 0) -> SimRun:
+    """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot."""
+    agents = scenario.agent_ids
+    sim = Simulation(load_world_config(scenario.world),
+                     scenario.run.seed if seed is None else seed, agents)
+    engines = {a.id: Engine(load_program(a.program)) for a in scenario.agents}
+    states = {a: engines[a].initial_state() for a in agents}
+    run = SimRun()
+    total = scenario.run.cycles if cycles is None else cycles
+    for cycle in range(total):
+        for ev in scenario.events:
+            if ev.at_cycle == cycle:
+                sim.inject(ev.event)
+        _apply_goals(scenario, cycle, engines, states)
+        snap = sim.snapshot()
+        if keep_every and cycle % keep_every == 0:
+            run.snapshots.append(snap)
+        record: dict[str, Any] = {"cycle": cycle}
+        for a in agents:
+            result = engines[a].cycle(states[a], perceive(snap, a))
+            states[a] = result.state
+            actions = [act.to_list() for act in result.decision.actions]
+            sim.apply_actions(a, actions)
+            record[a] = {"actions": actions,
+                         "goals": [(g["id"], g["status"]) for g in
+                                   result.decision.to_dict()["goals"]]}
+        run.records.append(record)
+        sim.step()
+    run.final = sim.snapshot()
+    return run
+
+
+@click.command("simulate")
+@click.argument("scenario", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--cycles", type=int, default=None, help="Cycles to run (default: the scenario's).")
+@click.option("--seed", type=int, default=None, help="World seed (default: the scenario's).")
+@click.option("--trace", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Write one JSON line per cycle (actions and goal statuses) to this file.")
+@click.option("--render", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Write a picture of the run (.png: the last cycle, .gif: the whole run).")
+def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
+                     render: Path | None) -> None:
+    """Run SCENARIO in one process, without the bus (for writing and debugging programs)."""
+    from world.render import render_gif, render_png
+
+    sc = load_scenario(scenario)
+    run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0)
+    if trace:
+        trace.parent.mkdir(parents=True, exist_ok=True)
+        trace.write_text("".join(json.dumps(r) + "\n" for r in run.records))
+    assert run.final is not None
+    if render:
+        render.parent.mkdir(parents=True, exist_ok=True)
+        first = sc.agent_ids[0]
+        if render.suffix.lower() == ".gif":
+            render_gif(run.snapshots + [run.final], render, agent=first)
+        else:
+            render_png(run.final, render, agent=first)
+    click.echo(json.dumps({"cycles": len(run.records), "time": run.final.time,
+                           "counters": run.final.counters,
+                           "delivered": [p.id for p in run.final.packages if p.delivered]}))
+
+
+commands = [simulate_command]

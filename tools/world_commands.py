@@ -1,0 +1,111 @@
+"""`teleo render`: draw a run of the driving world to a PNG (one cycle) or an animated GIF.
+
+Sources: a run's `snapshots.jsonl` (one snapshot dict a line, as the world process saves them),
+a `.json` file (one snapshot dict or a list of them), a bus recording made by `teleo record`
+(its world/state samples), or a scenario `.toml` (simulated here for --steps cycles with idle
+agent cars, to look at a city).
+"""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import click
+
+from world.errors import WorldError
+from world.render import agent_trail, render_gif, render_png
+from world.scenario import load_world_config
+from world.simulation import Simulation
+from world.snapshot import WorldSnapshot
+
+
+def _from_json(path: Path) -> list[dict[str, Any]]:
+    text = path.read_text()
+    if path.suffix == ".jsonl":
+        rows = [json.loads(line) for line in text.splitlines() if line.strip()]
+    else:
+        data = json.loads(text)
+        rows = data if isinstance(data, list) else [data]
+    return [r.get("snapshot", r) if isinstance(r, dict) else r for r in rows]
+
+
+def _from_recording(path: Path) -> list[dict[str, Any]]:
+    from bus.codec import decode
+    from bus.errors import BusError
+    from bus.record import read_recording
+
+    try:
+        _, samples = read_recording(str(path))
+        return [decode(s.key, s.payload).snapshot for s in samples
+                if s.key.endswith("/world/state")]
+    except BusError as exc:
+        raise click.ClickException(str(exc)) from exc
+
+
+def _from_scenario(path: Path, steps: int, seed: int) -> list[WorldSnapshot]:
+    table = tomllib.loads(path.read_text()).get("world", {})
+    config = load_world_config(table)
+    agents = [c.agent for c in config.cars] or ["ME"]
+    sim = Simulation(config, seed, agents)
+    snaps = [sim.snapshot()]
+    for _ in range(steps):
+        sim.step()
+        snaps.append(sim.snapshot())
+    return snaps
+
+
+def load_snapshots(source: Path, steps: int = 100, seed: int = 1) -> list[WorldSnapshot]:
+    """The snapshots of a source file (see the module doc), in cycle order."""
+    if source.suffix == ".toml":
+        return _from_scenario(source, steps, seed)
+    rows = _from_json(source) if source.suffix in (".json", ".jsonl") else _from_recording(source)
+    snaps = [WorldSnapshot.from_dict(r) for r in rows]
+    return sorted(snaps, key=lambda s: s.cycle)
+
+
+@click.command()
+@click.argument("source", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--out", "out", required=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="FILE.png (one cycle) or FILE.gif (the whole run).")
+@click.option("--agent", default=None, help="Whose car, range and counters to show.")
+@click.option("--cycle", "cycle", type=int, default=None,
+              help="PNG: the cycle to draw (default: the last).")
+@click.option("--every", type=int, default=1, show_default=True,
+              help="GIF: use every N-th snapshot.")
+@click.option("--scale", type=float, default=None, help="Pixels per metre.")
+@click.option("--follow", type=float, default=None,
+              help="Draw only a square of this side [m] that follows the agent's car.")
+@click.option("--steps", type=int, default=100, show_default=True,
+              help="Scenario source: cycles to simulate.")
+@click.option("--seed", type=int, default=1, show_default=True, help="Scenario source: seed.")
+def render(source: Path, out: Path, agent: str | None, cycle: int | None, every: int,
+           scale: float | None, follow: float | None, steps: int, seed: int) -> None:
+    """Draw SOURCE (snapshots .jsonl/.json, a bus recording, or a scenario .toml) to --out."""
+    try:
+        snaps = load_snapshots(source, steps, seed)
+        if not snaps:
+            raise click.ClickException(f"{source}: no world snapshots in it")
+        out.parent.mkdir(parents=True, exist_ok=True)
+        if out.suffix.lower() == ".gif":
+            render_gif(snaps, out, agent=agent, every=max(1, every),
+                       px_per_m=scale or (4.0 if follow else 1.5), follow=follow)
+            click.echo(f"{out}: {len(snaps[::max(1, every)])} frame(s), cycles "
+                       f"{snaps[0].cycle}..{snaps[-1].cycle}")
+            return
+        chosen = snaps[-1] if cycle is None else next(
+            (s for s in snaps if s.cycle == cycle), None)
+        if chosen is None:
+            raise click.ClickException(f"{source}: no snapshot of cycle {cycle}; have "
+                                       f"{snaps[0].cycle}..{snaps[-1].cycle}")
+        upto = [s for s in snaps if s.cycle <= chosen.cycle]
+        render_png(chosen, out, agent=agent, px_per_m=scale or (6.0 if follow else 3.0),
+                   trail=agent_trail(upto, agent), follow=follow)
+        click.echo(f"{out}: cycle {chosen.cycle}")
+    except (WorldError, ValueError, OSError) as exc:
+        raise click.ClickException(str(exc)) from exc
+
+
+commands = [render]
