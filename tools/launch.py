@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import logging
+import os
 import secrets
 import signal
 import time
@@ -134,7 +135,7 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
     router = spawn_router()
     cfg = BusConfig(connect=(router.endpoint,))
     sup = Supervisor(run_dir / "logs")
-    info = runfile.RunInfo(run, router.endpoint, _pid(), tuple(scenario.agent_ids),
+    info = runfile.RunInfo(run, router.endpoint, os.getpid(), tuple(scenario.agent_ids),
                            str(run_dir), str(scenario.path))
     try:
         for spec in process_specs(scenario, run, run_dir, cfg.to_args(), cycles, seed, mode):
@@ -149,12 +150,6 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
         router.stop()
         runfile.remove(info)
     return sup.restarts()
-
-
-def _pid() -> int:
-    import os
-
-    return os.getpid()
 
 
 def _supervise(sup: Supervisor, cfg, info: runfile.RunInfo) -> None:

@@ -92,7 +92,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
 def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
                      render: Path | None) -> None:
     """Run SCENARIO in one process, without the bus (for writing and debugging programs)."""
-    from world.render import render_gif, render_png
+    from world.render import agent_trail, render_gif, render_png
 
     sc = load_scenario(scenario)
     run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0)
@@ -106,7 +106,8 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
         if render.suffix.lower() == ".gif":
             render_gif(run.snapshots + [run.final], render, agent=first)
         else:
-            render_png(run.final, render, agent=first)
+            render_png(run.final, render, agent=first,
+                       trail=agent_trail(run.snapshots + [run.final], first))
     click.echo(json.dumps({"cycles": len(run.records), "time": run.final.time,
                            "counters": run.final.counters,
                            "delivered": [p.id for p in run.final.packages if p.delivered]}))

@@ -72,10 +72,9 @@ def _pairs(d: dict[str, Any]) -> str:
 
 
 def render(run_dir: Path, out: Path, agent: str) -> int:
-    """Draw the run to `out`: a GIF of the saved snapshots, or a PNG of the last one.
-    Returns the number of frames used (0 when the world saved none)."""
-    from world.render import render_gif, render_png
-
+    """Draw the run to `out`: a GIF of the saved snapshots, or a PNG of the last one with the
+    agent's path over the whole run. Returns the number of frames used (0 when none saved)."""
+    from world.render import agent_trail, render_gif, render_png
     from world.snapshot import WorldSnapshot
 
     path = run_dir / SNAPSHOTS
@@ -87,9 +86,9 @@ def render(run_dir: Path, out: Path, agent: str) -> int:
         return 0
     out.parent.mkdir(parents=True, exist_ok=True)
     if out.suffix.lower() == ".gif":
-        render_gif(snaps, out)
+        render_gif(snaps, out, agent=agent)
         return len(snaps)
-    render_png(snaps[-1], out, agent=agent)
+    render_png(snaps[-1], out, agent=agent, trail=agent_trail(snaps, agent))
     return 1
 
 

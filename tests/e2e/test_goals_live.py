@@ -9,6 +9,8 @@ from pathlib import Path
 
 from e2e_helpers import HOLD_SPEED, Teleo, interrupt, trace_lines, wait_for
 
+PURSUED = {"active", "pending", "suspended"}
+
 
 def goal_statuses(teleo) -> dict[str, str]:
     listed = teleo("goal", "list")
@@ -49,8 +51,10 @@ def test_goals_posted_while_running_reach_the_executive(teleo):
         stopped = interrupt(launcher)
     assert stopped == 0, teleo.launch_output()
     summary = json.loads((teleo.run_dir / "summary.json").read_text())
-    assert {g["id"]: (g["status"], g["priority"]) for g in summary["goals"]} == {
-        "g1": ("cancelled", 3), "g2": ("active", 7)}
+    goals = {g["id"]: (g["status"], g["priority"]) for g in summary["goals"]}
+    assert goals["g1"] == ("cancelled", 3)
+    # g2 is still pursued (active, or pending/suspended while the speed law acts)
+    assert goals["g2"][1] == 7 and goals["g2"][0] in PURSUED
 
 
 def test_a_killed_inference_is_restarted_and_no_goal_is_lost(teleo, tmp_path):
@@ -71,8 +75,9 @@ def test_a_killed_inference_is_restarted_and_no_goal_is_lost(teleo, tmp_path):
     assert "ME.inference exited with code -9: restarted (1)" in teleo.launch_output()
     summary = json.loads((teleo.run_dir / "summary.json").read_text())
     assert summary["completed"] and summary["restarts"] == {"ME.inference": 1}
-    assert [(g["id"], g["goal"], g["status"]) for g in summary["goals"]] == [
-        ("g1", "(package-delivered PACKET1)", "active")]
+    assert [(g["id"], g["goal"]) for g in summary["goals"]] == [
+        ("g1", "(package-delivered PACKET1)")]
+    assert summary["goals"][0]["status"] in PURSUED
     # lockstep: the world waited for the new inference, so the run is the same as one
     # where nothing was killed
     cycles = summary["cycles"]

@@ -80,3 +80,14 @@ def test_a_world_or_program_mistake_is_reported_before_anything_starts(teleo, tm
     done = teleo("launch", str(bad_program))
     assert done.returncode != 0 and f"{broken}:" in done.stderr
     assert not list(tmp_path.glob("runs/*"))  # nothing was started
+
+
+def test_a_realtime_run_completes_its_cycles(teleo, tmp_path):
+    done = teleo("launch", str(HOLD_SPEED), "--cycles", "15", "--mode", "realtime",
+                 "--summary", str(tmp_path / "summary.json"))
+    assert done.returncode == 0, done.stdout + done.stderr
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["mode"] == "realtime" and summary["completed"]
+    assert summary["cycles"] == 15
+    lines = Path(summary["trace"]).read_text().splitlines()
+    assert [json.loads(x)["cycle"] for x in lines] == list(range(15))
