@@ -1,4 +1,4 @@
-"""The one module that builds teleo key expressions (docs/CONTRACTS.md, bus section).
+"""The one module that builds teleo key expressions (docs/architecture.md, bus section).
 
 Layout (keys are static; the cycle number travels in the payload envelope, so declared
 publishers and matching status keep working across cycles):

@@ -1,4 +1,4 @@
-"""Message kinds on the bus (docs/CONTRACTS.md, bus section): frozen dataclasses, each
+"""Message kinds on the bus (docs/architecture.md, bus section): frozen dataclasses, each
 with an envelope. Payload data uses the neutral forms (plain lists and dicts, msgpack-able).
 
 The kind name of each class is its `KIND` and is what the codec writes on the wire.

@@ -29,12 +29,7 @@ def cli(verbose: int) -> None:
 
 def _register() -> None:
     for name in _COMMAND_MODULES:
-        try:
-            module = importlib.import_module(name)
-        except ModuleNotFoundError as exc:
-            if exc.name == name:  # not written yet
-                continue
-            raise
+        module = importlib.import_module(name)
         for command in module.commands:
             cli.add_command(command)
 

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from world.angles import wrap
 from world.city import ROAD_HALF, WALK_OFFSET, City
 from world.navigation import exits
 from world.paths import Key, Polyline, node_of
@@ -72,9 +73,9 @@ def _place(city: City, p: Pedestrian) -> None:
     p.x, p.y = x0 + p.s * ux - p.lat * uy, y0 + p.s * uy + p.lat * ux
     base = math.degrees(math.atan2(uy, ux))
     if p.mode == "cross":
-        p.heading = _wrap(base - 90.0 * p.side)
+        p.heading = wrap(base - 90.0 * p.side)
     else:
-        p.heading = _wrap(base if p.direction > 0 else base + 180.0)
+        p.heading = wrap(base if p.direction > 0 else base + 180.0)
 
 
 def step_pedestrian(city: City, p: Pedestrian, rng: random.Random, dt: float) -> None:
@@ -203,7 +204,7 @@ def _exit_jammed(t: Traffic, paths: dict[Key, Polyline], vehicles: list[Vehicle]
     lane = paths[("lane", t.exit[3], t.exit[4])]
     (sx, sy), heading = lane.points[0], lane.pose(0.0)[2]
     return any(v != t.id and math.hypot(x - sx, y - sy) < 8.0
-               and abs(_wrap(h - heading)) < 45.0 for v, x, y, h in vehicles)
+               and abs(wrap(h - heading)) < 45.0 for v, x, y, h in vehicles)
 
 
 def choose_exit(city: City, t: Traffic, rng: random.Random, blocked: frozenset[str]) -> None:
@@ -224,11 +225,3 @@ def _next_piece(city: City, t: Traffic, rng: random.Random, blocked: frozenset[s
     t.key, t.exit = t.exit, None
 
 
-def _wrap(deg: float) -> float:
-    """Angle folded into (-180, 180] [deg]."""
-    deg = math.fmod(deg, 360.0)
-    if deg > 180.0:
-        deg -= 360.0
-    elif deg <= -180.0:
-        deg += 360.0
-    return deg

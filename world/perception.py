@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from world.angles import wrap
 from world.city import LINES, City, Segment, build_city
 from world.navigation import aligned_segment, current_edge, guide
 from world.snapshot import CarState, WorldSnapshot
@@ -21,16 +22,6 @@ Percept = list[Any]
 
 def _r(value: float) -> float:
     return round(float(value), 3) + 0.0   # + 0.0 turns -0.0 into 0.0
-
-
-def wrap(deg: float) -> float:
-    """Angle folded into (-180, 180] [deg]."""
-    deg = math.fmod(deg, 360.0)
-    if deg > 180.0:
-        deg -= 360.0
-    elif deg <= -180.0:
-        deg += 360.0
-    return deg
 
 
 def polar(me: CarState, x: float, y: float) -> tuple[float, float]:

@@ -16,7 +16,7 @@ from .arith import evaluate
 from .errors import EvalError
 from .explanation import Decision, GoalPath, GoalReport, GoalStatus, PassOver, PathStep
 from .goals import GoalEntry, instances, ordered, satisfied
-from .matcher import binding_key, first_failure, ground, solve, subst
+from .matcher import binding_key, first_failure, ground, solve, subst, unify_head
 from .program import Program, Skill
 from .state import EngineState, StoredStep
 from .store import FactStore, PerceptIndex
@@ -160,7 +160,7 @@ class Executive:
         for c in s.start:
             if isinstance(c, Literal) and not c.negated:
                 keep |= c.variables()
-        b0 = _unify_head(s.head, goal, {v: x for v, x in prev_b.items() if v in keep})
+        b0 = unify_head(s.head, goal, {v: x for v, x in prev_b.items() if v in keep})
         if b0 is None:
             return None
         conds = [*s.percepts, *s.requires]
@@ -179,7 +179,7 @@ class Executive:
 
     def _enter(self, ctx, s: Skill, goal: Literal, depth: int, on_path):
         text = str(goal)
-        b0 = _unify_head(s.head, goal, {})
+        b0 = unify_head(s.head, goal, {})
         if b0 is None:
             ctx.passed(depth, text, s.name, {}, f"head {s.head} does not match")
             return None
@@ -239,19 +239,6 @@ def _solutions(conds: list, b0: dict, ctx: _Ctx) -> list[dict]:
         if len(sols) >= MAX_BINDINGS:
             break
     return [sols[k] for k in sorted(sols)]
-
-
-def _unify_head(head: Literal, goal: Literal, b: dict) -> dict | None:
-    for h, g in zip(head.args, goal.args, strict=True):
-        if isinstance(g, Var):
-            continue
-        if isinstance(h, Var):
-            if h in b and b[h] != g:
-                return None
-            b[h] = g
-        elif h != g:
-            return None
-    return b
 
 
 def _btuple(b: dict) -> tuple:

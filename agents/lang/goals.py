@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .errors import GoalError
-from .matcher import binding_key, holds, solve
+from .matcher import binding_key, holds, solve, unify_head
 from .program import Program
 from .sexpr import Atom, SList, read
 from .store import FactStore, PerceptIndex
@@ -73,7 +73,7 @@ def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Liter
         return [goal]
     found: dict[tuple, Literal] = {}
     for clause in program.concepts.get(goal.pred, ()):
-        b = _unify_head(clause.head, goal)
+        b = unify_head(clause.head, goal)
         if b is None:
             continue
         if not clause.percepts:
@@ -93,20 +93,6 @@ def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Liter
 def satisfied(inst: Literal, store: FactStore) -> bool:
     """True if a belief matches the instance (remaining variables existential)."""
     return holds(inst, {}, store)
-
-
-def _unify_head(head: Literal, goal: Literal) -> dict | None:
-    b: dict = {}
-    for h, g in zip(head.args, goal.args, strict=True):
-        if isinstance(g, Var):
-            continue
-        if isinstance(h, Var):
-            if h in b and b[h] != g:
-                return None
-            b[h] = g
-        elif h != g:
-            return None
-    return b
 
 
 def _key(lit: Literal) -> tuple:

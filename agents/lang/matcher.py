@@ -173,3 +173,19 @@ def first_failure(conds: list, b: dict, pidx: PerceptIndex, store: FactStore):
 def binding_key(b: dict) -> tuple:
     """Deterministic order of bindings (by variable name, then value)."""
     return tuple((v.name, sort_key(x)) for v, x in sorted(b.items(), key=lambda kv: kv[0].name))
+
+
+def unify_head(head: Literal, goal: Literal, b: dict | None = None) -> dict | None:
+    """Bind a clause head's variables to a goal's constants (extending `b`); None on a clash.
+    Goal variables match anything and bind nothing (seed 000: goals may hold variables)."""
+    b = {} if b is None else b
+    for h, g in zip(head.args, goal.args, strict=True):
+        if isinstance(g, Var):
+            continue
+        if isinstance(h, Var):
+            if h in b and b[h] != g:
+                return None
+            b[h] = g
+        elif h != g:
+            return None
+    return b

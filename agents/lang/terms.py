@@ -139,7 +139,7 @@ class Percept:
         return self._map.get(attr, default)  # type: ignore[attr-defined]
 
     def to_list(self) -> list:
-        """Neutral form ``[type, id, attr, value, ...]`` (docs/CONTRACTS.md)."""
+        """Neutral form ``[type, id, attr, value, ...]`` (docs/architecture.md)."""
         out = [self.type, self.id]
         for a, v in self.attrs:
             out += [a, v]

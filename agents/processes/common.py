@@ -9,7 +9,12 @@ from __future__ import annotations
 import logging
 import signal
 import threading
+from collections.abc import Callable
 from typing import Any
+
+import click
+
+from bus.config import bus_options
 
 
 def setup_logging(process: str, verbose: bool = False) -> logging.Logger:
@@ -47,3 +52,17 @@ def run_stage(cfg: Any, run: str, process: str, inputs: list[str], outputs: list
         log.info("announced; inputs %s", inputs)
         stage.run(stop)
         log.info("stopped after %d cycles (%d late)", stage.cycles_done, stage.late)
+
+
+def agent_options(with_program: bool) -> Callable[[Callable], Callable]:
+    """The flags every per-agent stage takes: --run, --agent (and --program), plus the bus's."""
+    def decorate(f: Callable) -> Callable:
+        f = bus_options(f)
+        if with_program:
+            f = click.option("--program", required=True,
+                             type=click.Path(exists=True, dir_okay=False),
+                             help="The agent's teleoreactive program (.tlp).")(f)
+        f = click.option("--agent", required=True, help="Agent id, e.g. ME.")(f)
+        f = click.option("--run", required=True, help="Run id.")(f)
+        return click.command()(f)
+    return decorate

@@ -16,11 +16,9 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-import click
-
-from agents.processes.common import run_stage, setup_logging
+from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
-from bus.config import BusConfig, bus_options
+from bus.config import BusConfig
 from bus.messages import Actions, Envelope, Intention, Message
 
 
@@ -86,12 +84,7 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     return step
 
 
-@click.command()
-@click.option("--run", required=True, help="Run id.")
-@click.option("--agent", required=True, help="Agent id, e.g. ME.")
-@click.option("--program", required=True, type=click.Path(exists=True, dir_okay=False),
-              help="The agent's teleoreactive program (.tlp).")
-@bus_options
+@agent_options(with_program=True)
 def main(run: str, agent: str, program: str, bus_config: BusConfig) -> None:
     """Prioritised executive of one agent."""
     process = f"{agent}.executive"

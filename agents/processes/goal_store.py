@@ -31,7 +31,7 @@ class GoalState(StrEnum):
     CANCELLED = "cancelled"
 
 
-# The engine's GoalStatus (CONTRACTS.md, agents/lang) -> the user's status. An impasse is still
+# The engine's GoalStatus (docs/architecture.md) -> the user's status. An impasse is still
 # being worked on by the problem solver (seed 000, means-ends analysis), so it stays active.
 _FROM_ENGINE = {
     "satisfied": GoalState.ACHIEVED,
@@ -77,7 +77,7 @@ class GoalRecord:
                    int(d.get("posted_cycle", 0)), int(d.get("updated_cycle", 0)), d.get("note", ""))
 
     def brief(self) -> dict[str, Any]:
-        """The GoalList entry form: {id, goal, priority, status} (CONTRACTS.md)."""
+        """The GoalList entry form: {id, goal, priority, status} (docs/architecture.md)."""
         return {"id": self.id, "goal": self.goal, "priority": self.priority,
                 "status": self.status.value}
 

@@ -8,11 +8,9 @@ world's pure `world.perception.perceive`.
 
 from __future__ import annotations
 
-import click
-
-from agents.processes.common import run_stage, setup_logging
+from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
-from bus.config import BusConfig, bus_options
+from bus.config import BusConfig
 from bus.messages import Envelope, Message, Percepts
 
 
@@ -31,10 +29,7 @@ def make_step(run: str, agent: str, process: str):
     return step
 
 
-@click.command()
-@click.option("--run", required=True, help="Run id.")
-@click.option("--agent", required=True, help="Agent id, e.g. ME.")
-@bus_options
+@agent_options(with_program=False)
 def main(run: str, agent: str, bus_config: BusConfig) -> None:
     """Perception of one agent."""
     process = f"{agent}.perception"

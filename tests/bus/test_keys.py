@@ -1,4 +1,4 @@
-"""The key layout (docs/CONTRACTS.md, bus section) and its guards."""
+"""The key layout (docs/architecture.md, bus section) and its guards."""
 
 from __future__ import annotations
 
