@@ -14,6 +14,7 @@ _COMMAND_MODULES = (
     "tools.world_commands",  # render                    (world)
     "tools.launch",          # launch                    (processes)
     "tools.goal_commands",   # goal post/list/cancel/priority
+    "tools.event_commands",  # event                     (world events into a running launch)
     "tools.inspect",         # inspect
     "tools.simulate",        # simulate                  (one process, no bus)
 )
