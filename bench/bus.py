@@ -1,7 +1,10 @@
 """Bus benchmark: median and p99 of (a) a round trip between two processes and (b) a full
 lockstep cycle through the clock and three pass-through stages with 200 percepts.
 
-    .venv/bin/python bench/bus.py [--rounds 2000] [--cycles 500]
+    .venv/bin/python bench/bus.py [--rounds 2000] [--cycles 500] [--runs 1]
+
+(c) the same four hops forwarding raw bytes is the transport floor. The machine is shared
+and noisy: compare medians of several runs (`--runs 5`), never single figures.
 """
 
 from __future__ import annotations
@@ -105,17 +108,36 @@ def cycles(cfg: BusConfig, n: int) -> list[float]:
 @click.group(invoke_without_command=True)
 @click.option("--rounds", default=2000, show_default=True)
 @click.option("--cycles", "n_cycles", default=500, show_default=True)
+@click.option("--runs", default=1, show_default=True,
+              help="Repeat everything (fresh processes) and end with the median of the medians.")
 @click.pass_context
-def main(ctx: click.Context, rounds: int, n_cycles: int) -> None:
+def main(ctx: click.Context, rounds: int, n_cycles: int, runs: int) -> None:
     if ctx.invoked_subcommand is not None:
         return
+    medians: dict[str, list[float]] = {}
     with spawn_router() as router:
         cfg = BusConfig(connect=(router.endpoint,))
-        rt = round_trips(cfg, rounds)
-        click.echo(figures("round trip, 2 processes (peers meshed via a router hub)", rt))
-        click.echo(figures("lockstep cycle, clock + 3 stages, 200 percepts", cycles(cfg, n_cycles)))
-        click.echo(figures("  same 4 hops, raw bytes forwarded (no codec, no Stage)",
-                           raw_cycles(cfg, n_cycles)))
+        for run in range(runs):
+            if runs > 1:
+                click.echo(f"-- run {run + 1}/{runs}, load average {os.getloadavg()[0]:.2f}")
+            for name, samples in one_run(cfg, rounds, n_cycles):
+                click.echo(figures(name, samples))
+                medians.setdefault(name, []).append(statistics.median(samples))
+    if runs > 1:
+        click.echo(f"-- median of the {runs} runs' medians")
+        for name, values in medians.items():
+            click.echo(f"{name}: {statistics.median(values):.3f} ms "
+                       f"(runs: {', '.join(f'{v:.2f}' for v in values)})")
+
+
+def one_run(cfg: BusConfig, rounds: int, n_cycles: int) -> list[tuple[str, list[float]]]:
+    """The three measurements, each with fresh processes: (label, samples [ms])."""
+    rt = round_trips(cfg, rounds)
+    cyc = cycles(cfg, n_cycles)
+    raw = raw_cycles(cfg, n_cycles)
+    return [("round trip, 2 processes (peers meshed via a router hub)", rt),
+            ("lockstep cycle, clock + 3 stages, 200 percepts", cyc),
+            ("  same 4 hops, raw bytes forwarded (no codec, no Stage)", raw)]
 
 
 def raw_cycles(cfg: BusConfig, n: int) -> list[float]:

@@ -9,8 +9,11 @@ the key and what is wrong; receivers log it and drop the payload.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from dataclasses import MISSING, fields
+from functools import lru_cache
+from itertools import chain
 from typing import Any
 
 import msgpack
@@ -20,26 +23,27 @@ from bus.errors import CodecError
 from bus.messages import GOAL_OPS, MESSAGE_TYPES, SCHEMA_VERSION, Envelope, Message
 
 _ATOM_TYPES = frozenset({str, int, float})  # exact types: bool and None are refused
+_LIST_ONLY = frozenset({list})
+_local = threading.local()  # one msgpack.Packer per thread (publish may run on zenoh threads)
 
 
 def encode(msg: Message) -> bytes:
     """Serialise a message to msgpack bytes (raises CodecError if a field is not msgpack-able)."""
-    kind = getattr(msg, "KIND", None)
-    if kind not in MESSAGE_TYPES or type(msg) is not MESSAGE_TYPES[kind]:
+    spec = _SPECS.get(type(msg))  # exact classes only: a subclass is not a bus message
+    if spec is None:
         raise CodecError(f"<encode {type(msg).__name__}>", "not a bus message")
     env = msg.env
     body: dict[str, Any] = {
-        "kind": kind,
+        "kind": msg.KIND,
         "env": {"v": env.v, "run": env.run, "cycle": env.cycle, "sender": env.sender,
                 "sent_ns": env.sent_ns},
     }
-    for f in fields(msg):
-        if f.name != "env":
-            body[f.name] = getattr(msg, f.name)
+    for name, _check, _default in spec:
+        body[name] = getattr(msg, name)
     try:
-        return msgpack.packb(body, use_bin_type=True)
+        return _packer().pack(body)
     except (TypeError, ValueError, OverflowError) as exc:
-        raise CodecError(f"<encode {kind}>", f"not msgpack-able: {exc}") from exc
+        raise CodecError(f"<encode {msg.KIND}>", f"not msgpack-able: {exc}") from exc
 
 
 def decode(key: str, data: bytes) -> Message:
@@ -55,23 +59,47 @@ def decode(key: str, data: bytes) -> Message:
     cls = MESSAGE_TYPES.get(kind) if isinstance(kind, str) else None
     if cls is None:
         raise CodecError(key, f"unknown message kind {kind!r}")
-    allowed = keys.kind_of_key(key)
+    allowed = _kinds_of_key(key)
     if allowed and kind not in allowed:
         raise CodecError(key, f"wrong message kind {kind!r} for this key "
                               f"(expected {' or '.join(sorted(allowed))})")
-    values: dict[str, Any] = {"env": env}
-    for f in fields(cls):
-        if f.name == "env":
-            continue
-        if f.name in body:
-            values[f.name] = _check(key, kind, f.name, body[f.name])
-        elif f.default is not MISSING:
-            values[f.name] = f.default
-        else:
-            raise CodecError(key, f"{kind} lacks field {f.name!r}")
+    values = _fields(key, kind, _SPECS[cls], body)
+    values["env"] = env
     if kind == "GoalRequest" and values["op"] not in GOAL_OPS:
         raise CodecError(key, f"GoalRequest.op {values['op']!r} not one of {GOAL_OPS}")
     return cls(**values)
+
+
+def _fields(key: str, kind: str, spec: _Spec, body: dict) -> dict[str, Any]:
+    """The checked field values of a `kind` message (defaults for absent optional fields)."""
+    values: dict[str, Any] = {}
+    name = ""
+    try:
+        for name, check, default in spec:
+            if name in body:
+                values[name] = check(body[name])
+            elif default is not MISSING:
+                values[name] = default
+            else:
+                raise CodecError(key, f"{kind} lacks field {name!r}")
+    except TypeError as exc:
+        raise CodecError(key, f"{kind}.{name}: {exc}") from exc
+    return values
+
+
+@lru_cache(maxsize=4096)
+def _kinds_of_key(key: str) -> frozenset[str]:
+    """keys.kind_of_key, memoised: a process sees the same few keys every cycle."""
+    return keys.kind_of_key(key)
+
+
+def _packer() -> msgpack.Packer:
+    """This thread's Packer (autoreset: each `pack` returns the bytes of one object and
+    leaves the packer empty, also after an error)."""
+    packer = getattr(_local, "packer", None)
+    if packer is None:
+        packer = _local.packer = msgpack.Packer(use_bin_type=True, autoreset=True)
+    return packer
 
 
 def _envelope(key: str, env: Any) -> Envelope:
@@ -85,14 +113,6 @@ def _envelope(key: str, env: Any) -> Envelope:
                         sender=_str(env["sender"]), sent_ns=_int(env["sent_ns"]))
     except (KeyError, TypeError) as exc:
         raise CodecError(key, f"malformed envelope {env!r:.120}: {exc}") from exc
-
-
-def _check(key: str, kind: str, name: str, value: Any) -> Any:
-    checker = _FIELD_CHECKS.get(name, _any)
-    try:
-        return checker(value)
-    except TypeError as exc:
-        raise CodecError(key, f"{kind}.{name}: {exc}") from exc
 
 
 def _str(v: Any) -> str:
@@ -132,12 +152,20 @@ def _list(v: Any) -> list:
 
 
 def _rows(v: Any) -> tuple:
-    """A tuple of neutral-form lists whose items are str, int or float (never bool/None)."""
+    """A tuple of neutral-form lists whose items are str, int or float (never bool/None).
+
+    Checked in two C-level passes over the types (one per row, one per item); only a bad
+    payload takes the row-by-row loop that names the offending row.
+    """
+    rows = _list(v)
+    if _LIST_ONLY.issuperset(map(type, rows)) and \
+            _ATOM_TYPES.issuperset(map(type, chain.from_iterable(rows))):
+        return tuple(rows)
     atoms_only = _ATOM_TYPES.issuperset
-    for row in _list(v):
+    for row in rows:
         if type(row) is not list or not atoms_only(map(type, row)):
             raise TypeError(f"expected arrays of str, int or float, found item {row!r:.60}")
-    return tuple(v)
+    raise TypeError("expected arrays of str, int or float")  # not reached: some row failed
 
 
 def _dict_rows(v: Any) -> tuple:
@@ -158,3 +186,12 @@ _FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
     "ok": _bool, "reason": _str, "goals": _dict_rows,
     "process": _str, "compute_ms": _float, "late": _int, "event": _dict,
 }
+
+_Spec = tuple[tuple[str, Callable[[Any], Any], Any], ...]
+
+_SPECS: dict[type, _Spec] = {
+    cls: tuple((f.name, _FIELD_CHECKS.get(f.name, _any), f.default)
+               for f in fields(cls) if f.name != "env")
+    for cls in MESSAGE_TYPES.values()
+}
+"""Per message class: (field name, checker, default or MISSING) for every field but env."""

@@ -113,8 +113,8 @@ class Stage:
             self._cache = outs
             self.cycles_done += 1
         self.joiner.done(joined.cycle)
-        # stats first, so the clock has every stage's figures when the actions arrive
-        self.node.publish(self._stats_key, ProcessStats(
-            self.node.envelope(joined.cycle), self.process, compute_ms, self.late))
-        for key, msg in outs:
-            self.node.publish(key, msg)
+        # stats first, so the clock has every stage's figures when the actions arrive;
+        # encoded together and put back to back (see Node.publish_many)
+        stats = ProcessStats(self.node.envelope(joined.cycle), self.process, compute_ms,
+                             self.late)
+        self.node.publish_many([(self._stats_key, stats), *outs])

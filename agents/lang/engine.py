@@ -11,6 +11,7 @@ from .explanation import Decision
 from .goals import GoalEntry, parse_goal
 from .inference import Inference
 from .program import Program
+from .reuse import InferStats
 from .state import EngineState
 from .store import BeliefSet, PerceptIndex, store_of
 from .terms import Percept
@@ -31,7 +32,9 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
 
 
 class Engine:
-    """Runs a Program cycle by cycle. Holds only compiled, immutable program data."""
+    """Runs a Program cycle by cycle. Holds compiled program data and the inference memo
+    (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
+    every result is exactly what a fresh Engine would give (docs/language.md, Performance)."""
 
     def __init__(self, program: Program):
         self.program = program
@@ -74,6 +77,11 @@ class Engine:
                        next_seq=state.next_seq + 1)
 
     # -- cycle ---------------------------------------------------------------------------
+    @property
+    def last_infer_stats(self) -> InferStats:
+        """Strata evaluated vs reused by the last ``infer``/``cycle`` (for tests and bench)."""
+        return self.inference.last_stats
+
     def infer(self, percepts: Iterable) -> BeliefSet:
         """Every concept instance that holds for this cycle's percepts."""
         return self.inference.beliefs(_index(percepts))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from .reuse import TypeSig
 from .terms import Belief, Percept
 
 MISSING = object()
@@ -13,12 +14,13 @@ MISSING = object()
 class PerceptIndex:
     """Percepts of one cycle indexed by type, (type, id) and, on demand, (type, attr) -> value."""
 
-    __slots__ = ("by_type", "by_id", "_attr")
+    __slots__ = ("by_type", "by_id", "_attr", "_sig")
 
     def __init__(self, percepts: Iterable[Percept]):
         self.by_type: dict[str, list[Percept]] = {}
         self.by_id: dict[tuple, list[Percept]] = {}
         self._attr: dict[tuple, dict] = {}
+        self._sig: dict[str, TypeSig] = {}
         for p in percepts:
             self.by_type.setdefault(p.type, []).append(p)
             self.by_id.setdefault((p.type, p.id), []).append(p)
@@ -35,6 +37,13 @@ class PerceptIndex:
                     ix.setdefault(v, []).append(p)
             self._attr[key] = ix
         return ix
+
+    def signature(self, type_: str) -> TypeSig:
+        """The percepts of ``type_`` in a canonical, order-independent form (cached)."""
+        sig = self._sig.get(type_)
+        if sig is None:
+            sig = self._sig[type_] = TypeSig(self.by_type.get(type_, ()))
+        return sig
 
 
 class FactStore:
@@ -66,6 +75,17 @@ class FactStore:
                 ix.setdefault(tuple(t[i] for i in positions), []).append(t)
             self._ix[key] = ix
         return ix
+
+    def adopt(self, old: FactStore, preds: Iterable[str]) -> None:
+        """Take ``old``'s fact sets and cached indexes for ``preds`` (no copy): used when a
+        stratum's result is reused from the previous cycle. Sound because inference never
+        changes a pred's set after its stratum is done, so both stores read the same facts."""
+        wanted = {p for p in preds if p in old.facts}
+        for p in wanted:
+            self.facts[p] = old.facts[p]
+        for key, ix in old._ix.items():
+            if key[0] in wanted:
+                self._ix[key] = ix
 
     def beliefs(self) -> frozenset[Belief]:
         return frozenset(Belief(p, t) for p, ts in self.facts.items() for t in ts)

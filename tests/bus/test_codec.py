@@ -94,6 +94,10 @@ def body(**changes):
     (body(kind="Beliefs", beliefs=[]), "wrong message kind 'Beliefs'"),
     (body(percepts=[["a", True]]), "Percepts.percepts"),
     (body(percepts=[["a", None]]), "Percepts.percepts"),
+    (body(percepts=[["a", 1], ["b", 2.5], ["c", b"bytes"]]), "found item"),
+    (body(percepts=[["a", 1], ["b", ["nested"]]]), "found item"),
+    (body(percepts=[["a", 1], {"b": 2}]), "found item"),
+    (body(percepts=[["a", 1], "b"]), "found item"),
     (body(percepts="abc"), "expected array"),
     (body(agent=7), "Percepts.agent: expected str"),
     (body(env={"v": 1, "run": "r"}), "malformed envelope"),
@@ -125,3 +129,20 @@ def test_goal_request_op_is_checked_and_defaults_apply():
 def test_unencodable_message_is_a_codec_error():
     with pytest.raises(CodecError, match="not msgpack-able"):
         encode(Intention(ENV, "ME", {"x": object()}))
+
+
+def test_encode_works_after_a_failed_encode_and_big_rows_round_trip():
+    with pytest.raises(CodecError):
+        encode(Intention(ENV, "ME", {"x": object()}))
+    rows = tuple(["lane-line", f"L{i}", "dist", 1.5 + i, "angle", i, "ok"] for i in range(300))
+    msg = Percepts(ENV, "ME", rows)
+    assert encode(msg) == msgpack.packb(msgpack.unpackb(encode(msg)), use_bin_type=True)
+    assert decode(KEY, encode(msg)) == msg
+
+
+def test_subclasses_are_not_bus_messages():
+    class MyPercepts(Percepts):
+        pass
+
+    with pytest.raises(CodecError, match="not a bus message"):
+        encode(MyPercepts(ENV, "ME", ()))
