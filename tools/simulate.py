@@ -56,6 +56,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     engines = {a.id: Engine(load_program(a.program)) for a in scenario.agents}
     states = {a: engines[a].initial_state() for a in agents}
     run = SimRun()
+    outcomes: dict[str, list[dict[str, Any]]] = {}
     total = scenario.run.cycles if cycles is None else cycles
     for cycle in range(total):
         for ev in scenario.events:
@@ -67,10 +68,11 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             run.snapshots.append(snap)
         record: dict[str, Any] = {"cycle": cycle}
         for a in agents:
-            result = engines[a].cycle(states[a], domain.perceive(snap, a))
+            result = engines[a].cycle(states[a], domain.perceive(snap, a),
+                                      outcomes.get(a, ()))
             states[a] = result.state
             actions = [act.to_list() for act in result.decision.actions]
-            sim.apply_actions(a, actions)
+            outcomes[a] = sim.apply_actions(a, actions)
             record[a] = {"actions": actions,
                          "goals": [(g["id"], g["status"]) for g in
                                    result.decision.to_dict()["goals"]]}

@@ -3,7 +3,8 @@
     python -m agents.processes.perception --run RUN --agent ME [bus flags]
 
 Percepts are agent-centred and limited in range (seed 000, Table 3); the mapping is the
-pure `perceive` of the domain the snapshot names (world/domain.py).
+pure `perceive` of the domain the snapshot names (world/domain.py). The agent's action
+outcomes of t-1, which the world state of t carries, travel on with the percepts.
 """
 
 from __future__ import annotations
@@ -21,9 +22,12 @@ def make_step(run: str, agent: str, process: str):
     state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        snapshot = inputs[state_key].snapshot
-        percepts = tuple(list(p) for p in domain_of(snapshot).perceive(snapshot, agent))
-        return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts))]
+        state = inputs[state_key]
+        percepts = tuple(list(p) for p in domain_of(state.snapshot).perceive(state.snapshot,
+                                                                             agent))
+        outcomes = tuple(state.outcomes.get(agent, ()))
+        return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts,
+                                   outcomes))]
 
     return step
 
