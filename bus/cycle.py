@@ -128,7 +128,9 @@ class CycleReport:
     late: stages that missed the per-cycle deadline (the first stuck stage of each
     agent); dead: stages whose liveliness token was gone; noop: agents given the no-op;
     republished: how many times state t was re-sent for a restarted stage;
-    elapsed_ms: publish to return [ms]; stage_ms: each stage's compute time this cycle [ms].
+    elapsed_ms: publish to return [ms]; stage_ms: each stage's compute time this cycle [ms];
+    stalled: the stages the clock was still waiting for when the cycle passed the stall
+    threshold (a lockstep cycle that waited, but whose actions did come).
     """
 
     cycle: int
@@ -139,6 +141,7 @@ class CycleReport:
     republished: int = 0
     elapsed_ms: float = 0.0
     stage_ms: dict[str, float] = field(default_factory=dict)
+    stalled: tuple[str, ...] = ()
 
     @property
     def clean(self) -> bool:

@@ -1,4 +1,10 @@
-"""`teleo router | echo | record | replay`: the bus subcommands (thin wrappers over bus/)."""
+"""`teleo router | echo | record | replay`: the bus subcommands (thin wrappers over bus/).
+
+echo, record and replay find the running launch as every tool does (tools/runfile.py: the
+only running one, or `--run RUN`) and say on stderr which run and router they reach; an
+explicit `--connect` (or TELEO_ZENOH_CONNECT) bypasses the lookup, for a bus that no launch
+of this host runs.
+"""
 
 from __future__ import annotations
 
@@ -17,6 +23,7 @@ from bus.node import open_node
 from bus.record import Recorder, read_recording
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
+from tools import runfile
 
 
 def _split(text: str) -> list[str]:
@@ -33,6 +40,26 @@ def router(listen: str, connect: str) -> None:
         run_until_signalled(router_config(_split(listen), _split(connect)))
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
+
+
+def _reach(bus_config: BusConfig, run_id: str | None) -> tuple[BusConfig, str | None]:
+    """The bus to use and the run it carries: the given flags when --connect (or its
+    environment variable) was given, else the located run's router."""
+    ctx = click.get_current_context()
+    explicit = ctx.get_parameter_source("connect") is click.core.ParameterSource.COMMANDLINE
+    if explicit or os.environ.get("TELEO_ZENOH_CONNECT"):
+        click.echo(f"bus: {', '.join(bus_config.connect) or 'no hub'} (from the flags)",
+                   err=True)
+        return bus_config, run_id
+    info = runfile.locate(run_id)
+    return runfile.bus_config(info), info.run
+
+
+def _full_key(keyexpr: str, run: str | None) -> str:
+    """A key expression as given when it starts with teleo/, else under teleo/<run>/."""
+    if keyexpr.startswith(f"{keys.ROOT}/") or run is None:
+        return keyexpr
+    return f"{keys.run_root(run)}/{keyexpr.lstrip('/') or '**'}"
 
 
 def _run_of(keyexpr: str) -> str:
@@ -55,14 +82,19 @@ def _json_line(key: str, t_ns: int, payload: bytes) -> str:
 
 
 @click.command()
-@click.argument("keyexpr")
+@click.argument("keyexpr", default="**")
 @click.option("--filter", "text", default=None, help="Only lines containing TEXT.")
 @click.option("--count", type=int, default=None, help="Exit after N printed messages.")
 @click.option("--seconds", type=float, default=None, help="Exit after S seconds.")
+@runfile.run_option
 @bus_options
 def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | None,
-         bus_config: BusConfig) -> None:
-    """Print messages on KEYEXPR (e.g. 'teleo/demo/**') decoded, as JSON lines."""
+         run_id: str | None, bus_config: BusConfig) -> None:
+    """Print messages on KEYEXPR decoded, as JSON lines: a key of the run such as
+    'world/state' or 'agent/ME/**' (default: everything), or a full 'teleo/RUN/...'."""
+    bus_config, run = _reach(bus_config, run_id)
+    keyexpr = _full_key(keyexpr, run)
+    click.echo(f"listening on {keyexpr}", err=True)
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
     printed = 0
@@ -82,13 +114,16 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
 
 @click.command()
 @click.argument("file", type=click.Path(dir_okay=False, writable=True))
-@click.option("--run", "run_id", required=True, help="Run id: records teleo/<run>/**.")
+@runfile.run_option
 @click.option("--seconds", type=float, default=None, help="Stop after S seconds.")
 @click.option("--count", type=int, default=None, help="Stop after N samples.")
 @bus_options
-def record(file: str, run_id: str, seconds: float | None, count: int | None,
+def record(file: str, run_id: str | None, seconds: float | None, count: int | None,
            bus_config: BusConfig) -> None:
     """Record all traffic of a run (key, time, raw payload) to FILE until Ctrl-C."""
+    bus_config, run_id = _reach(bus_config, run_id)
+    if run_id is None:
+        raise click.ClickException("record: name the run with --run RUN (with --connect)")
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
     with open_node(bus_config, run_id, "record") as node, open(file, "wb") as out:
@@ -110,18 +145,24 @@ def record(file: str, run_id: str, seconds: float | None, count: int | None,
               help="Time scale (2: twice as fast; 0: as fast as possible).")
 @click.option("--wait", "wait_s", type=float, default=2.0, show_default=True,
               help="Wait up to S seconds for subscribers on the recorded keys first.")
+@runfile.run_option
 @bus_options
-def replay(file: str, speed: float, wait_s: float, bus_config: BusConfig) -> None:
+def replay(file: str, speed: float, wait_s: float, run_id: str | None,
+           bus_config: BusConfig) -> None:
     """Re-publish a recording made by `teleo record`, keeping its timing."""
     try:
         header, samples = read_recording(file)
         items = list(samples)
     except CodecError as exc:
         raise click.ClickException(str(exc)) from exc
+    bus_config, _ = _reach(bus_config, run_id)
     stop = stop_on_signals()
     with open_node(bus_config, header["run"], f"replay-{os.getpid()}") as node:
         node.declare({s.key for s in items})
-        node.wait_matching({s.key for s in items}, wait_s)
+        unheard = node.wait_matching({s.key for s in items}, wait_s)
+        if unheard and len(unheard) == len({s.key for s in items}):
+            raise click.ClickException(f"nobody subscribes to any of the {len(unheard)} "
+                                       f"recorded keys (waited {wait_s:g} s): nothing replayed")
         start, t0 = time.monotonic(), (items[0].t_ns if items else 0)
         for s in items:
             if speed > 0:

@@ -13,6 +13,7 @@ _COMMAND_MODULES = (
     "tools.bus_commands",    # router, echo, record, replay (bus)
     "tools.world_commands",  # render                    (world)
     "tools.launch",          # launch                    (processes)
+    "tools.run_commands",    # ps, stop                  (runs on this host)
     "tools.goal_commands",   # goal post/list/cancel/priority
     "tools.event_commands",  # event                     (world events into a running launch)
     "tools.inspect",         # inspect

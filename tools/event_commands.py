@@ -19,12 +19,12 @@ MATCH_TIMEOUT = 5.0  # [s] to find the world process's subscriber
 
 @click.command("event")
 @click.argument("event_json", metavar="JSON")
-def event(event_json: str) -> None:
+@runfile.run_option
+def event(event_json: str, run_id: str | None) -> None:
     """Inject JSON, a world event, into the running launch, e.g.
     '{"kind": "block", "segment": "S17"}' or
     '{"kind": "pedestrian", "ahead_of": "ME", "dist": 20}'."""
     from bus import keys
-    from bus.config import BusConfig
     from bus.errors import BusError
     from bus.messages import WorldEvent
     from bus.node import open_node
@@ -37,11 +37,8 @@ def event(event_json: str) -> None:
         raise click.ClickException(
             f'JSON: expected an object with a "kind", e.g. {{"kind": "block", "segment": "S17"}}'
             f", got {event_json!r}")
-    try:
-        info = runfile.find()
-    except runfile.NoRunningLaunch as exc:
-        raise click.ClickException(str(exc)) from exc
-    cfg = BusConfig(mode="client", connect=(info.endpoint,), listen=())
+    info = runfile.locate(run_id)
+    cfg = runfile.bus_config(info)
     key = keys.world_events(info.run)
     try:
         with open_node(cfg, info.run, "event-cli") as node:

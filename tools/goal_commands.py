@@ -1,6 +1,7 @@
 """`teleo goal post|list|cancel|priority`: talk to the goal-entry process of a running launch.
 
-The launch is found through its run file (tools/runfile.py), so no bus flags are needed.
+The launch is found through the run registry (tools/runfile.py; `--run RUN` when several
+run), so no bus flags are needed.
 Each command is one query on teleo/<run>/agent/<agent>/goals (GoalRequest -> GoalReply);
 the goal-entry process validates a post against the agent's program and answers with the
 reason when it refuses it. A posted goal takes effect at the next cycle the goal-entry
@@ -17,23 +18,19 @@ QUERY_TIMEOUT = 5.0  # [s]
 
 
 def _request(op: str, agent: str | None, goal: str = "", priority: int = 0,
-             goal_id: str = "") -> list:
+             goal_id: str = "", run: str | None = None) -> list:
     """Send one GoalRequest per addressed agent; returns the replies (raises ClickException)."""
     from bus import keys
-    from bus.config import BusConfig
     from bus.errors import BusError, NobodyServing
     from bus.messages import GoalRequest
     from bus.node import open_node
 
-    try:
-        info = runfile.find()
-    except runfile.NoRunningLaunch as exc:
-        raise click.ClickException(str(exc)) from exc
+    info = runfile.locate(run)
     agents = list(info.agents) if agent is None and op == "list" else [agent or info.agents[0]]
     if agents[0] not in info.agents:
         raise click.ClickException(f"run {info.run} has no agent {agents[0]!r} "
                                    f"(agents: {', '.join(info.agents)})")
-    cfg = BusConfig(mode="client", connect=(info.endpoint,), listen=())
+    cfg = runfile.bus_config(info)
     replies = []
     try:
         with open_node(cfg, info.run, "goal-cli") as node:
@@ -73,9 +70,10 @@ def goal() -> None:
 @click.option("--priority", "-p", type=int, default=100, show_default=True,
               help="Rank: the goal goes after every goal of priority <= P (lower = sooner).")
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def post(text: str, priority: int, agent: str | None) -> None:
+@runfile.run_option
+def post(text: str, priority: int, agent: str | None, run_id: str | None) -> None:
     """Post GOAL, e.g. '(package-delivered PACKET2)'."""
-    reply = _request("post", agent, goal=text, priority=priority)[0]
+    reply = _request("post", agent, goal=text, priority=priority, run=run_id)[0]
     _check(reply)
     click.echo(reply.reason or "posted")
     _table(reply.goals)
@@ -83,10 +81,11 @@ def post(text: str, priority: int, agent: str | None) -> None:
 
 @goal.command(name="list")
 @click.option("--agent", "-a", help="Only this agent (default: all).")
-def list_(agent: str | None) -> None:
+@runfile.run_option
+def list_(agent: str | None, run_id: str | None) -> None:
     """List the goals with their statuses."""
     goals = []
-    for reply in _request("list", agent):
+    for reply in _request("list", agent, run=run_id):
         _check(reply)
         goals.extend(reply.goals)
     _table(goals)
@@ -95,9 +94,10 @@ def list_(agent: str | None) -> None:
 @goal.command()
 @click.argument("goal_id", metavar="ID")
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def cancel(goal_id: str, agent: str | None) -> None:
+@runfile.run_option
+def cancel(goal_id: str, agent: str | None, run_id: str | None) -> None:
     """Cancel goal ID."""
-    reply = _request("cancel", agent, goal_id=goal_id)[0]
+    reply = _request("cancel", agent, goal_id=goal_id, run=run_id)[0]
     _check(reply)
     click.echo(reply.reason or f"cancelled {goal_id}")
 
@@ -106,9 +106,11 @@ def cancel(goal_id: str, agent: str | None) -> None:
 @click.argument("goal_id", metavar="ID")
 @click.argument("new_priority", metavar="P", type=int)
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def priority(goal_id: str, new_priority: int, agent: str | None) -> None:
+@runfile.run_option
+def priority(goal_id: str, new_priority: int, agent: str | None, run_id: str | None) -> None:
     """Give goal ID the priority P."""
-    reply = _request("priority", agent, priority=new_priority, goal_id=goal_id)[0]
+    reply = _request("priority", agent, priority=new_priority, goal_id=goal_id,
+                     run=run_id)[0]
     _check(reply)
     click.echo(reply.reason or f"{goal_id} now has priority {new_priority}")
 

@@ -121,17 +121,14 @@ def render(model: Model, alive: set[str], incarnations: dict[str, int],
                                   "e.g. agent/ME/intention.")
 @click.option("--once", is_flag=True, help="Watch 2 s, print the tables once, exit.")
 @click.option("--seconds", type=float, help="Watch this long [s], print once, exit.")
-def inspect(key: str | None, once: bool, seconds: float | None) -> None:
+@runfile.run_option
+def inspect(key: str | None, once: bool, seconds: float | None, run_id: str | None) -> None:
     """Live view of the running launch: processes, keys, rates, latency, late stages."""
     from bus import keys
-    from bus.config import BusConfig
     from bus.node import open_node
 
-    try:
-        info = runfile.find()
-    except runfile.NoRunningLaunch as exc:
-        raise click.ClickException(str(exc)) from exc
-    cfg = BusConfig(mode="client", connect=(info.endpoint,), listen=())
+    info = runfile.locate(run_id)
+    cfg = runfile.bus_config(info)
     model = Model(info.run)
     watch = seconds if seconds is not None else (2.0 if once else None)
     with open_node(cfg, info.run, "inspect") as node:

@@ -28,7 +28,8 @@ class ScenarioError(WorldError):
 
 @dataclass(frozen=True)
 class RunSettings:
-    """The [run] table. cycles 0 means forever; deadline [s] is the realtime period per cycle."""
+    """The [run] table. cycles 0 means forever; deadline [s] is the realtime period per cycle;
+    secure: run on a secured bus (TLS, a user per process, access control: docs/bus.md)."""
 
     name: str = "run"
     mode: Mode = Mode.LOCKSTEP
@@ -37,6 +38,7 @@ class RunSettings:
     deadline: float = 0.1
     goals_respawn: int = 3
     render_every: int = 5
+    secure: bool = False
 
 
 @dataclass(frozen=True)
@@ -159,8 +161,8 @@ def _kind_name(kind: type | tuple) -> str:
 
 def _run(table: dict[str, Any], path: Path) -> RunSettings:
     where = f"{path}: [run]"
-    _only(table, {"name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every"},
-          path, "[run]")
+    _only(table, {"name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every",
+                  "secure"}, path, "[run]")
     mode = table.get("mode", "lockstep")
     if mode not in {m.value for m in Mode}:
         raise ScenarioError(f"{where}.mode: expected 'lockstep' or 'realtime', got {mode!r}")
@@ -172,10 +174,18 @@ def _run(table: dict[str, Any], path: Path) -> RunSettings:
         deadline=float(_typed(table, "deadline", (int, float), 0.1, where)),
         goals_respawn=_typed(table, "goals_respawn", int, 3, where),
         render_every=_typed(table, "render_every", int, 5, where),
+        secure=_flag(table, "secure", where),
     )
     if settings.cycles < 0 or settings.deadline <= 0 or settings.render_every < 1:
         raise ScenarioError(f"{where}: expected cycles >= 0, deadline > 0 [s], render_every >= 1")
     return settings
+
+
+def _flag(table: dict[str, Any], key: str, where: str) -> bool:
+    value = table.get(key, False)
+    if not isinstance(value, bool):
+        raise ScenarioError(f"{where}.{key}: expected true or false, got {value!r}")
+    return value
 
 
 def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
@@ -193,12 +203,16 @@ def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
 
 
 def _resolve(program: str, scenario_path: Path) -> Path:
-    """A program path is taken as written from the working directory, else beside the scenario."""
+    """A relative program path is looked up beside the scenario, then in each folder above
+    it (so `programs/driving.tlp` in scenarios/x.toml finds the repository's programs/ from
+    any working directory), then in the working directory."""
     candidate = Path(program)
-    if candidate.is_absolute() or candidate.exists():
+    if candidate.is_absolute():
         return candidate
-    beside = scenario_path.parent / candidate
-    return beside if beside.exists() else candidate
+    for folder in scenario_path.resolve().parents:
+        if (folder / candidate).exists():
+            return folder / candidate
+    return candidate
 
 
 def _goal(table: dict[str, Any], index: int, path: Path, agents: list[str]) -> ScriptedGoal:

@@ -69,5 +69,13 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
     return 1
 
 
+def restore(blob: bytes):
+    """The Simulation saved by its `checkpoint()` (world/domain.py, restart)."""
+    from world.driving.simulation import restore as restore_simulation
+
+    return restore_simulation(blob)
+
+
 DOMAIN = Domain("driving", "urban driving (seed 000): a city, traffic, pedestrians, packages",
-                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",))
+                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",),
+                restore=restore)
