@@ -44,18 +44,26 @@ class Launch:
         self.folder = folder
         self.env = {**os.environ, "TELEO_RUN_DIR": str(folder)}
         self.out = (folder / "launch.out").open("w")
+        self._info: dict[str, Any] | None = None
         self.proc = subprocess.Popen(
             [TELEO, "launch", str(scenario), "--summary", str(folder / "summary.json"), *args],
             cwd=ROOT, env=self.env, stdout=self.out, stderr=subprocess.STDOUT)
 
     def info(self, timeout: float = 120.0) -> dict[str, Any]:
-        """The run file, once the launcher has registered the run (every process up)."""
+        """The run file, once the launcher has registered the run (every process up); the
+        pids are re-read while the run is registered (restarts change them)."""
+        files = list((self.folder / "active").glob("*.json"))
+        if files:
+            self._info = json.loads(files[0].read_text())
+        if self._info is not None:
+            return self._info
         found = wait_for(lambda: list((self.folder / "active").glob("*.json"))
                          or self.proc.poll() is not None, timeout)
         files = list((self.folder / "active").glob("*.json"))
         if not found or not files:
             raise RuntimeError(f"the launch did not register its run:\n{self.output()}")
-        return json.loads(files[0].read_text())
+        self._info = json.loads(files[0].read_text())
+        return self._info
 
     def run_dir(self) -> Path:
         return Path(self.info()["run_dir"])
@@ -86,7 +94,8 @@ class Launch:
         return json.loads(path.read_text()) if path.exists() else {}
 
     def output(self) -> str:
-        self.out.flush()
+        if not self.out.closed:
+            self.out.flush()
         return (self.folder / "launch.out").read_text()
 
     def trace(self) -> str:
@@ -105,6 +114,7 @@ def wait_for(predicate, timeout: float, interval: float = 0.02) -> bool:
 def reference(scenario: Path, folder: Path, *args: str) -> str:
     """The trace of an undisturbed launch of `scenario`."""
     run = Launch(folder, scenario, *args)
+    run.info()
     rc = run.finish()
     if rc != 0:
         raise RuntimeError(f"reference launch failed ({rc}):\n{run.output()}")
@@ -146,7 +156,8 @@ def drill_signal(folder: Path, scenario: Path, ref: str, target: str, at: int,
             "cycle": base, "detected_ms": _ms(_first(run.journal(), "exit", target, t0), t0),
             "progress_ms": _ms(back, t0), "status": s.get("status"), "exit": rc,
             "identical": run.trace() == ref, "restarts": s.get("restarts", {}),
-            "stalls": len(s.get("stalls", [])), "uncontrolled": s.get("uncontrolled", {})}
+            "stalls_s": [x["seconds"] for x in s.get("stalls", [])],
+            "uncontrolled": s.get("uncontrolled", {})}
 
 
 def drill_router(folder: Path, scenario: Path, ref: str, at: int) -> dict[str, Any]:
@@ -158,7 +169,7 @@ def drill_router(folder: Path, scenario: Path, ref: str, at: int) -> dict[str, A
     base, t0 = run.cycles(), time.time()
     os.kill(run.pid("router"), signal.SIGKILL)
     reach = None
-    if wait_for(lambda: _tool_ok(run), 30.0, 0.05):
+    if wait_for(lambda: _bus_ok(run.info()), 30.0, 0.05):
         reach = time.time()
     run.wait_cycle(base + 20)
     os.kill(run.pid("ME.inference"), signal.SIGKILL)
@@ -172,10 +183,24 @@ def drill_router(folder: Path, scenario: Path, ref: str, at: int) -> dict[str, A
             "stage_back": back is not None}
 
 
-def _tool_ok(run: Launch) -> bool:
-    done = subprocess.run([TELEO, "goal", "list"], env=run.env, capture_output=True, text=True,
-                          timeout=30)
-    return done.returncode == 0
+def _bus_ok(info: dict[str, Any]) -> bool:
+    """Whether a new client (a tool) can reach the run and get the goal list answered."""
+    sys.path.insert(0, str(ROOT))
+    from bus import keys
+    from bus.config import BusConfig
+    from bus.errors import BusError
+    from bus.messages import GoalRequest
+    from bus.node import open_node
+
+    cfg = BusConfig(mode="client", connect=(info["endpoint"],), listen=(),
+                    connect_timeout_ms=200, credentials=info.get("credentials", ""))
+    try:
+        with open_node(cfg, info["run"], "drill") as node:
+            node.query(keys.goals(info["run"], info["agents"][0]),
+                       GoalRequest(node.envelope(), "list", info["agents"][0], "", 0, ""), 1.0)
+        return True
+    except BusError:
+        return False
 
 
 def _pids_alive(pids: list[int]) -> list[int]:

@@ -104,8 +104,8 @@ def _forge(endpoint: str, run: str, credentials: Path, victim: str) -> dict[str,
             time.sleep(0.02)
         time.sleep(LISTEN_S)
         read = 0
-        while box.get(0) is not None:
-            read += 1
+        while (msg := box.get(0)) is not None:
+            read += msg.env.sender != FORGER  # its own puts come back to it locally
         out["other_user_read_messages"] = read
         try:
             node.query(keys.goals(run, victim),

@@ -8,9 +8,10 @@ figures stay true when the world was killed.
 The run's status (docs/faults.md, "What counts as a failed run"):
 - failed (exit 1): an agent was uncontrolled for at least one cycle (its actions did not
   arrive and the world applied its safe action), a process gave up (left down after its
-  restarts, or a world that could not resume), a goal could not be kept (failed, or at an
-  impasse at the end), or the world stopped before its cycles were done for any other reason
-  than a stop asked for;
+  restarts, or a world that could not resume), a goal could not be kept (the executive
+  reported it failed), or the world stopped before its cycles were done for any other reason
+  than a stop asked for. A goal still at an impasse at the end (no skill path yet; the
+  problem solver may have been working on it) is listed as not achieved, not as failed;
 - interrupted (exit 130): stopped on request (Ctrl-C, `teleo stop`) before its cycles were
   done, with nothing failed; a run without a cycle limit ends this way and counts as completed;
 - completed (exit 0): otherwise. Stalls, late stages and restarts that recovered are shown
@@ -29,7 +30,7 @@ from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, read_jsonl
 
 GOALS_FILE = "goals.json"
 EXIT_CODES = {"completed": 0, "failed": 1, "interrupted": 130}
-_NOT_KEPT = ("failed", "impasse")
+_NOT_KEPT = ("failed",)
 __all__ = ["GOALS_FILE", "SNAPSHOTS", "build", "echo", "exit_code", "render"]
 
 
