@@ -69,6 +69,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--listen", default="tcp/127.0.0.1:7447")
     parser.add_argument("--connect", default="")
     parser.add_argument("--security", default="", help="router security file (secured run)")
+    parser.add_argument("--run", default="", help="the run it serves (to name it in `ps`)")
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO,
                         format="%(asctime)s router %(name)s %(levelname)s %(message)s")
@@ -116,14 +117,17 @@ class RouterProcess:
         self.stop()
 
 
-def router_argv(listen: str, security: str = "") -> tuple[str, ...]:
-    """The command that starts a router on `listen` with this interpreter."""
+def router_argv(listen: str, security: str = "", run: str = "") -> tuple[str, ...]:
+    """The command that starts a router on `listen` with this interpreter (`run`: the run
+    it serves, only so that its command line names it)."""
     extra = ("--security", security) if security else ()
-    return (sys.executable, "-m", "bus.router", "--listen", listen, *extra)
+    return (sys.executable, "-m", "bus.router", "--listen", listen, *extra,
+            *(("--run", run) if run else ()))
 
 
 def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0, security: str = "",
-                 env: dict[str, str] | None = None, log_file: str | None = None) -> RouterProcess:
+                 env: dict[str, str] | None = None, log_file: str | None = None,
+                 run: str = "") -> RouterProcess:
     """Start `python -m bus.router` as a subprocess listening on `listen` (port 0: a free
     port) and wait until it reports its endpoints; raises RouterError if it does not.
     `env`: extra environment; `log_file`: where its log goes (default: this stderr)."""
@@ -132,7 +136,7 @@ def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0, securit
     full["PYTHONPATH"] = os.pathsep.join(p for p in (root, full.get("PYTHONPATH", "")) if p)
     err = open(log_file, "ab") if log_file else None  # noqa: SIM115 (the child inherits it)
     try:
-        proc = subprocess.Popen(router_argv(listen, security), stdout=subprocess.PIPE,
+        proc = subprocess.Popen(router_argv(listen, security, run), stdout=subprocess.PIPE,
                                 stderr=err, stdin=subprocess.DEVNULL, text=True, env=full,
                                 start_new_session=True)
     finally:

@@ -103,10 +103,11 @@ def _start_router(plan: Plan, sup: Supervisor) -> Plan:
     security = str(plan.secrets.router) if plan.secrets else ""
     env = {ENV_PARENT: str(os.getpid())}
     log_file = plan.run_dir / "logs" / "router.log"
-    router = spawn_router(plan.listen, security=security, env=env, log_file=str(log_file))
+    router = spawn_router(plan.listen, security=security, env=env, log_file=str(log_file),
+                          run=plan.run)
     # restarts listen on the very endpoint the processes know (same port)
-    sup.adopt(ProcSpec("router", router_argv(router.endpoint, security), ROUTER_RESTARTS,
-                       env=env), router.proc)
+    sup.adopt(ProcSpec("router", router_argv(router.endpoint, security, plan.run),
+                       ROUTER_RESTARTS, env=env), router.proc)
     return replace(plan, endpoint=router.endpoint)
 
 
