@@ -8,6 +8,7 @@ or are attacked (docs/faults.md holds the table these figures feed).
     .venv/bin/python bench/drills.py launcher             # SIGKILL and SIGHUP the launcher
     .venv/bin/python bench/drills.py ctrl-c               # Ctrl-C while a stage is stopped
     .venv/bin/python bench/drills.py foreign              # a stranger on a secured run's bus
+    .venv/bin/python bench/drills.py kill --secure        # the same on a secured bus
 
 Each trial is a real `teleo launch` of the driving demo (or --scenario) in lockstep, in its
 own TELEO_RUN_DIR, with real signals. A row per trial says at which cycle the fault came,
@@ -37,10 +38,14 @@ DEMO = ROOT / "scenarios" / "driving_demo.toml"
 TARGETS = ("goals", "ME.perception", "ME.inference", "ME.executive", "world", "router")
 
 
+EXTRA: list[str] = []  # flags given to every launch (--secure)
+
+
 class Launch:
     """One `teleo launch` in the background, with its own run folder."""
 
     def __init__(self, folder: Path, scenario: Path, *args: str) -> None:
+        args = (*args, *(a for a in EXTRA if a not in args))
         self.folder = folder
         self.env = {**os.environ, "TELEO_RUN_DIR": str(folder)}
         self.out = (folder / "launch.out").open("w")
@@ -278,9 +283,12 @@ def _print(rows: list[dict[str, Any]]) -> None:
 @click.option("--seed", default=42, show_default=True, help="Seeds the fault cycles.")
 @click.option("--scenario", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               default=DEMO, show_default=True)
-def main(which: str, trials: int, seconds: float, seed: int, scenario: Path) -> None:
+@click.option("--secure", is_flag=True, help="Secured launches (clients of a TLS router).")
+def main(which: str, trials: int, seconds: float, seed: int, scenario: Path,
+         secure: bool) -> None:
     """Run fault drills against real launches and print what happened."""
     rng = random.Random(seed)
+    EXTRA[:] = ["--secure"] if secure else []
     with tempfile.TemporaryDirectory(prefix="teleo-drills-") as tmp:
         box = Path(tmp)
         counter = iter(range(10**6))
@@ -308,8 +316,8 @@ def main(which: str, trials: int, seconds: float, seed: int, scenario: Path) -> 
                 rows.append(drill_ctrl_c(folder(), scenario, rng.randrange(50, 300)))
             if which in ("foreign", "all"):
                 rows.append(drill_foreign(folder(), scenario))
-        click.echo(f"{len(rows)} drill(s) on {scenario.name}, {os.cpu_count()} CPUs, "
-                   f"load {os.getloadavg()[0]:.1f}:")
+        click.echo(f"{len(rows)} drill(s) on {scenario.name}{' secured' if secure else ''}, "
+                   f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}:")
         _print(rows)
 
 

@@ -11,7 +11,8 @@ Lockstep: state t is published, then the clock waits for the Actions of t from e
 whose stages are all alive. A stage that misses the per-cycle deadline while its token is
 still there (hung, SIGSTOPped) is reported in `late` and its agent gets the no-op. A stage
 whose token disappears (crash) is waited for up to `restart_timeout_s`; when it (or any
-stage) comes back, state t is re-sent so it rejoins at the current cycle. If it is not
+stage) comes back, state t is re-sent so it rejoins at the current cycle; a cycle still
+waiting re-sends it every `resend_s` anyway (a sample lost in a reconnect). If it is not
 back in time: policy CONTINUE counts it in `dead`, gives its agent the no-op and stops
 waiting for it until it returns; policy STOP raises ClockStopped.
 Realtime: a fixed period; whatever has not arrived by the end of the period is the no-op
@@ -57,6 +58,7 @@ class Clock:
     stage); period_s: realtime period [s]; deadline_s: lockstep per-cycle deadline [s];
     restart_timeout_s: how long lockstep waits for a vanished stage to come back [s];
     stall_s: a lockstep cycle waiting longer than this is reported as stalled [s];
+    resend_s: a lockstep cycle still waiting re-publishes its state this often [s];
     stop: an event that interrupts any wait (CycleInterrupted).
     """
 
@@ -64,9 +66,9 @@ class Clock:
                  mode: CycleMode = CycleMode.LOCKSTEP, period_s: float = 0.1,
                  deadline_s: float = 2.0, restart_timeout_s: float = 5.0,
                  policy: DeadPolicy = DeadPolicy.CONTINUE, stall_s: float = 1.0,
-                 stop: threading.Event | None = None) -> None:
+                 resend_s: float = 1.0, stop: threading.Event | None = None) -> None:
         self.node = node
-        self.stall_s = stall_s
+        self.stall_s, self.resend_s = stall_s, resend_s
         self.stop = stop if stop is not None else threading.Event()
         self.pipelines = {a: tuple(p) for a, p in pipelines.items()}
         self.mode = CycleMode(mode)
@@ -148,6 +150,7 @@ class _CycleRun:
         self.stalled: list[str] = []
         self.stopped = False
         self.start = start
+        self.sent = start  # when state t was last (re)published
         self.end = start + clock.period_s if clock.mode is CycleMode.REALTIME else None
 
     def wait(self) -> None:
@@ -176,14 +179,23 @@ class _CycleRun:
             agents = {a for a, pipe in self.c.pipelines.items() if rejoined & set(pipe)}
             if agents & self.waiting:
                 log.info("cycle %d: %s back; re-publishing state", self.cycle, sorted(rejoined))
-                self.c.node.publish(self.c._state_key, self.state)
-                self.republished += 1
+                self._resend(now)
                 for a in agents:
                     self.since[a] = now
+        if self.end is None and self.waiting and now - self.sent >= self.c.resend_s:
+            # a sample lost while a stage was cut off (a reconnect re-declares its token and
+            # its subscriptions in no set order) would hold the cycle until the deadline:
+            # every stage answers a repeated state with its cached outputs, so send it again
+            self._resend(now)
         for agent in sorted(self.waiting):
             self._check_agent(agent, alive, now)
         if not self.stalled and self.end is None and now - self.start > self.c.stall_s:
             self._note_stall(alive)
+
+    def _resend(self, now: float) -> None:
+        self.c.node.publish(self.c._state_key, self.state)
+        self.republished += 1
+        self.sent = now
 
     def _note_stall(self, alive: frozenset[str]) -> None:
         """Name what this cycle waits for: a gone stage, else the first one behind."""
