@@ -189,8 +189,11 @@ def _tell(plan: Plan, ex: Exit) -> None:
 
 
 def _main_launcher(node, gone_since: float | None) -> float | None:
-    """When the main launcher's token was first missed (None while it is there)."""
+    """When the main launcher's token was first missed after it had been seen (None while
+    it is there, or before it ever was: a launch may join before the main one is ready)."""
     if "launch" in node.presence.snapshot():
+        return None
+    if gone_since is None and not node.presence.incarnations().get("launch"):
         return None
     return gone_since if gone_since is not None else time.monotonic()
 
