@@ -15,6 +15,7 @@ from .inference import Inference
 from .outcomes import as_outcomes
 from .program import Program
 from .reuse import InferStats
+from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, PerceptIndex, store_of
 from .terms import Percept
@@ -39,11 +40,11 @@ class Engine:
     (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
     every result is exactly what a fresh Engine would give (docs/language.md, Performance)."""
 
-    def __init__(self, program: Program, solver: ImpasseHandler | None = None):
+    def __init__(self, program: Program, solver: ImpasseHandler | None | str = "means-ends"):
         self.program = program
-        self.solver = solver
+        self.solver = MeansEndsSolver() if solver == "means-ends" else solver
         self.inference = Inference(program)
-        self.executive = Executive(program, solver)
+        self.executive = Executive(program, self.solver)
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------

@@ -11,7 +11,7 @@ from .conftest import ROOT
 SCRIPT = """
 from agents.lang import Engine, load_program
 from tests.lang.test_blocks import percepts
-engine = Engine(load_program("programs/blocks.tlp"))
+engine = Engine(load_program("tests/lang/fixtures/blocks_handwritten.tlp"))
 state = engine.add_goal(engine.initial_state(), "(on A D)", priority=0)
 world = percepts({"A": "T", "B": "A", "C": "B", "D": "T", "E": "D"})
 result = engine.cycle(state, world)
