@@ -9,6 +9,7 @@ from pathlib import Path
 import click
 
 from agents.lang import (
+    Diagnostic,
     Engine,
     EngineState,
     LangError,
@@ -17,6 +18,7 @@ from agents.lang import (
     parse_percepts,
 )
 from agents.lang.loader import read_text
+from agents.lang.solving.learned import is_learned_text, read_learned
 from agents.lang.terms import sort_key
 
 _include = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
@@ -55,10 +57,16 @@ def _sorted_beliefs(beliefs) -> list:
 @click.argument("programs", nargs=-1, required=True, type=click.Path())
 @_include
 def check(programs: tuple[str, ...], includes: tuple[str, ...]) -> None:
-    """Check PROGRAMS; exit 0 when every one is valid, 1 with all errors otherwise."""
+    """Check PROGRAMS; exit 0 when every one is valid, 1 with all errors otherwise. A file of
+    learned skills is checked against the program named before it (PROGRAM LEARNED)."""
     failed = 0
+    program = None
     for path in programs:
         try:
+            if _learned_file(path):
+                _check_learned(program, path)
+                continue
+            program = None
             program = load_program(path, *includes)
         except ProgramError as exc:
             failed += 1
@@ -72,6 +80,23 @@ def check(programs: tuple[str, ...], includes: tuple[str, ...]) -> None:
         click.echo(f"{path}: ok ({n_concepts} concepts, {len(program.skills)} skills, "
                    f"{len(program.goals)} goals)")
     sys.exit(1 if failed else 0)
+
+
+def _learned_file(path: str) -> bool:
+    try:
+        return is_learned_text(read_text(path))
+    except ProgramError:
+        return False
+
+
+def _check_learned(program, path: str) -> None:
+    """Check the learned-skills file ``path`` against ``program`` (the one before it)."""
+    if program is None:
+        raise ProgramError([Diagnostic(path, 1, 1, "a file of learned skills: name the valid "
+                                       "program it was learned with before it "
+                                       "(teleo check PROGRAM LEARNED)")])
+    clauses = read_learned(program, read_text(path), path)
+    click.echo(f"{path}: ok ({len(clauses)} learned skills for {program.sources[0]})")
 
 
 @click.command()

@@ -1,6 +1,7 @@
 """The end-of-run summary of `teleo launch`, built from the files the processes leave in the
 run folder: the world's final counters (`world-final.json`), the goal store (`goals.json`),
-the snapshots for rendering (`snapshots.jsonl`) and the launcher's restart counts.
+the snapshots for rendering (`snapshots.jsonl`), each agent's learned skills
+(`learned-AGENT.tlp`) and the launcher's restart counts.
 """
 
 from __future__ import annotations
@@ -15,6 +16,16 @@ WORLD_FINAL = "world-final.json"
 GOALS_FILE = "goals.json"
 SNAPSHOTS = "snapshots.jsonl"
 TRACE = "trace.jsonl"
+
+
+def learned_file(run_dir: Path, agent: str) -> Path:
+    """Where the executive of ``agent`` writes its learned skills (program syntax)."""
+    return run_dir / f"learned-{agent}.tlp"
+
+
+def state_file(run_dir: Path, agent: str) -> Path:
+    """Where the executive of ``agent`` keeps its engine state across a restart."""
+    return run_dir / f"state-{agent}.json"
 
 
 def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
@@ -47,6 +58,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
+        "learned": _learned(run_dir),
         "trace": str(run_dir / TRACE),
     }
 
@@ -68,6 +80,21 @@ def echo(summary: dict[str, Any]) -> None:
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+    for agent, learned in summary.get("learned", {}).items():
+        heads = learned["skills"]
+        click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
+                   + "".join(f"\n    {h}" for h in heads))
+
+
+def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
+    """Per agent: its learned-skills file and the head of each skill in it."""
+    from agents.lang.solving.learned import clause_heads
+
+    out = {}
+    for path in sorted(run_dir.glob("learned-*.tlp")):
+        agent = path.stem.removeprefix("learned-")
+        out[agent] = {"file": str(path), "skills": clause_heads(path.read_text())}
+    return out
 
 
 def _pairs(d: dict[str, Any]) -> str:

@@ -1,0 +1,76 @@
+"""What the executive process keeps on disk so a restart loses nothing (DESIGN.md: "the goal
+stack, SCS threads, discount factors, learned skills and plans all live in EngineState,
+serialisable, so a restarted executive loses none of them"): the engine state as JSON, and the
+learned skills in program syntax (agents/lang/solving/learned.py). Both are written atomically
+(a temporary file renamed over the old one), so a process killed mid-write leaves the previous
+version whole."""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+from pathlib import Path
+from typing import Any
+
+
+def write_atomically(path: Path, text: str) -> None:
+    """Replace ``path`` by ``text`` in one rename (same folder, so the same file system)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
+class StateFile:
+    """An EngineState file: ``load`` at start (None when there is none), ``save`` after every
+    cycle whose state differs from the one last written."""
+
+    def __init__(self, path: str | Path, log: logging.Logger) -> None:
+        self.path = Path(path)
+        self.log = log
+        self.saved: Any = None
+
+    def load(self) -> Any:
+        """The state last written, or None (no file yet, or one that cannot be read: then it is
+        kept beside as ``.bad`` and the run starts afresh, logged, never a crash)."""
+        from agents.lang import EngineState, LangError
+
+        try:
+            text = self.path.read_text(encoding="utf-8")
+        except FileNotFoundError:
+            return None
+        try:
+            state = EngineState.from_dict(json.loads(text))
+        except (ValueError, LangError) as exc:
+            bad = self.path.with_suffix(self.path.suffix + ".bad")
+            os.replace(self.path, bad)
+            self.log.error("engine state %s: cannot be read (%s); kept as %s, starting afresh",
+                           self.path, exc, bad)
+            return None
+        self.saved = state
+        self.log.info("engine state %s read back: cycle %d, %d goal(s), %d goal stack(s), "
+                      "%d learned skill(s)", self.path, state.cycle, len(state.goals),
+                      len(state.solver.stacks), len(state.learned))
+        return state
+
+    def save(self, state: Any) -> None:
+        if state != self.saved:
+            write_atomically(self.path, json.dumps(state.to_dict()))
+            self.saved = state
+
+
+class LearnedFile:
+    """The learned-skills file of one agent, rewritten whenever a skill is learned."""
+
+    def __init__(self, path: str | Path, program: str) -> None:
+        self.path = Path(path)
+        self.program = program
+        self.written: tuple[str, ...] | None = None
+
+    def save(self, learned: tuple[str, ...]) -> None:
+        from agents.lang.solving.learned import learned_text
+
+        if learned != self.written:
+            write_atomically(self.path, learned_text(learned, self.program))
+            self.written = learned
