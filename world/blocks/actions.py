@@ -89,7 +89,7 @@ def _form(action: Any) -> tuple[str, list[str]]:
 def _block(world: World, name: str) -> Block:
     block = world.blocks.get(name)
     if block is None:
-        what = "the table, not a block" if name == world.config.table.name else "unknown block"
+        what = "the table, not a block" if name == world.config.table.name else "an unknown block"
         raise Refused(f"{name} is {what}; blocks: {', '.join(sorted(world.blocks))}")
     return block
 

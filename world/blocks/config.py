@@ -213,7 +213,7 @@ def _check_layout(config: BlocksConfig) -> None:
                               f"the table's end ({lo:g} .. {hi:g} m); widen table.pitch or "
                               f"use another column")
         left = min(a for a, _ in spans)
-        if previous is not None and left < previous[0] + 1e-9:
+        if previous is not None and left < previous[0] - 1e-9:
             raise ConfigError(f"[world] towers[{k}]: {list(tower)} overlaps {previous[1]}; "
                               f"leave a column free ([] in towers) or widen table.pitch")
         previous = (max(b for _, b in spans), list(tower))

@@ -59,7 +59,7 @@ class BlocksWorld:
                          for k, a in enumerate(agents)}
         self._events: list[dict[str, Any]] = []      # reported in the current snapshot
         self._incoming: list[dict[str, Any]] = []    # happening during the coming step
-        self._placed_by: list[str] = []              # agents that set a block down this cycle
+        self._placed_by: dict[str, str] = {}         # block -> agent that loaded it this cycle
         for k, tower in enumerate(config.towers):
             x, bottom = config.table.column_x(k), config.table.height
             for name in tower:
@@ -108,6 +108,17 @@ class BlocksWorld:
                 out.append(other.name)
         return sorted(out)
 
+    def beneath(self, block: Block) -> list[str]:
+        """Every block the block rests on, directly or through others."""
+        out: list[str] = []
+        todo = [n for n in self.supports(block) if n in self.blocks]
+        while todo:
+            name = todo.pop()
+            if name not in out:
+                out.append(name)
+                todo += [n for n in self.supports(self.blocks[name]) if n in self.blocks]
+        return sorted(out)
+
     def on_top_of(self, block: Block) -> list[str]:
         """The blocks resting on this one."""
         return [b.name for b in self.standing() if block.name in self.supports(b)]
@@ -131,7 +142,8 @@ class BlocksWorld:
         gripper.holding, gripper.x = None, x
         block.place(x, bottom)
         self.space.add(block.body, block.shape)
-        self._placed_by.append(gripper.agent)
+        for name in [block.name, *self.beneath(block)]:
+            self._placed_by.setdefault(name, gripper.agent)
         return block
 
     def drop(self, gripper: Gripper) -> Block:
@@ -139,7 +151,7 @@ class BlocksWorld:
         held = gripper.holding
         bottom = gripper.y(self.highest()) - (held.height if held else 0.0)
         block = self.set_down(gripper, gripper.x, bottom)
-        self._placed_by.remove(gripper.agent)
+        self._placed_by = {b: a for b, a in self._placed_by.items() if a != gripper.agent}
         block.rest = None        # it lands wherever it lands, counted as dropped already
         return block
 
@@ -183,18 +195,17 @@ class BlocksWorld:
         """Let the physics settle for dt [s] in fixed substeps; then tell falls from puts."""
         for _ in range(round(self.config.dt / SUBSTEP)):
             self.space.step(SUBSTEP)
-        placed = sorted(set(self._placed_by))
         for block in self.standing():
-            self._watch(block, placed[0] if placed else "")
+            self._watch(block, self._placed_by.get(block.name, ""))
         for g in self.grippers.values():
             g.acted = None
-        self._placed_by = []
+        self._placed_by = {}
         self.cycle += 1
         self._events, self._incoming = self._incoming, []
 
     def _watch(self, block: Block, placer: str) -> None:
-        """Blame a block that starts to move on the agent that set a block down this cycle;
-        when it rests again lower or elsewhere than before, it fell."""
+        """Blame a block that starts to move on the agent that set it, or a block on it, down
+        this cycle; when it rests again lower or elsewhere than before, it fell."""
         if block.moving:
             if not block.unsettled:
                 block.unsettled, block.cause = True, block.cause or placer
@@ -208,7 +219,7 @@ class BlocksWorld:
             return       # resting where it was, or landing after a drop (counted then)
         if agent in self.grippers:
             self.grippers[agent].count("blocks_dropped")
-        self._incoming.append({"kind": "fell", "cycle": self.cycle + 1, "block": block.name,
+        self._incoming.append({"kind": "fell", "cycle": self.cycle, "block": block.name,
                                "agent": agent, "x": round(now.x, 3), "y": round(now.bottom, 3),
                                "on": self.supports(block)})
 
