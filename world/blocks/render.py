@@ -48,6 +48,14 @@ def scene_top(snaps: list[BlocksSnapshot]) -> float:
     return max([s.table.height + 3.0 for s in snaps] + tops) + MARGIN
 
 
+def frame_top(snaps: list[BlocksSnapshot], agent: str | None, px_per_m: float) -> float:
+    """The top [m] of pictures of these snapshots: the scene's, raised so that the longest
+    legend fits beside it (more sky rather than a cut legend)."""
+    legend = max(20 + sum(20 if big else 17 for _, big in _legend_lines(s, agent))
+                 for s in snaps)                                   # [px]
+    return max(scene_top(snaps), legend / px_per_m - MARGIN)
+
+
 def colour(snap: BlocksSnapshot, name: str) -> tuple[int, int, int]:
     """A block's colour: by its rank among the snapshot's block names (stable over a run)."""
     names = sorted(b.name for b in snap.blocks)
@@ -58,9 +66,10 @@ def render_image(snap: BlocksSnapshot, agent: str | None = None, px_per_m: float
                  top: float | None = None) -> Image.Image:
     """One cycle as an RGB image with the legend on the right."""
     x0, x1 = floor_span(snap.table)
-    view = _View(x0 - MARGIN, x1 + MARGIN, -MARGIN, top or scene_top([snap]), px_per_m)
     lines = _legend_lines(snap, agent)
-    height = max(view.size[1], 20 + sum(20 if big else 17 for _, big in lines))
+    view = _View(x0 - MARGIN, x1 + MARGIN, -MARGIN, top or frame_top([snap], agent, px_per_m),
+                 px_per_m)
+    height = view.size[1]
     img = Image.new("RGB", (view.size[0] + LEGEND_W, height), COLORS["sky"])
     draw = ImageDraw.Draw(img)
     _table(draw, view, snap, height)
@@ -168,7 +177,7 @@ def render_gif(snaps: list[BlocksSnapshot], path: str | Path, agent: str | None 
     frames drawn to the same height; returns the path."""
     if not snaps:
         raise WorldError(f"render_gif {path}: no snapshots")
-    top = scene_top(snaps)
+    top = frame_top(snaps, agent, px_per_m)
     frames = [render_image(s, agent, px_per_m, top).convert("P", palette=Image.Palette.ADAPTIVE)
               for s in snaps]
     path = Path(path)
@@ -177,4 +186,4 @@ def render_gif(snaps: list[BlocksSnapshot], path: str | Path, agent: str | None 
     return path
 
 
-__all__ = ["render_gif", "render_image", "render_png", "scene_top"]
+__all__ = ["frame_top", "render_gif", "render_image", "render_png", "scene_top"]
