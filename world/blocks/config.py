@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from world.blocks.towers import random_towers
@@ -25,7 +25,8 @@ _KNOWN = {"table", "block_size", "sizes", "towers", "random_towers", "offsets", 
 @dataclass(frozen=True)
 class TableSpec:
     """The table: `columns` places for towers, `pitch` [m] apart, column 0 at x = 0; its top is
-    `height` [m] above the floor (y = 0)."""
+    `height` [m] above the floor (y = 0). Unless a scenario says otherwise it has 6 columns,
+    or one more than there are blocks, so every block fits on it side by side."""
 
     name: str = "T"
     columns: int = 6
@@ -87,6 +88,8 @@ def load_blocks_config(table: dict[str, Any], seed: int = 0) -> BlocksConfig:
     holding = _holding(table.get("holding", {}))
     names = [n for t in towers for n in t] + list(holding.values())
     _unique(names, spec.name)
+    if "columns" not in table.get("table", {}):     # room for every block on the table
+        spec = replace(spec, columns=max(spec.columns, len(names) + 1))
     sizes = _dict(table, "sizes")
     extra = sorted(set(sizes) - set(names))
     if extra:
@@ -168,7 +171,7 @@ def _towers(table: dict, seed: int, spec: TableSpec) -> tuple[tuple[str, ...], .
     if not isinstance(towers, list) or not all(isinstance(t, list) for t in towers):
         raise ConfigError(f"[world] towers: expected a list of towers, each a list of block "
                           f"names bottom first (e.g. [[\"A\", \"B\", \"C\"]]), got {towers!r:.60}")
-    if len(towers) > spec.columns:
+    if "columns" in table.get("table", {}) and len(towers) > spec.columns:
         raise ConfigError(f"[world] towers: {len(towers)} towers on a table of "
                           f"{spec.columns} columns; add columns (table.columns)")
     for k, tower in enumerate(towers):

@@ -17,6 +17,13 @@ def test_an_empty_table_is_figure_3():
     assert config.blocks == (BlockSpec("A"), BlockSpec("B"), BlockSpec("C"))
 
 
+def test_the_default_table_has_room_for_every_block_side_by_side():
+    assert load_blocks_config({"towers": [list("ABCDEFGH")]}).table.columns == 9
+    assert load_blocks_config({"towers": [[n] for n in "ABCDEFG"]}).table.columns == 8
+    assert load_blocks_config({"towers": [list("ABCDEFGH")], "table": {"columns": 2}}) \
+        .table.columns == 2
+
+
 def test_sizes_offsets_and_holding_are_read():
     config = load_blocks_config({"towers": [["A", "B"], [], ["C"]], "sizes": {"B": [1.5, 0.5]},
                                  "offsets": {"B": 0.25}, "holding": {"ME": "D"},
@@ -34,7 +41,8 @@ BAD = [
     ({"towers": [["A", "empty"]]}, "not ['empty']"),
     ({"towers": [["A", "B"], ["B"]]}, "block B appears twice"),
     ({"towers": [["A", "T"]]}, "block T appears twice (or names the table)"),
-    ({"towers": [["A"]] * 7}, "7 towers on a table of 6 columns"),
+    ({"towers": [[n] for n in "ABCDEFG"], "table": {"columns": 6}},
+     "7 towers on a table of 6 columns"),
     ({"towers": [["A"], ["B"]], "sizes": {"B": [4.5, 1.0]}}, "towers[1]: ['B'] overlaps ['A']"),
     ({"towers": [["A"]], "sizes": {"A": [4.0, 1.0]}}, "towers[0]: A (-2 .. 2 m) hangs over"),
     ({"sizes": {"Z": [1.0, 1.0]}}, "sizes: blocks ['Z'] stand in no tower and no hand"),
