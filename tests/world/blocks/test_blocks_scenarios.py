@@ -46,3 +46,17 @@ def test_the_random_scenario_puts_every_block_on_the_table():
     assert len(blocks) == 6 and all(p[5] == 2 for p in blocks)
     assert run.final["counters"]["ME"]["blocks_moved"] >= 1
     assert dict(run.records[-1]["ME"]["goals"])["s1"] in ("satisfied", "achieved")
+
+
+def test_the_mishaps_drill_reports_the_slip_and_the_falls_and_a_is_cleared():
+    scenario, _ = load_checked(ROOT / "scenarios" / "blocks_mishaps.toml")
+    run = simulate(scenario, keep_every=1)
+    events = [(e["kind"], e.get("block"), e.get("agent")) for s in run.snapshots
+              for e in s["events"] if e["kind"] != "injected"]
+    assert events[0] == ("dropped", "C", "ME")
+    assert ("fell", "W", "") in events and ("fell", "N", "") in events
+    assert run.final["counters"]["ME"]["blocks_dropped"] == 1
+    acted = [a for r in run.records for a in r["ME"]["actions"]]
+    assert acted[:2] == [["*unstack", "C", "B"], ["*unstack", "B", "A"]]
+    engine = Engine(load_program(scenario.agents[0].program))
+    assert "(clear A)" in {str(b) for b in engine.infer(perceive(run.final, "ME"))}
