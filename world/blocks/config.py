@@ -16,7 +16,7 @@ from world.blocks.towers import random_towers
 from world.errors import ConfigError
 
 NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]*\Z")
-RESERVED = ("empty",)      # the hand's status when it holds nothing (programs/blocks.tlp)
+RESERVED = ("empty", "floor")   # a free hand's status; what a fallen block may lie on
 FIGURE3 = (("A", "B", "C"),)
 _KNOWN = {"table", "block_size", "sizes", "towers", "random_towers", "offsets", "holding",
           "resolution", "dt"}
