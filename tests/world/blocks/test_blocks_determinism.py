@@ -8,6 +8,7 @@ import json
 from blocks_helpers import world
 
 from world.blocks.config import load_blocks_config
+from world.blocks.snapshot import BlocksSnapshot
 
 SCRIPT = [["*unstack", "C", "B"], ["*putdown", "C", "T"], ["*unstack", "B", "A"],
           ["*stack", "B", "C"], ["*pickup", "A", "T"], ["*stack", "A", "B"], ["*wait"]]
@@ -49,3 +50,12 @@ def test_random_towers_without_a_seed_follow_the_run_seed():
     a = load_blocks_config({"random_towers": 6}, seed=11).towers
     assert a == load_blocks_config({"random_towers": 6}, seed=11).towers
     assert any(load_blocks_config({"random_towers": 6}, seed=s).towers != a for s in range(5))
+
+
+def test_a_snapshot_round_trips_through_plain_data():
+    w = world([["A", "B"]], agents=("ME", "YOU"), holding={"YOU": "C"})
+    w.inject({"kind": "knock", "block": "B"})
+    w.step()
+    d = json.loads(json.dumps(w.snapshot_dict()))
+    assert BlocksSnapshot.from_dict(d).to_dict() == d
+    assert [b["held_by"] for b in d["blocks"]] == ["", "", "YOU"]

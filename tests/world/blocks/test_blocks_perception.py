@@ -5,6 +5,7 @@ concepts infer the right beliefs from them with the real engine (seed 000, Figur
 from __future__ import annotations
 
 import copy
+from pathlib import Path
 
 import pytest
 from blocks_helpers import act, seen, settle, towers_of, world
@@ -127,6 +128,4 @@ def test_positions_are_rounded_to_the_resolution_and_whole_ones_are_ints():
 
 @pytest.fixture(scope="module")
 def blocks_engine():
-    from pathlib import Path
-
     return Engine(load_program(Path(__file__).resolve().parents[3] / "programs" / "blocks.tlp"))
