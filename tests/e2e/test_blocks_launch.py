@@ -45,6 +45,15 @@ def test_figure3_trace_has_the_seeds_three_actions(figure3):
                      [["*unstack", "B", "A"]]]
 
 
+def test_two_launches_of_figure3_give_the_same_trace(figure3, tmp_path):
+    folder, _ = figure3
+    again = Teleo(tmp_path)("launch", str(FIGURE3), "--summary", str(tmp_path / "summary.json"))
+    assert again.returncode == 0, again.stdout + again.stderr
+    first = json.loads((folder / "summary.json").read_text())["trace"]
+    second = json.loads((tmp_path / "summary.json").read_text())["trace"]
+    assert first != second and Path(first).read_text() == Path(second).read_text()
+
+
 def _injected(info: dict) -> list[dict]:
     path = Path(info["run_dir"]) / "trace.jsonl"
     lines = [json.loads(x) for x in path.read_text().splitlines()] if path.exists() else []
