@@ -4,7 +4,7 @@ names the agent, the action and what is wrong, changing nothing."""
 from __future__ import annotations
 
 import pytest
-from blocks_helpers import act, blocks_seen, seen, world
+from blocks_helpers import act, blocks_seen, seen, settle, world
 
 
 def test_unstack_lifts_a_clear_block_off_the_block_under_it():
@@ -135,3 +135,17 @@ def test_an_unknown_agent_and_a_non_list_are_refused_by_name():
     assert outcome["status"] == "failed" and "unknown agent 'NOBODY'" in outcome["reason"]
     [outcome] = w.apply_actions("ME", "*pickup")        # type: ignore[arg-type]
     assert outcome["status"] == "failed" and "expected a list of actions" in outcome["reason"]
+
+
+def test_nothing_is_stacked_on_a_moving_block_nor_lifted_in_mid_air():
+    w = world([["A"], ["B", "C"]], holding={"ME": "D"})
+    w.inject({"kind": "knock", "block": "A", "speed": 2.0})
+    [outcome] = w.apply_actions("ME", [["*stack", "D", "A"]])
+    assert "A does not stand still and flat: nothing can go on it" in outcome["reason"]
+    w.step()
+    settle(w, 6)
+    act(w, "*stack", "D", "C")
+    act(w, "*unstack", "D", "C")
+    w.inject({"kind": "slip", "agent": "ME"})           # D drops from the gripper
+    [outcome] = w.apply_actions("ME", [["*unstack", "D", "C"]])
+    assert "D is not on C: it is on nothing (it is falling)" in outcome["reason"]
