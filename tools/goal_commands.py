@@ -59,8 +59,9 @@ def _table(goals) -> None:
         return
     click.echo(f"{'ID':<5} {'AGENT':<8} {'PRIO':>4}  {'STATUS':<10} GOAL")
     for g in goals:
+        note = f"  -- {g['note']}" if g.get("note") else ""   # why: impasse, failed
         click.echo(f"{g['id']:<5} {g.get('agent', ''):<8} {g['priority']:>4}  "
-                   f"{g['status']:<10} {g['goal']}")
+                   f"{g['status']:<10} {g['goal']}{note}")
 
 
 @click.group()

@@ -24,7 +24,7 @@ from typing import Any
 import click
 
 from agents.processes.common import agent_options, run_stage, setup_logging
-from agents.processes.persist import LearnedFile, StateFile
+from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
 from bus.messages import Actions, Envelope, Intention, Message
@@ -104,24 +104,31 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
               learned_out: str | None = None, solver: bool = True):
     """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)]."""
     saver = StateFile(state_path, log) if state_path else None
-    executive = make_executive(program_path, log, saver.load() if saver else None, learned,
+    saved = saver.load() if saver else None
+    executive = make_executive(program_path, log, saved.state if saved else None, learned,
                                solver)
     out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
 
+    def outputs(cycle: int, intention: dict, actions: list) -> list[tuple[str, Message]]:
+        env = Envelope.now(run, cycle, process)
+        return [(keys.intention(run, agent), Intention(env, agent, intention)),
+                (keys.actions(run, agent), Actions(env, agent, tuple(actions)))]
+
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        if saved is not None and cycle <= saved.cycle:
+            log.info("cycle %d was decided before the restart: its outputs again", cycle)
+            return outputs(cycle, saved.intention, saved.actions)
         executive.sync_goals(inputs[g_key].goals)
         seen = inputs[p_key]
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
+        intention, actions = decision.to_dict(), [a.to_list() for a in decision.actions]
         if saver is not None:
-            saver.save(executive.state)
+            saver.save(Saved(cycle, executive.state, intention, actions))
         if out is not None:
             out.save(executive.state.learned)
-        actions = tuple(a.to_list() for a in decision.actions)
-        env = Envelope.now(run, cycle, process)
-        return [(keys.intention(run, agent), Intention(env, agent, decision.to_dict())),
-                (keys.actions(run, agent), Actions(env, agent, actions))]
+        return outputs(cycle, intention, actions)
 
     return step
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import logging
 import os
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -22,17 +23,29 @@ def write_atomically(path: Path, text: str) -> None:
     os.replace(tmp, path)
 
 
+@dataclass(frozen=True)
+class Saved:
+    """What the executive wrote after deciding bus cycle ``cycle``: the engine state for the
+    next cycle, and the intention (Decision.to_dict()) and actions it published for this one,
+    so that a restarted executive the clock sends ``cycle`` again re-emits them instead of
+    deciding twice (a decision is not idempotent: it advances the state)."""
+
+    cycle: int
+    state: Any
+    intention: dict[str, Any]
+    actions: list[list[Any]]
+
+
 class StateFile:
-    """An EngineState file: ``load`` at start (None when there is none), ``save`` after every
-    cycle whose state differs from the one last written."""
+    """An executive's state file: ``load`` at start (None when there is none), ``save`` after
+    every decision, before its outputs are published."""
 
     def __init__(self, path: str | Path, log: logging.Logger) -> None:
         self.path = Path(path)
         self.log = log
-        self.saved: Any = None
 
-    def load(self) -> Any:
-        """The state last written, or None (no file yet, or one that cannot be read: then it is
+    def load(self) -> Saved | None:
+        """What was last written, or None (no file yet, or one that cannot be read: then it is
         kept beside as ``.bad`` and the run starts afresh, logged, never a crash)."""
         from agents.lang import EngineState, LangError
 
@@ -41,23 +54,25 @@ class StateFile:
         except FileNotFoundError:
             return None
         try:
-            state = EngineState.from_dict(json.loads(text))
-        except (ValueError, LangError) as exc:
+            doc = json.loads(text)
+            saved = Saved(int(doc["cycle"]), EngineState.from_dict(doc["state"]),
+                          dict(doc["intention"]), list(doc["actions"]))
+        except (ValueError, KeyError, TypeError, LangError) as exc:
             bad = self.path.with_suffix(self.path.suffix + ".bad")
             os.replace(self.path, bad)
             self.log.error("engine state %s: cannot be read (%s); kept as %s, starting afresh",
                            self.path, exc, bad)
             return None
-        self.saved = state
-        self.log.info("engine state %s read back: cycle %d, %d goal(s), %d goal stack(s), "
-                      "%d learned skill(s)", self.path, state.cycle, len(state.goals),
+        state = saved.state
+        self.log.info("engine state %s read back (bus cycle %d): %d goal(s), %d goal stack(s), "
+                      "%d learned skill(s)", self.path, saved.cycle, len(state.goals),
                       len(state.solver.stacks), len(state.learned))
-        return state
+        return saved
 
-    def save(self, state: Any) -> None:
-        if state != self.saved:
-            write_atomically(self.path, json.dumps(state.to_dict()))
-            self.saved = state
+    def save(self, saved: Saved) -> None:
+        write_atomically(self.path, json.dumps({
+            "cycle": saved.cycle, "state": saved.state.to_dict(),
+            "intention": saved.intention, "actions": saved.actions}))
 
 
 class LearnedFile:
