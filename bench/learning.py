@@ -93,9 +93,7 @@ class SimWorld:
         from world.domain import get_domain
 
         self.domain = get_domain("blocks")
-        n = sum(len(t) for t in towers)
-        self.world = self.domain.create({"towers": [list(t) for t in towers],
-                                         "table": {"columns": n + 1}}, 0, ["ME"])
+        self.world = self.domain.create({"towers": [list(t) for t in towers]}, 0, ["ME"])
 
     def percepts(self) -> list[list]:
         return self.domain.perceive(self.world.snapshot_dict(), "ME")
