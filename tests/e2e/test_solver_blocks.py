@@ -41,6 +41,17 @@ def _learned_rules(path: Path) -> list[str]:
     return [canonical(s) for s in extended.program.skills[len(program.skills):]]
 
 
+def _read_json(path: Path) -> dict:
+    """A file the executive rewrites every cycle, read while it runs (retried if caught
+    mid-write)."""
+    for _ in range(100):
+        try:
+            return json.loads(path.read_text())
+        except ValueError:
+            continue
+    return json.loads(path.read_text())
+
+
 def _trace(path: str | Path) -> list[dict]:
     return [json.loads(x) for x in Path(path).read_text().splitlines()]
 
@@ -137,7 +148,7 @@ def test_an_executive_killed_mid_problem_keeps_its_goal_stack_and_skills(teleo, 
         info = teleo.run_info()
         state_file = Path(info["run_dir"]) / "state-ME.json"
         assert wait_for(lambda: trace_lines(info) >= 3, 60), teleo.launch_output()
-        before = json.loads(state_file.read_text())
+        before = _read_json(state_file)
         killed = info["pids"]["ME.executive"]
         os.kill(killed, signal.SIGKILL)
         assert wait_for(lambda: teleo.run_info()["pids"]["ME.executive"] != killed, 60), \

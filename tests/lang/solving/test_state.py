@@ -6,9 +6,6 @@ process (no dependence on string hashing)."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 
 import pytest
 from hypothesis import given, settings
@@ -19,8 +16,9 @@ from agents.lang.solving.state import SolverState
 
 from ..conftest import ROOT
 from ..test_blocks import act, percepts
+from ..test_determinism import under_hash_seeds
+from ..test_properties import towers
 
-NAMES = ["A", "B", "C", "D", "E"]
 PROGRAM = load_program(ROOT / "programs" / "blocks.tlp")
 
 
@@ -62,13 +60,9 @@ def test_a_backtracking_search_round_trips_mid_problem():
 
 @st.composite
 def problems(draw):
-    """A random tower world and a goal over its blocks."""
-    blocks = draw(st.lists(st.sampled_from(NAMES), unique=True, min_size=2, max_size=5))
-    support: dict[str, str] = {}
-    for b in blocks:
-        free = [x for x in support if x not in support.values()]
-        support[b] = draw(st.sampled_from(["T", *free]))
-    x, y = draw(st.permutations(blocks))[:2]
+    """A random tower world (hand empty) and a goal over its blocks."""
+    support, _ = draw(towers().filter(lambda t: len(t[0]) >= 2))
+    x, y = draw(st.permutations(sorted(support)))[:2]
     goal = draw(st.sampled_from([f"(clear {x})", f"(on {x} {y})", f"(ontable {x} T)",
                                  f"(holding {x})"]))
     return support, goal
@@ -100,11 +94,6 @@ print(state.learned)
 
 
 def test_same_stacks_and_skills_under_different_hash_seeds():
-    outputs = []
-    for seed in ("1", "2", "3"):
-        env = {**os.environ, "PYTHONHASHSEED": seed}
-        done = subprocess.run([sys.executable, "-c", SCRIPT], cwd=ROOT, env=env,
-                              capture_output=True, text=True, check=True)
-        outputs.append(done.stdout)
+    outputs = under_hash_seeds(SCRIPT)
     assert outputs[0] == outputs[1] == outputs[2]
     assert "goal stack of g2" in outputs[0] and "learned skill (holding ?b1)" in outputs[0]
