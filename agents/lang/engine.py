@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
-from .errors import GoalError
+from .errors import GoalError, LangError
 from .executive import Executive, ImpasseHandler
 from .explanation import Decision
 from .extend import extend_program
@@ -35,14 +35,22 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
+SOLVERS: dict[str, type] = {"means-ends": MeansEndsSolver}
+"""Impasse handlers by name (seed 000's means-ends problem solver and learner)."""
+
+
 class Engine:
     """Runs a Program cycle by cycle. Holds compiled program data and the inference memo
     (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
-    every result is exactly what a fresh Engine would give (docs/language.md, Performance)."""
+    every result is exactly what a fresh Engine would give (docs/language.md, Performance).
+    ``solver``: what answers an impasse, a name in SOLVERS (default: the means-ends problem
+    solver), an ImpasseHandler, or None (an impasse stays an impasse)."""
 
-    def __init__(self, program: Program, solver: ImpasseHandler | None | str = "means-ends"):
+    def __init__(self, program: Program, solver: ImpasseHandler | str | None = "means-ends"):
         self.program = program
-        self.solver = MeansEndsSolver() if solver == "means-ends" else solver
+        if isinstance(solver, str) and solver not in SOLVERS:
+            raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(SOLVERS)}")
+        self.solver = SOLVERS[solver]() if isinstance(solver, str) else solver
         self.inference = Inference(program)
         self.executive = Executive(program, self.solver)
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}

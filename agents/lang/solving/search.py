@@ -5,11 +5,12 @@ Skill Learning", Figure 3).
 returns a ``Step``: a path to execute as soon as the top subgoal has one (interleaving problem
 solving with execution), or the stack after one chaining decision, or a failure with its
 reason. A decision pushes one unsatisfied condition of the chosen way to chain off the top
-entry; a way that cannot go on (its next condition is already on the stack: a loop; the stack
-is MAX_STACK deep; it holds but the skill is still not executable; its subgoal failed) is
-abandoned for the entry's next alternative, and an entry with none left is popped, failing its
-parent's way in turn (backtracking). When the bottom entry, the goal, runs out of
-alternatives, the problem has failed."""
+entry; a way that cannot go on (its next condition is already on the stack, or was achieved
+MAX_PUSHES times and undone each time: a loop; the stack is MAX_STACK deep; its conditions
+hold but the skill is still not executable; its subgoal failed, or its path ran MAX_EXECUTE
+cycles in vain) is abandoned for the entry's next alternative, and an entry with none left is
+popped, failing its parent's way in turn (backtracking). When the bottom entry, the goal,
+runs out of alternatives, the problem has failed."""
 
 from __future__ import annotations
 
@@ -49,8 +50,9 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
     decided = False
     while True:
         top = entries[-1]
-        found = probe(literal(top.goal)) if len(entries) > 1 else None  # the executive has
-        if found is not None and top.executed < MAX_EXECUTE:             # just tried the goal
+        # (the goal itself, at the bottom, is what the executive has just found no path for)
+        found = probe(literal(top.goal)) if len(entries) > 1 else None
+        if found is not None and top.executed < MAX_EXECUTE:
             first = found[2][0]
             entries[-1] = replace(top, executed=top.executed + 1,
                                   done=(first.skill, first.bindings))
