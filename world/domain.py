@@ -73,6 +73,7 @@ class Domain:
 # that runs one domain never imports the others' physics).
 _MODULES = {
     "driving": "world.driving",
+    "office": "world.office",
 }
 DOMAINS: tuple[str, ...] = tuple(_MODULES)
 DEFAULT_DOMAIN = "driving"
