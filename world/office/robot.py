@@ -165,7 +165,10 @@ def start_goto(site: Site, robot: Robot) -> None:
     elif robot.confusion == "halfway":
         op.goal = HALFWAY
     if not _set_route(site, robot):
-        code = "door-closed" if robot.shut() else "no-route"
+        here = site.floor.locate(*robot.position)
+        ends = [r.door for r in site.floor.rooms if r.id in (here, target)]
+        shut = [d for d in ends if d in robot.shut()]
+        code = f"door-{robot.known_doors[shut[0]][0]}" if shut else "no-route"
         site.finish(robot, code, _no_route(site, robot, target))
 
 

@@ -32,6 +32,7 @@ from world.office.snapshot import (
 
 log = logging.getLogger(__name__)
 COMMON_KINDS = ("kitchen", "lounge")    # where wandering people go
+AGENT_ENDED = ("pre-empted", "stopped")  # failed, but by the agent's choice: not a failure
 
 
 def _r(value: float, digits: int = 4) -> float:
@@ -91,7 +92,7 @@ class OfficeSim:
         op.status, op.code, op.reason, op.ended = result["status"], code, result["reason"], \
             self.cycle
         robot.finished.append(result)
-        if code:
+        if code and code not in AGENT_ENDED:
             robot.counters["failures"] += 1
         self.emit("operation", robot.id, action=list(op.action), status=op.status,
                   reason=op.reason)
