@@ -149,7 +149,10 @@ def _apply(sim: Office, event: dict) -> None:
         _new_item(sim, event)
     elif kind == "occupants":
         room = _name(event, "room", {r.id for r in sim.floor.rooms}, "a room")
-        sim.occupants[room] = int(_num(event, "count", 0, 1000))
+        count = event.get("count")
+        if isinstance(count, bool) or not isinstance(count, int) or not 0 <= count <= 1000:
+            raise WorldError(f"count: expected an integer in [0, 1000], got {count!r}")
+        sim.occupants[room] = count
     elif kind == "obstacle":
         _obstacle(sim, event)
     elif kind == "clear":

@@ -158,13 +158,11 @@ def _check(site: Office, robot: Robot, op: Operation) -> tuple[str, str] | None:
     item = site.items.get(item_id)
     if item is None:
         return "unknown-item", f"no item {item_id!r}; items: {' '.join(sorted(site.items))}"
+    if op.name == "deliver" and item.holder != robot.id:
+        return "item-not-held", f"{robot.id} does not carry {item_id}"
     met = _meet(site, robot, other)
-    if met:
+    if met or op.name == "deliver":
         return met
-    if op.name == "deliver":
-        if item.holder != robot.id:
-            return "item-not-held", f"{robot.id} does not carry {item_id}"
-        return None
     if _refill(site, robot, item, other):
         return None
     if item.holder == robot.id:
