@@ -78,7 +78,7 @@ DEFAULT_SOUTH = _rooms(("r-5301", "office", 6), ("r-5303", "office", 6), ("r-530
 DEFAULT_SOUTH = tuple(replace(r, occupants=4) if r.id == "r-5309" else r for r in DEFAULT_SOUTH)
 DEFAULT_NORTH = _rooms(("r-5302", "kitchen", 6), ("r-5304", "office", 6), ("r-5306", "lab", 8),
                        ("r-5308", "office", 6), ("r-5310", "lounge", 8), ("r-5312", "office", 6),
-                       ("r-5314", "printer", 4), ("r-5316", "conference", 8),
+                       ("r-5314", "printer", 4), ("r-5316", "office", 8),
                        ("r-5318", "office", 6))
 DEFAULT_FIRE_DOORS = (FireDoorSpec("d-south", "c-south", 26.0),
                       FireDoorSpec("d-north", "c-north", 22.0))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import pytest
 
@@ -35,7 +36,7 @@ def test_a_route_is_the_shortest_along_the_corridors(floor):
     assert route.nodes == ("@start", "d-5303", "d-5303/front", "d-5305/front", "d-5307/front",
                            "d-south", "d-5309/front", "d-5311/front", "d-5313/front", "d-5313",
                            "r-5313")
-    assert sum(math.dist(a, b) for a, b in zip(route.points, route.points[1:])) == \
+    assert sum(math.dist(a, b) for a, b in pairwise(route.points)) == \
         pytest.approx(route.length)
 
 
