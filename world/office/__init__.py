@@ -28,8 +28,8 @@ from world.errors import ConfigError
 
 VIOLATIONS = ("bumps",)
 ACHIEVEMENTS = ("deliveries", "acquisitions", "observations")
-EVENT_KINDS = ("open", "close", "block", "move", "false-success", "cool", "item", "occupants",
-               "obstacle", "clear", "stall")
+EVENT_KINDS = ("open", "close", "block", "move", "false-success", "cool", "item", "give",
+               "occupants", "obstacle", "clear", "stall")   # world/office/events.py
 
 
 def create(table: dict[str, Any], seed: int, agents: list[str]):

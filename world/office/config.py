@@ -180,16 +180,15 @@ def _entry(item: Any, where: str, spec: type, required: tuple[str, ...],
     return spec(**values)
 
 
-def _room(item: Any, where: str, width: float) -> RoomSpec:
+def _room(item: Any, where: str) -> RoomSpec:
     r = _entry(item, where, RoomSpec, ("id",), {"id": str, "kind": str, "width": float,
                                                 "number": int, "door": str, "occupants": int})
-    number = r.number or int("".join(c for c in r.id if c.isdigit())[:9] or 0)
     if not 2.0 <= r.width <= 50.0:
         raise ConfigError(f"[world] {where}.width: expected [m] in [2, 50], got {r.width}")
     if r.door not in DOOR_STATES:
         raise ConfigError(f"[world] {where}.door: expected one of {DOOR_STATES}, got {r.door!r}")
-    given_width = isinstance(item, dict) and "width" in item
-    return replace(r, number=number, width=r.width if given_width else width)
+    digits = "".join(c for c in r.id if c.isdigit())[:9]
+    return replace(r, number=r.number or int(digits or 0))
 
 
 def _parse_lists(d: dict[str, Any]) -> dict[str, tuple]:
@@ -199,7 +198,7 @@ def _parse_lists(d: dict[str, Any]) -> dict[str, tuple]:
             raise ConfigError(f"[world] {key}: expected a list, got {d[key]!r}")
     for row in ("south", "north"):
         if row in d:
-            out[row] = tuple(_room(x, f"{row}[{k}]", 6.0) for k, x in enumerate(d[row]))
+            out[row] = tuple(_room(x, f"{row}[{k}]") for k, x in enumerate(d[row]))
     specs = {"fire_doors": (FireDoorSpec, ("id", "corridor", "at"),
                             {"id": str, "corridor": str, "at": float, "state": str}),
              "people": (PersonSpec, ("id", "room"), {"id": str, "room": str, "office": str}),

@@ -11,6 +11,8 @@ Kinds (every other key is the event's own):
   temperature).
 - {"kind": "item", "item": ID, "type": KIND, "holder": P|R, "to": P|R, "temperature": C}:
   a new item (a request's mail, fax or coffee).
+- {"kind": "give", "item": I, "to": P|R}: someone else hands the item to P or leaves it in R
+  (not one a robot carries): a step of an errand the world made unnecessary.
 - {"kind": "occupants", "room": R, "count": N}: N anonymous people in R (a meeting).
 - {"kind": "obstacle", "x": m, "y": m, "radius": m, "id": ID}: something on the floor the
   robot's sensors miss (it bumps into it); {"kind": "clear", "obstacle": ID} removes it.
@@ -23,14 +25,13 @@ import math
 from typing import Any, Protocol
 
 from world.errors import WorldError
+from world.office import EVENT_KINDS
 from world.office.config import OfficeConfig
 from world.office.floor import Floor
 from world.office.operations import Item, Person
 from world.office.physics import Physics
 from world.office.snapshot import ObstacleState
 
-EVENT_KINDS = ("open", "close", "block", "move", "false-success", "cool", "item", "occupants",
-               "obstacle", "clear", "stall")
 CONFUSIONS = ("wrong-room", "halfway")
 
 
@@ -147,6 +148,12 @@ def _apply(sim: Office, event: dict) -> None:
         _cool(sim, event)
     elif kind == "item":
         _new_item(sim, event)
+    elif kind == "give":
+        item = sim.items[_name(event, "item", sim.items, "an item id")]
+        if item.holder in sim.robots:
+            raise WorldError(f"item {item.id} is carried by robot {item.holder}")
+        places = set(sim.people) | {r.id for r in sim.floor.rooms}
+        item.holder = _name(event, "to", places, "a person or room")
     elif kind == "occupants":
         room = _name(event, "room", {r.id for r in sim.floor.rooms}, "a room")
         count = event.get("count")

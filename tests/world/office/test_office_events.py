@@ -58,6 +58,17 @@ def test_a_new_item_and_a_meeting():
     assert world.snapshot_dict()["occupants"]["r-5316"] == 3
 
 
+def test_someone_else_can_hand_an_item_over():
+    world = office({"robots": [{"agent": "ME", "room": "r-5303"}]})
+    assert world.inject({"kind": "give", "item": "mail-mitchell", "to": "r-5313"})["status"] == \
+        "done"
+    assert percept(world, "item", "mail-mitchell")["holder"] == "r-5313"
+    world.inject({"kind": "give", "item": "fax-jhm", "to": "mitchell"})
+    until_done(world, ["*acquire", "fax-jhm", "mitchell"])
+    out = world.inject({"kind": "give", "item": "fax-jhm", "to": "jhm"})
+    assert out["status"] == "failed" and "carried by robot ME" in out["reason"]
+
+
 def test_obstacles_come_and_go():
     world = office()
     assert world.inject({"kind": "obstacle", "x": 30.0, "y": 17.0})["status"] == "done"
@@ -92,6 +103,8 @@ def test_a_robot_forgets_an_obstacle_it_sees_gone():
     ({"kind": "item", "item": "fax-jhm", "type": "fax", "holder": "jhm"}, "expected a new id"),
     ({"kind": "item", "item": "x", "holder": "jhm"}, "type: expected the item's kind"),
     ({"kind": "item", "item": "x", "type": "fax", "holder": "ME"}, "holder: expected a person"),
+    ({"kind": "give", "item": "mail-9", "to": "jhm"}, "item: expected an item id"),
+    ({"kind": "give", "item": "fax-jhm", "to": "ME"}, "to: expected a person or room"),
     ({"kind": "occupants", "room": "r-5309", "count": -1}, "count: expected an integer"),
     ({"kind": "occupants", "room": "r-5309", "count": 2.5}, "count: expected an integer"),
     ({"kind": "obstacle", "x": 20.0, "y": 13.0}, "is inside a wall"),
@@ -120,7 +133,7 @@ def test_not_a_dict_is_refused():
 
 def test_every_event_kind_is_listed_for_scenario_checks():
     assert set(EVENT_KINDS) == {"open", "close", "block", "move", "false-success", "cool",
-                                "item", "occupants", "obstacle", "clear", "stall"}
+                                "item", "give", "occupants", "obstacle", "clear", "stall"}
 
 
 def test_people_wander_from_their_offices_and_come_back():
