@@ -1,0 +1,443 @@
+"""One thread's tick: run a body's step tree from its frames until one atomic step is issued,
+the thread has to wait, or the body ends (seed 002, Appendix C).
+
+Each construct checks its conditions before its running child, so the condition stack is
+checked from the outermost down every cycle, that is after every atomic action (one per
+cycle per thread). A ``:while``/``:until`` that fails deactivates the step where it is (it
+continues from there when the condition holds again); a do-first whose first true condition
+changed, or a do-best whose chosen alternative's condition failed, makes a new choice at
+that level, dropping what ran below it. ``:when``/``:unless`` are checked once, before the
+step starts. Instantaneous steps (model updates, subgoals that already hold, passed waits)
+run on in the same cycle; a starred retry or a repeat round that would start again in the
+cycle its last attempt started waits for the next cycle, so a cycle always ends.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from enum import StrEnum
+
+from ..arith import evaluate
+from ..errors import EvalError
+from ..goals import satisfied
+from ..matcher import ground
+from ..paths import Found, PathFinder, Remembered, Walk, show
+from ..program import Skill
+from ..terms import Action, Literal, Var
+from .learning import record, reward_value
+from .state import Choice, Frame, ScsState, ThreadStatus, model_of
+from .syntax import Act, Atomic, Construct, Kind, ModelUpdate, Subgoal, Wait, children
+
+STEP_BUDGET = 256   # steps entered per thread and cycle before it yields [steps]
+
+
+class R(StrEnum):
+    ACT = "act"     # an atomic step was issued (or a subgoal's path acts) this cycle
+    IDLE = "idle"   # nothing this cycle: waiting or inactive; the frame is kept
+    OK = "ok"       # the step ended with success
+    FAIL = "fail"   # the step ended with failure
+
+
+@dataclass(frozen=True, slots=True)
+class Res:
+    kind: R
+    frame: Frame | None = None
+    why: str = ""
+    status: ThreadStatus = ThreadStatus.WAITING
+
+
+OK = Res(R.OK)
+
+
+def _fail(why: str) -> Res:
+    return Res(R.FAIL, None, why)
+
+
+def env_with(env: dict, pairs: tuple) -> dict:
+    """``env`` extended by stored ((name, value), ...) bindings."""
+    if not pairs:
+        return env
+    out = dict(env)
+    for k, v in pairs:
+        out[Var(k)] = v
+    return out
+
+
+def added(sol: dict, env: dict) -> tuple:
+    """The bindings ``sol`` makes beyond ``env``, as sorted ((name, value), ...)."""
+    return tuple(sorted((v.name, x) for v, x in sol.items() if v not in env
+                        and not isinstance(x, Var)))
+
+
+def show_conds(conds: tuple, env: dict | None = None) -> str:
+    """Conditions as text, with the variables bound in ``env`` replaced by their values."""
+    return "(" + " ".join(show(c, env or {}) for c in conds) + ")"
+
+
+class Tick:
+    """Runs one thread for one cycle. Reads percepts and beliefs from ``walk``; writes the
+    world model, do-best records and the tally straight into ``walk.updates["scs"]`` (so
+    bodies nested through subgoals, run meanwhile, keep theirs); collects the actions
+    issued (``actions``) or the subgoal path that acts (``sub``)."""
+
+    def __init__(self, finder: PathFinder, walk: Walk, skill: Skill, key: str, depth: int,
+                 on_path: frozenset, prev_rest: Remembered):
+        self.finder, self.walk, self.skill, self.key = finder, walk, skill, key
+        self.depth, self.on_path, self.prev_rest = depth, on_path, prev_rest
+        self.cycle = walk.state.cycle
+        self.budget = STEP_BUDGET
+        self.actions: list[Action] = []
+        self.sub: Found | None = None
+        self.draws = 0
+
+    # -- shared state ---------------------------------------------------------------------
+    @property
+    def scs(self) -> ScsState:
+        return self.walk.current("scs")
+
+    def put(self, scs: ScsState) -> None:
+        self.walk.updates["scs"] = scs
+
+    def bump(self, what: str, n: int = 1) -> None:
+        tally = dict(self.scs.tally)
+        tally[what] = tally.get(what, 0) + n
+        self.put(replace(self.scs, tally=tuple(sorted(tally.items()))))
+
+    def holds(self, conds: tuple, env: dict) -> dict | None:
+        """The first solution (in sorted order) of ``conds`` extending ``env``, or None."""
+        if not conds:
+            return env
+        sols = self.finder.solutions(list(conds), env, self.walk)
+        return sols[0] if sols else None
+
+    def pick(self, options: list[int], at: tuple) -> int:
+        """A nondeterministic choice, drawn from the agent's seeded generator."""
+        if len(options) == 1:
+            return options[0]
+        self.draws += 1
+        rng = self.walk.state.rng(f"scs/{self.key}/{'.'.join(map(str, at))}/{self.draws}")
+        return rng.choice(options)
+
+    # -- steps ----------------------------------------------------------------------------
+    def run(self, node: object, frame: Frame | None, at: tuple, env: dict) -> Res:
+        """Run ``node`` (at address ``at``) from ``frame`` (None: not started)."""
+        self.budget -= 1
+        if self.budget <= 0:
+            return Res(R.IDLE, frame, f"more than {STEP_BUDGET} steps in one cycle: goes on "
+                       "next cycle")
+        if isinstance(node, Construct):
+            return self.construct(node, frame, at, env)
+        if isinstance(node, Act | Atomic):
+            return self.atomic(node, frame, at, env)
+        if isinstance(node, Subgoal):
+            return self.subgoal(node, frame, at, env)
+        if isinstance(node, ModelUpdate):
+            return self.update(node, env)
+        if isinstance(node, Wait):
+            if self.holds(node.conds, env) is not None:
+                return OK
+            return Res(R.IDLE, frame or Frame(at), f"waits for {show_conds(node.conds, env)}")
+        return _fail(f"unknown step {node!r:.60}")
+
+    def atomic(self, node: Act | Atomic, frame: Frame | None, at: tuple, env: dict) -> Res:
+        """An atomic action or group: issue it; next cycle, succeed or fail by its outcome."""
+        if frame is not None and frame.pending:
+            shown = " ".join(str(Action.from_list(a)) for a in frame.pending)
+            if frame.outcome == "done":
+                self.bump("actions done", len(frame.pending))
+                return OK
+            self.bump("actions failed")
+            return _fail(f"{shown} failed: {frame.reason or 'no outcome reported'}")
+        steps = node.steps if isinstance(node, Atomic) else (node,)
+        actions = []
+        for s in steps:
+            if isinstance(s, Act):
+                try:
+                    actions.append(Action(s.action.name, tuple(evaluate(x, env)
+                                                               for x in s.action.args)))
+                except EvalError as exc:
+                    return _fail(f"action cannot be evaluated: {exc}")
+        clash = self.finder.conflict(self.walk, actions)
+        if clash:
+            return Res(R.IDLE, None, f"{' '.join(map(str, actions))} waits: {clash}")
+        for s in steps:
+            if isinstance(s, ModelUpdate):
+                self.update(s, env)
+        if not actions:
+            return OK
+        self.actions = actions
+        return Res(R.ACT, Frame(at, pending=tuple(tuple(a.to_list()) for a in actions),
+                                issued=self.cycle), status=ThreadStatus.ACTING)
+
+    def subgoal(self, node: Subgoal, frame: Frame | None, at: tuple, env: dict) -> Res:
+        """Achieve a concept through the skill hierarchy: success when it holds, failure when
+        no executable path exists (a path blocked only by taken resources waits)."""
+        goal = ground(node.literal, env)
+        if satisfied(goal, self.walk.store):
+            self.bump("subgoals achieved")
+            return OK
+        found = self.finder.achieve(self.walk, goal, self.prev_rest, self.depth + 1,
+                                    self.on_path)
+        frame = frame or Frame(at, since=self.cycle)
+        if found is not None:
+            self.sub = found
+            if not found[1] and found[0] and found[0][-1].mode == "waiting":
+                return Res(R.IDLE, frame, f"subgoal {goal} waits")
+            return Res(R.ACT, frame, status=ThreadStatus.ACTING)
+        if self._blocked_by_resources(goal):
+            return Res(R.IDLE, frame, f"subgoal {goal} waits: its path's resources are taken")
+        self.bump("subgoals failed")
+        return _fail(f"subgoal {goal} has no executable path")
+
+    def _blocked_by_resources(self, goal: Literal) -> bool:
+        """True when ``goal`` would have a path if no resource were taken this cycle."""
+        w = self.walk
+        if self.finder.res is None or not (w.taken or w.exclusive):
+            return False
+        scratch = Walk(w.program, w.pidx, w.store, w.state, w.outcomes, w.goal_id,
+                       updates=dict(w.updates))
+        return self.finder.achieve(scratch, goal, self.prev_rest, self.depth + 1,
+                                   self.on_path) is not None
+
+    def update(self, node: ModelUpdate, env: dict) -> Res:
+        """assert/retract: change the world model (a belief from the next cycle on)."""
+        fact = ground(node.fact, env)
+        if any(isinstance(a, Var) for a in fact.args):
+            return _fail(f"{node}: fact {fact} has an unbound variable")
+        row = (fact.pred, *fact.args)
+        model = set(self.scs.model)
+        if node.retract:
+            model.discard(row)
+        else:
+            model.add(row)
+        self.put(replace(self.scs, model=model_of(model)))
+        self.bump("facts retracted" if node.retract else "facts asserted")
+        return OK
+
+    # -- constructs -----------------------------------------------------------------------
+    def construct(self, node: Construct, frame: Frame | None, at: tuple, env: dict) -> Res:
+        mods = node.mods
+        if frame is None:
+            frame = Frame(at)
+            if mods.when is not None:
+                sol = self.holds(mods.when, env)
+                if sol is None:
+                    return _fail(f"({node.name} :when {show_conds(mods.when, env)}) is false")
+                frame = replace(frame, bind=added(sol, env))
+            if mods.unless is not None and self.holds(mods.unless, env_with(env, frame.bind)) \
+                    is not None:
+                return _fail(f"({node.name} :unless {show_conds(mods.unless, env)}) holds")
+        inner = env_with(env, frame.bind)
+        if mods.while_ is not None:
+            sol = self.holds(mods.while_, inner)
+            if sol is None:
+                return Res(R.IDLE, frame, f"({node.name} :while {show_conds(mods.while_, inner)}) "
+                           "is false: inactive", ThreadStatus.INACTIVE)
+            more = added(sol, inner)
+            if more:
+                frame = replace(frame, bind=frame.bind + more)
+                inner = env_with(inner, more)
+        if mods.until is not None and self.holds(mods.until, inner) is not None:
+            return Res(R.IDLE, frame, f"({node.name} :until {show_conds(mods.until, inner)}) "
+                       "holds: inactive", ThreadStatus.INACTIVE)
+        run = {Kind.DO: self.seq, Kind.REPEAT: self.seq, Kind.ALL: self.all,
+               Kind.ANY: self.any, Kind.FIRST: self.first, Kind.BEST: self.best}[node.kind]
+        return run(node, frame, inner)
+
+    def _child(self, node: Construct, frame: Frame, env: dict) -> Res:
+        """Run the frame's current child; on ACT/IDLE return with the frame updated."""
+        steps = children(node)
+        r = self.run(steps[frame.cur], frame.child, (*frame.at, frame.cur),
+                     env_with(env, frame.alt))
+        if r.kind in (R.ACT, R.IDLE):
+            return replace(r, frame=replace(frame, child=r.frame))
+        return r
+
+    def _retry_later(self, frame: Frame, node: Construct, why: str) -> Res | None:
+        """A starred retry waits for the next cycle when the failed attempt started in
+        this one (it took no cycle, so retrying now would only fail again)."""
+        if frame.since == self.cycle:
+            return Res(R.IDLE, replace(frame, child=None),
+                       f"({node.name}) retries next cycle: {why}")
+        return None
+
+    def seq(self, node: Construct, frame: Frame, env: dict) -> Res:
+        """do, do*, repeat, repeat*: the steps in order; do* and repeat* retry a failed step
+        until it succeeds; repeat starts again after the last step."""
+        n = len(node.steps)
+        if frame.cur < 0:
+            frame = replace(frame, cur=0, since=self.cycle, began=self.cycle)
+        while True:
+            r = self._child(node, frame, env)
+            if r.kind is not R.OK and r.kind is not R.FAIL:
+                return r
+            if r.kind is R.FAIL:
+                if not node.star:
+                    return _fail(r.why)
+                frame = replace(frame, child=None, tries=frame.tries + 1)
+                later = self._retry_later(frame, node, r.why)
+                if later:
+                    return later
+                frame = replace(frame, since=self.cycle)
+                continue
+            if frame.cur + 1 < n:
+                frame = replace(frame, cur=frame.cur + 1, child=None, since=self.cycle)
+                continue
+            if node.kind is not Kind.REPEAT:
+                return OK
+            quick = frame.began == self.cycle
+            frame = replace(frame, cur=0, child=None, rounds=frame.rounds + 1,
+                            since=self.cycle, began=self.cycle)
+            if quick:
+                return Res(R.IDLE, frame, f"({node.name}) round {frame.rounds} took no "
+                           "action: next round next cycle")
+
+    def all(self, node: Construct, frame: Frame, env: dict) -> Res:
+        """do-all: every step, in a nondeterministic order; fails as soon as one fails.
+        do*-all retries failed steps, again in a nondeterministic order."""
+        while True:
+            if frame.cur < 0:
+                left = [i for i in range(len(node.steps)) if i not in frame.done]
+                if not left:
+                    return OK
+                frame = replace(frame, cur=self.pick(left, frame.at), child=None,
+                                since=self.cycle)
+            r = self._child(node, frame, env)
+            if r.kind is R.OK:
+                frame = replace(frame, done=tuple(sorted((*frame.done, frame.cur))), cur=-1,
+                                child=None)
+            elif r.kind is R.FAIL:
+                if not node.star:
+                    return _fail(r.why)
+                frame = replace(frame, cur=-1, tries=frame.tries + 1)
+                later = self._retry_later(frame, node, r.why)
+                if later:
+                    return later
+            else:
+                return r
+
+    def any(self, node: Construct, frame: Frame, env: dict) -> Res:
+        """do-any: one step chosen nondeterministically; on failure another not yet tried;
+        fails when every one failed. do*-any chooses among all, failed ones included."""
+        n = len(node.steps)
+        while True:
+            if frame.cur < 0:
+                left = [i for i in range(n) if node.star or i not in frame.failed]
+                if not left:
+                    return _fail(f"({node.name}) every alternative failed")
+                frame = replace(frame, cur=self.pick(left, frame.at), child=None,
+                                since=self.cycle)
+            r = self._child(node, frame, env)
+            if r.kind is R.OK:
+                return OK
+            if r.kind is not R.FAIL:
+                return r
+            frame = replace(frame, failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
+                            child=None, tries=frame.tries + 1)
+            later = self._retry_later(frame, node, r.why) if node.star else None
+            if later:
+                return later
+
+    def first(self, node: Construct, frame: Frame, env: dict) -> Res:
+        """do-first: the step of the first pair whose condition holds, the conditions
+        rechecked every cycle as in a T-R program (seed 002, Appendix B); fails when that
+        step fails. do*-first tries again (after a fresh scan) instead."""
+        while True:
+            j, sol = -1, None
+            for i, br in enumerate(node.steps):
+                sol = self.holds(br.conds, env_with(env, frame.alt) if i == frame.cur else env)
+                if sol is not None:
+                    j = i
+                    break
+            if j < 0:
+                return Res(R.IDLE, frame, f"({node.name}) no condition holds: inactive",
+                           ThreadStatus.INACTIVE)
+            if j != frame.cur:
+                frame = replace(frame, cur=j, alt=added(sol, env), child=None, since=self.cycle)
+            r = self._child(node, frame, env)
+            if r.kind is R.OK:
+                return OK
+            if r.kind is not R.FAIL:
+                return r
+            if not node.star:
+                return _fail(r.why)
+            frame = replace(frame, cur=-1, alt=(), child=None, tries=frame.tries + 1)
+            later = self._retry_later(frame, node, r.why)
+            if later:
+                return later
+
+    def best(self, node: Construct, frame: Frame, env: dict) -> Res:
+        """do-best: among the alternatives whose condition holds, the highest utility times
+        discount factor; ties by do-any rules; failures as do-any (do*-best: as do*-any)."""
+        while True:
+            if frame.cur >= 0 and self.holds(node.steps[frame.cur].conds,
+                                             env_with(env, frame.alt)) is None:
+                frame = replace(frame, cur=-1, alt=(), child=None)
+            if frame.cur < 0:
+                chosen = self._bid(node, frame, env)
+                if isinstance(chosen, Res):
+                    return chosen
+                frame = chosen
+            r = self._child(node, frame, env)
+            if r.kind is not R.OK and r.kind is not R.FAIL:
+                return r
+            self._learn(node, frame, env, r.kind is R.OK)
+            if r.kind is R.OK:
+                return OK
+            frame = replace(frame, failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
+                            alt=(), child=None, tries=frame.tries + 1)
+            later = self._retry_later(frame, node, r.why) if node.star else None
+            if later:
+                return later
+
+    def _bid(self, node: Construct, frame: Frame, env: dict) -> Frame | Res:
+        """Choose the alternative with the highest discounted utility (seed 002, section 3,
+        "Best-First Behavior"; Appendix A, "Learning")."""
+        bids = []
+        for i, br in enumerate(node.steps):
+            if not node.star and i in frame.failed:
+                continue
+            sol = self.holds(br.conds, env)
+            if sol is None:
+                continue
+            try:
+                u = evaluate(br.utility, sol)
+            except EvalError:
+                continue
+            if isinstance(u, bool) or not isinstance(u, int | float):
+                continue
+            bids.append((u * self.choice(node, frame.at, i).factor, i, sol))
+        if not bids:
+            if len(frame.failed) == len(node.steps) and not node.star:
+                return _fail(f"({node.name}) every alternative failed")
+            return Res(R.IDLE, frame, f"({node.name}) no alternative's condition holds: "
+                       "inactive", ThreadStatus.INACTIVE)
+        top = max(b[0] for b in bids)
+        i = self.pick([b[1] for b in bids if b[0] == top], frame.at)
+        sol = next(b[2] for b in bids if b[1] == i)
+        c = self.choice(node, frame.at, i)
+        self.set_choice(replace(c, chosen=c.chosen + 1))
+        return replace(frame, cur=i, alt=added(sol, env), child=None, since=self.cycle)
+
+    def choice(self, node: Construct, at: tuple, i: int) -> Choice:
+        key = f"{self.skill.name}@{'.'.join(map(str, (*at, i)))}"
+        found = self.scs.choice(key)
+        if found is not None:
+            return found
+        br = node.steps[i]
+        return Choice(key, f"{br.step} ({br.loc})")
+
+    def set_choice(self, c: Choice) -> None:
+        rest = [x for x in self.scs.choices if x.key != c.key]
+        self.put(replace(self.scs, choices=tuple(sorted([*rest, c], key=lambda x: x.key))))
+
+    def _learn(self, node: Construct, frame: Frame, env: dict, ok: bool) -> None:
+        """Reinforce the chosen alternative's discount factor by the measured result."""
+        br = node.steps[frame.cur]
+        result = 1.0
+        if ok and br.reward is not None:
+            try:
+                result = reward_value(evaluate(br.reward, env_with(env, frame.alt)))
+            except EvalError:
+                result = 0.0
+        self.set_choice(record(self.choice(node, frame.at, frame.cur), ok, result))

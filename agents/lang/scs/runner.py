@@ -1,0 +1,163 @@
+"""SCS skill bodies in the engine: threads, their life cycle and the BodyRunner.
+
+A body runs as a thread, one per (goal, goal instance, skill), kept in EngineState.scs. The
+prioritised goal list decides which thread acts: when the executive reaches a goal whose path
+enters a body skill, ``ScsBody.expand`` runs that skill's thread for one atomic step
+(agents/lang/scs/constructs.py). A thread that waits (a wait point, an inactive ``:while``,
+resources taken) answers with a "waiting" path and no actions: the executive then goes on to
+the next goal, so other threads run (seed 002, section 3, "Multiple Threads of Execution").
+A goal that is not reached keeps its thread as it is (suspended); when it is reached again
+the thread resumes where it was, its condition stack checked first.
+
+Life cycle: a thread lives while its skill is on its goal's remembered path. ``begin`` (every
+cycle, before the goal walk) settles the outcome of each thread's last atomic step from the
+world's report and drops threads whose goal is gone or whose skill left the path (a failed
+body is given up, so its skill is entered afresh later); ``end`` drops threads of goals
+satisfied this cycle and adds the "scs" section to the decision. A body that ends with
+success while its goal is still false starts again at once, as a T-R program keeps running
+while its goal is unachieved (seed 002, Appendix B); one that fails is passed over with the
+reason, so the next skill for the goal is tried.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..explanation import GoalReport, GoalStatus, PathStep
+from ..outcomes import Outcome
+from ..paths import Found, PathFinder, Remembered, Walk
+from ..program import Skill
+from ..state import StoredStep
+from ..terms import Action, Literal
+from .constructs import R, Res, Tick
+from .section import ScsSection
+from .state import Frame, ScsState, Thread, ThreadStatus
+
+WAITING = "waiting"
+"""PathStep.mode of a body that takes no action this cycle (agents/lang/executive.py)."""
+
+
+def thread_key(goal_id: str, goal: str, skill: Skill) -> str:
+    return f"{goal_id}|{goal}|{skill.number}"
+
+
+class ScsBody:
+    """The runner of ``Skill.kind == "body"`` (agents/lang/bodies.py), and the per-cycle
+    hooks of the SCS mechanism (``begin``/``end``)."""
+
+    def expand(self, finder: PathFinder, walk: Walk, s: Skill, b: dict, goal: Literal,
+               prev_rest: Remembered, depth: int, on_path: frozenset, step: PathStep,
+               stored: StoredStep) -> Found | None:
+        text = str(goal)
+        key = thread_key(walk.goal_id, text, s)
+        old = walk.current("scs").thread(key)
+        fresh = old is None or old.root is None
+        tick = Tick(finder, walk, s, key, depth, on_path, prev_rest)
+        r = tick.run(s.body, None if fresh else old.root, (), dict(b))
+        started = walk.state.cycle if fresh else old.started
+        if r.kind is R.OK:
+            tick.bump("bodies succeeded")
+            if not fresh:   # ended now, goal still false: run it again (seed 002, App. B)
+                tick = Tick(finder, walk, s, key, depth, on_path, prev_rest)
+                r = tick.run(s.body, None, (), dict(b))
+                started = walk.state.cycle
+                if r.kind is R.OK:
+                    tick.bump("bodies succeeded")
+        thread = Thread(key, walk.goal_id, text, s.number, s.name,
+                        r.frame if r.kind in (R.ACT, R.IDLE) else None, _status(r),
+                        _note(r, tick), started, walk.state.cycle)
+        walk.updates["scs"] = walk.current("scs").with_thread(thread)
+        if r.kind is R.FAIL:
+            tick.bump("bodies failed")
+            walk.passed(depth, text, s.name, b, f"body failed: {r.why}")
+            return None
+        if r.kind is R.OK:
+            walk.passed(depth, text, s.name, b, "body ended at once with success, but the "
+                        "goal is still false")
+            return None
+        sub_steps, sub_actions, sub_stored = tick.sub or ([], [], [])
+        if r.kind is R.IDLE:
+            head = step if tick.sub else replace(step, mode=WAITING)
+            return [head, *sub_steps], [], [stored, *sub_stored]
+        return [step, *sub_steps], tick.actions or list(sub_actions), [stored, *sub_stored]
+
+    # -- per-cycle hooks ---------------------------------------------------------------------
+    def begin(self, finder: PathFinder, walk: Walk) -> None:
+        """Drop threads whose goal is gone or whose skill left its goal's path; settle the
+        outcome of every thread's atomic step of the last cycle."""
+        scs = walk.current("scs")
+        if not scs.threads:
+            return
+        state = walk.state
+        live = {e.id for e in state.goals}
+        pool = list(walk.outcomes)
+        kept = []
+        for t in scs.threads:
+            on_path = any(st.goal == t.goal and st.skill == t.skill
+                          for st in state.path_of(t.goal_id))
+            if t.goal_id not in live or not on_path:
+                continue
+            kept.append(replace(t, root=_settle(t.root, pool, state.cycle)))
+        new = replace(scs, threads=tuple(kept))
+        if new != scs:
+            walk.updates["scs"] = new
+
+    def end(self, finder: PathFinder, walk: Walk, reports: list[GoalReport]) -> None:
+        """Drop threads of goals achieved this cycle; add the "scs" section."""
+        scs = walk.current("scs")
+        done = {r.id for r in reports if r.status is GoalStatus.SATISFIED}
+        ended = {t.key for t in scs.threads if t.goal_id in done}
+        if ended:
+            tally = dict(scs.tally)
+            tally["bodies ended: goal achieved"] = (tally.get("bodies ended: goal achieved", 0)
+                                                    + sum(1 for t in scs.threads
+                                                          if t.key in ended and t.root))
+            scs = replace(scs.without(ended), tally=tuple(sorted(tally.items())))
+            walk.updates["scs"] = scs
+        if scs != ScsState() or any(s.kind == "body" for s in finder.program.skills):
+            walk.sections.append(ScsSection(scs, finder.program, walk.state.cycle))
+
+
+def _settle(root: Frame | None, pool: list[Outcome], cycle: int) -> Frame | None:
+    """``root`` with its atomic step of the last cycle marked done or failed by the world's
+    outcomes (taken from ``pool``, each outcome used once)."""
+    if root is None:
+        return None
+    leaf = root.leaf()
+    if not leaf.pending or leaf.outcome:
+        return root
+    if leaf.issued != cycle - 1:
+        return root.with_leaf(replace(leaf, outcome="failed", reason=f"no outcome: issued at "
+                                      f"cycle {leaf.issued}, now cycle {cycle}"))
+    status, reason = "done", ""
+    for a in leaf.pending:
+        j = next((k for k, o in enumerate(pool) if o.action.to_list() == list(a)), None)
+        if j is None:
+            status, reason = "failed", f"no outcome reported for {Action.from_list(a)}"
+            break
+        o = pool.pop(j)
+        if not o.ok:
+            status, reason = "failed", o.reason or "failed"
+            break
+    return root.with_leaf(replace(leaf, outcome=status, reason=reason))
+
+
+def _status(r: Res) -> ThreadStatus:
+    if r.kind is R.OK:
+        return ThreadStatus.SUCCEEDED
+    if r.kind is R.FAIL:
+        return ThreadStatus.FAILED
+    if r.kind is R.ACT:
+        return ThreadStatus.ACTING
+    return r.status
+
+
+def _note(r: Res, tick: Tick) -> str:
+    if r.kind is R.ACT:
+        if tick.actions:
+            return "does " + " ".join(str(a) for a in tick.actions)
+        steps = tick.sub[0] if tick.sub else ()
+        return f"acts for subgoal {steps[0].goal}" if steps else "acts"
+    if r.kind is R.OK:
+        return "ended with success"
+    return r.why
