@@ -43,7 +43,7 @@ class Checker:
             for c in clauses:
                 self.check_concept(c)
         self.bodies = BodyChecks(self, self.parts.skills,
-                                 known_actions(self.parts.skills, self.parts.resources))
+                                 known_actions(self.parts.resources))
         skills = []
         by_pred: dict[str, list[Skill]] = {}
         for n, s in enumerate(self.parts.skills):

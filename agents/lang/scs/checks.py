@@ -1,11 +1,12 @@
 """Semantic checks of skill bodies, reported at file:line:col with the program's other
 diagnostics (agents/lang/checks.py calls ``BodyChecks``): subgoals naming an undefined
-concept, the wrong arity or a concept no skill achieves, unknown constructs, actions this
-program cannot do, variables bound nowhere (a body step sees the skill's head, :percepts,
-:start and :requires bindings, and those of the :when/:while conditions of the constructs
-around it and of its do-first/do-best alternative), and facts asserted with different
-arities. Asserted and retracted predicates are the world model's: each is defined by its
-first assert (a concept of that name, if any, has its instances joined with them)."""
+concept, the wrong arity or a concept no skill achieves, unknown constructs, actions a
+program with a (resources ...) section does not list there, variables bound nowhere (a body
+step sees the skill's head, :percepts, :start and :requires bindings, and those of the
+:when/:while conditions of the constructs around it and of its do-first/do-best
+alternative), and facts asserted with different arities. Asserted and retracted predicates
+are the world model's: each is defined by its first assert (a concept of that name, if
+any, has its instances joined with them)."""
 
 from __future__ import annotations
 
@@ -42,13 +43,10 @@ def model_facts(skills: Iterable[Skill]) -> list[ModelUpdate]:
     return out
 
 
-def known_actions(skills: Iterable[Skill], resources: dict | None) -> set[str]:
-    """The actions this program is known to use: its (resources ...) entries and the
-    actions of its primitive skills."""
-    names = set(resources or ())
-    for s in skills:
-        names |= {a.name for a in s.actions}
-    return names
+def known_actions(resources: dict | None) -> set[str]:
+    """The actions a program declares in its (resources ...) section (empty without one:
+    then any action name is accepted)."""
+    return set(resources or ())
 
 
 def _expr_vars(e: object) -> set[Var]:
@@ -109,7 +107,7 @@ class BodyChecks:
             close = difflib.get_close_matches(a.name, sorted(self.actions), n=1, cutoff=0.6)
             hint = f" (did you mean '{close[0]}'?)" if close else ""
             self.c.err(node.loc, f"action {a.name} in the body of skill {self.skill.name} "
-                       f"cannot exist: this program's actions are "
+                       f"cannot exist: the actions listed in (resources ...) are "
                        f"{', '.join(sorted(self.actions))}{hint}")
 
     def subgoal(self, node: Subgoal, bound: set[Var]) -> None:

@@ -51,6 +51,9 @@ class ScsBody:
         text = str(goal)
         key = thread_key(walk.goal_id, text, s)
         old = walk.current("scs").thread(key)
+        if old is not None and old.root is None and old.last == walk.state.cycle:
+            walk.passed(depth, text, s.name, b, f"its body ended this cycle: {old.note}")
+            return None   # not entered again in the cycle it failed (or ended at once)
         fresh = old is None or old.root is None
         tick = Tick(finder, walk, s, key, depth, on_path, prev_rest)
         r = tick.run(s.body, None if fresh else old.root, (), dict(b))

@@ -313,15 +313,19 @@ class BodyReader:
                     self.p.err(items[i], f"{key} given twice in ({name} ...)")
                 found[key] = tuple(self.p.conditions(items[i + 1]))
             i += 2
+        rest, skip = [], False
         for item in items[i:]:
             if isinstance(item, Atom) and isinstance(item.value, str) \
                     and item.value.startswith(":"):
                 self.p.err(item, f"modifier {item.value} is misplaced: in ({name} ...) "
                            "modifiers come before the steps")
-        rest = tuple(x for x in items[i:] if not (isinstance(x, Atom) and isinstance(
-            x.value, str) and x.value.startswith(":")))
+                skip = True   # its conditions are not a step
+            elif skip:
+                skip = False
+            else:
+                rest.append(item)
         return Mods(found.get(":while"), found.get(":until"), found.get(":when"),
-                    found.get(":unless")), rest
+                    found.get(":unless")), tuple(rest)
 
     def branch(self, node: object, name: str, best: bool) -> Branch | None:
         shape = "(CONDS :utility EXPR STEP)" if best else "(CONDS STEP)"
