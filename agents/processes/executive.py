@@ -8,12 +8,17 @@ process published for t (posted, cancelled, reprioritised goals), then takes one
 step: the first unsatisfied goal of the prioritised list gets a skill path, the previous
 path preferred (seed 000, Adding Goal Priorities). The intention is Decision.to_dict(): the
 goal list with statuses, the skill path with bindings, the actions and why. The engine state
-(the path) lives here; the goals live in the goal-entry process, so a restart loses none.
+(the path) lives here; the goals live in the goal-entry process, so a restart loses none. The
+SCS state (body threads, discount factors, world model) goes out with the actions as the
+agent's memory and comes back through the world with the next percepts; the executive takes
+it from there each cycle, so a restarted executive resumes its threads (docs/bus.md, "Agent
+memory").
 """
 
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 from typing import Any
 
 from agents.processes.common import agent_options, run_stage, setup_logging
@@ -56,6 +61,25 @@ class Executive:
                 continue
             self.user[goal_id] = (text, priority)
 
+    def remember(self, memory: dict[str, Any]) -> None:
+        """Take the SCS state from the memory the world handed back (a malformed one is
+        logged and ignored: the executive goes on with its own)."""
+        from agents.lang import LangError
+        from agents.lang.scs.state import from_memory
+
+        if not memory:
+            return
+        try:
+            self.state = replace(self.state, scs=from_memory(memory))
+        except LangError as exc:
+            self.log.warning("agent memory dropped: %s", exc)
+
+    def memory(self) -> dict[str, Any]:
+        """What goes out with the actions, for the world to hand back next cycle."""
+        from agents.lang.scs.state import ScsState, to_memory
+
+        return to_memory(self.state.scs) if self.state.scs != ScsState() else {}
+
     def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
         """One executive step; returns the engine's Decision. A malformed outcome is logged
         and left out, never a crash (the world's outcomes are checked by the engine)."""
@@ -84,11 +108,12 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         executive.sync_goals(inputs[g_key].goals)
         seen = inputs[p_key]
+        executive.remember(seen.memory)
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         actions = tuple(a.to_list() for a in decision.actions)
         env = Envelope.now(run, cycle, process)
         return [(keys.intention(run, agent), Intention(env, agent, decision.to_dict())),
-                (keys.actions(run, agent), Actions(env, agent, actions))]
+                (keys.actions(run, agent), Actions(env, agent, actions, executive.memory()))]
 
     return step
 

@@ -15,8 +15,19 @@ from collections.abc import Iterable
 from typing import Protocol
 
 from ..program import Skill
-from ..terms import Expr, Literal, Loc, Test, Var
-from .syntax import WORDS, Act, Atomic, Branch, Construct, ModelUpdate, Subgoal, Wait, walk_steps
+from ..terms import Literal, Loc, Test, Var
+from .syntax import (
+    WORDS,
+    Act,
+    Atomic,
+    Branch,
+    Construct,
+    ModelUpdate,
+    Subgoal,
+    Wait,
+    _expr_vars,
+    walk_steps,
+)
 
 
 class CheckerLike(Protocol):
@@ -49,12 +60,6 @@ def known_actions(resources: dict | None) -> set[str]:
     return set(resources or ())
 
 
-def _expr_vars(e: object) -> set[Var]:
-    if isinstance(e, Var):
-        return {e}
-    return e.variables() if isinstance(e, Expr) else set()
-
-
 class BodyChecks:
     """Checks one skill's body against the program."""
 
@@ -71,7 +76,8 @@ class BodyChecks:
 
     def conds(self, conds: tuple, bound: set[Var], where: str, binds: bool) -> set[Var]:
         """Check conditions; return ``bound`` plus what their positive literals bind (when
-        ``binds``: conditions of :when, :while and alternatives bind for the steps inside)."""
+        ``binds``: conditions of :when and of alternatives bind for the steps inside; :while,
+        :until, :unless and wait conditions are tests)."""
         inner = set(bound)
         for c in conds:
             if isinstance(c, Literal):
@@ -136,7 +142,7 @@ class BodyChecks:
         if m.unless is not None:
             self.conds(m.unless, inner, f":unless of {what}", binds=False)
         if m.while_ is not None:
-            inner = self.conds(m.while_, inner, f":while of {what}", binds=True)
+            self.conds(m.while_, inner, f":while of {what}", binds=False)
         if m.until is not None:
             self.conds(m.until, inner, f":until of {what}", binds=False)
         for part in node.steps:

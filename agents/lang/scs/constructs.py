@@ -26,7 +26,18 @@ from ..program import Skill
 from ..terms import Action, Literal, Var
 from .learning import record, reward_value
 from .state import Choice, Frame, ScsState, ThreadStatus, model_of
-from .syntax import Act, Atomic, Construct, Kind, ModelUpdate, Subgoal, Wait, children
+from .syntax import (
+    Act,
+    Atomic,
+    Branch,
+    Construct,
+    Kind,
+    ModelUpdate,
+    Subgoal,
+    Wait,
+    children,
+    uses,
+)
 
 STEP_BUDGET = 256   # steps entered per thread and cycle before it yields [steps]
 
@@ -228,21 +239,23 @@ class Tick:
                     is not None:
                 return _fail(f"({node.name} :unless {show_conds(mods.unless, env)}) holds")
         inner = env_with(env, frame.bind)
-        if mods.while_ is not None:
-            sol = self.holds(mods.while_, inner)
-            if sol is None:
-                return Res(R.IDLE, frame, f"({node.name} :while {show_conds(mods.while_, inner)}) "
-                           "is false: inactive", ThreadStatus.INACTIVE)
-            more = added(sol, inner)
-            if more:
-                frame = replace(frame, bind=frame.bind + more)
-                inner = env_with(inner, more)
+        if mods.while_ is not None and self.holds(mods.while_, inner) is None:
+            return Res(R.IDLE, frame, f"({node.name} :while {show_conds(mods.while_, inner)}) "
+                       "is false: inactive", ThreadStatus.INACTIVE)
         if mods.until is not None and self.holds(mods.until, inner) is not None:
             return Res(R.IDLE, frame, f"({node.name} :until {show_conds(mods.until, inner)}) "
                        "holds: inactive", ThreadStatus.INACTIVE)
         run = {Kind.DO: self.seq, Kind.REPEAT: self.seq, Kind.ALL: self.all,
                Kind.ANY: self.any, Kind.FIRST: self.first, Kind.BEST: self.best}[node.kind]
         return run(node, frame, inner)
+
+    def still(self, br: Branch, frame: Frame, env: dict) -> dict | None:
+        """Whether the chosen alternative's condition still holds: with the values of the
+        variables its step reads kept, the others matched afresh (a distance that changes
+        every cycle does not make it fail); the solution, or None."""
+        used = uses(br.step)
+        kept = tuple((k, v) for k, v in frame.alt if Var(k) in used)
+        return self.holds(br.conds, env_with(env, kept))
 
     def _child(self, node: Construct, frame: Frame, env: dict) -> Res:
         """Run the frame's current child; on ACT/IDLE return with the frame updated."""
@@ -343,16 +356,21 @@ class Tick:
         rechecked every cycle as in a T-R program (seed 002, Appendix B); fails when that
         step fails. do*-first tries again (after a fresh scan) instead."""
         while True:
-            j, sol = -1, None
+            j, sol, same = -1, None, False
             for i, br in enumerate(node.steps):
-                sol = self.holds(br.conds, env_with(env, frame.alt) if i == frame.cur else env)
+                if i == frame.cur:
+                    sol = self.still(br, frame, env)
+                    same = sol is not None
+                sol = sol if same else self.holds(br.conds, env)
                 if sol is not None:
                     j = i
                     break
             if j < 0:
                 return Res(R.IDLE, frame, f"({node.name}) no condition holds: inactive",
                            ThreadStatus.INACTIVE)
-            if j != frame.cur:
+            if same:
+                frame = replace(frame, alt=added(sol, env))
+            else:
                 frame = replace(frame, cur=j, alt=added(sol, env), child=None, since=self.cycle)
             r = self._child(node, frame, env)
             if r.kind is R.OK:
@@ -370,9 +388,10 @@ class Tick:
         """do-best: among the alternatives whose condition holds, the highest utility times
         discount factor; ties by do-any rules; failures as do-any (do*-best: as do*-any)."""
         while True:
-            if frame.cur >= 0 and self.holds(node.steps[frame.cur].conds,
-                                             env_with(env, frame.alt)) is None:
-                frame = replace(frame, cur=-1, alt=(), child=None)
+            if frame.cur >= 0:
+                sol = self.still(node.steps[frame.cur], frame, env)
+                frame = replace(frame, cur=-1, alt=(), child=None) if sol is None else \
+                    replace(frame, alt=added(sol, env))
             if frame.cur < 0:
                 chosen = self._bid(node, frame, env)
                 if isinstance(chosen, Res):

@@ -20,7 +20,7 @@ from enum import StrEnum
 from typing import Any, Protocol
 
 from ..sexpr import Atom, SList, to_text
-from ..terms import ActionTemplate, Literal, Loc, fmt
+from ..terms import ActionTemplate, Expr, Literal, Loc, Var, fmt
 
 
 class Kind(StrEnum):
@@ -167,6 +167,46 @@ def children(node: object) -> tuple:
     if isinstance(node, Construct):
         return tuple(s.step if isinstance(s, Branch) else s for s in node.steps)
     return ()
+
+
+_USES: dict[int, tuple[object, frozenset]] = {}
+
+
+def uses(node: object) -> frozenset:
+    """The variables a step (with everything inside it) reads: in actions, subgoals, facts,
+    conditions, utilities and rewards (cached per node)."""
+    hit = _USES.get(id(node))
+    if hit is not None and hit[0] is node:
+        return hit[1]
+    found: set = set()
+    for _, n in walk_steps(node):
+        if isinstance(n, Act):
+            found |= n.action.variables()
+        elif isinstance(n, Subgoal):
+            found |= n.literal.variables()
+        elif isinstance(n, ModelUpdate):
+            found |= n.fact.variables()
+        elif isinstance(n, Atomic):
+            found |= set().union(*(uses(x) for x in n.steps))
+        elif isinstance(n, Wait):
+            found |= set().union(*(c.variables() for c in n.conds))
+        elif isinstance(n, Construct):
+            for _, conds in n.mods.items():
+                found |= set().union(*(c.variables() for c in conds))
+            for br in n.steps:
+                if isinstance(br, Branch):
+                    found |= set().union(*(c.variables() for c in br.conds))
+                    for e in (br.utility, br.reward):
+                        found |= _expr_vars(e)
+    result = frozenset(found)
+    _USES[id(node)] = (node, result)
+    return result
+
+
+def _expr_vars(e: object) -> set:
+    if isinstance(e, Var):
+        return {e}
+    return e.variables() if isinstance(e, Expr) else set()
 
 
 def node_at(root: object, at: tuple[int, ...]) -> object:

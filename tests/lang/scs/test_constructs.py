@@ -206,3 +206,15 @@ def test_a_subgoal_with_no_executable_path_fails():
     assert any("subgoal (raised up) has no executable path" in w for w in d.why())
     assert trace("(do* (raised up) (*e))", 3, extra=SUB, flags=lambda k: ["go"] * (k > 1)) \
         == ["-", "-", "d up"]                                 # do* retries it each cycle
+
+
+def test_a_chosen_alternative_keeps_what_its_step_reads_and_rematches_the_rest():
+    """The distance ?d changes every cycle; the step reads only ?t, so the alternative stays
+    chosen while (near T1 ?d) holds for some ?d, and is abandoned when T1 is out of sight."""
+    extra = "(concepts ((near ?t ?d) :percepts ((target ?t dist ?d))))"
+    body = ("(do-best (((near ?t ?d)) :utility (- 100 ?d) (do (*a ?t) (*b ?t) (*e ?t)))"
+            " (() :utility 1 (*c)))")
+    d = Driver(body_program(body, extra))
+    seen = [d.step(extra=[["target", "T1", "dist", 10 - k]]) for k in range(2)]
+    seen.append(d.step())
+    assert seen == [[["*a", "T1"]], [["*b", "T1"]], [["*c"]]]
