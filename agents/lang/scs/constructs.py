@@ -257,6 +257,24 @@ class Tick:
         kept = tuple((k, v) for k, v in frame.alt if Var(k) in used)
         return self.holds(br.conds, env_with(env, kept))
 
+    def finished(self, node: Construct, frame: Frame, env: dict) -> Res | None:
+        """Whether the running alternative has just ended (its last action's outcome or its
+        subgoal's achievement arrived this cycle): its result, or None when it would go on,
+        leaving no trace of having looked. An alternative whose condition no longer holds
+        is abandoned only if it has not ended: the finished action's result comes first."""
+        if frame.cur < 0 or frame.child is None:
+            return None
+        w = self.walk
+        saved = (dict(w.updates), len(w.why), self.actions, self.sub, self.budget, self.draws)
+        r = self._child(node, frame, env)
+        if r.kind in (R.OK, R.FAIL):
+            return r
+        w.updates.clear()
+        w.updates.update(saved[0])
+        del w.why[saved[1]:]
+        self.actions, self.sub, self.budget, self.draws = saved[2:]
+        return None
+
     def _child(self, node: Construct, frame: Frame, env: dict) -> Res:
         """Run the frame's current child; on ACT/IDLE return with the frame updated."""
         steps = children(node)
@@ -365,14 +383,14 @@ class Tick:
                 if sol is not None:
                     j = i
                     break
-            if j < 0:
-                return Res(R.IDLE, frame, f"({node.name}) no condition holds: inactive",
-                           ThreadStatus.INACTIVE)
-            if same:
-                frame = replace(frame, alt=added(sol, env))
-            else:
-                frame = replace(frame, cur=j, alt=added(sol, env), child=None, since=self.cycle)
-            r = self._child(node, frame, env)
+            r = None if same else self.finished(node, frame, env)
+            if r is None:
+                if j < 0:
+                    return Res(R.IDLE, frame, f"({node.name}) no condition holds: inactive",
+                               ThreadStatus.INACTIVE)
+                frame = replace(frame, alt=added(sol, env)) if same else \
+                    replace(frame, cur=j, alt=added(sol, env), child=None, since=self.cycle)
+                r = self._child(node, frame, env)
             if r.kind is R.OK:
                 return OK
             if r.kind is not R.FAIL:
@@ -388,16 +406,22 @@ class Tick:
         """do-best: among the alternatives whose condition holds, the highest utility times
         discount factor; ties by do-any rules; failures as do-any (do*-best: as do*-any)."""
         while True:
+            r = None
             if frame.cur >= 0:
                 sol = self.still(node.steps[frame.cur], frame, env)
-                frame = replace(frame, cur=-1, alt=(), child=None) if sol is None else \
-                    replace(frame, alt=added(sol, env))
-            if frame.cur < 0:
-                chosen = self._bid(node, frame, env)
-                if isinstance(chosen, Res):
-                    return chosen
-                frame = chosen
-            r = self._child(node, frame, env)
+                if sol is not None:
+                    frame = replace(frame, alt=added(sol, env))
+                else:
+                    r = self.finished(node, frame, env)
+                    if r is None:
+                        frame = replace(frame, cur=-1, alt=(), child=None)   # abandoned
+            if r is None:
+                if frame.cur < 0:
+                    chosen = self._bid(node, frame, env)
+                    if isinstance(chosen, Res):
+                        return chosen
+                    frame = chosen
+                r = self._child(node, frame, env)
             if r.kind is not R.OK and r.kind is not R.FAIL:
                 return r
             self._learn(node, frame, env, r.kind is R.OK)

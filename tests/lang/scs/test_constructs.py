@@ -218,3 +218,17 @@ def test_a_chosen_alternative_keeps_what_its_step_reads_and_rematches_the_rest()
     seen = [d.step(extra=[["target", "T1", "dist", 10 - k]]) for k in range(2)]
     seen.append(d.step())
     assert seen == [[["*a", "T1"]], [["*b", "T1"]], [["*c"]]]
+
+
+def test_a_step_that_has_just_ended_ends_its_alternative_though_the_condition_failed():
+    """'Whenever an atomic action is finished, the stack of conditions is checked': the
+    finished action's result comes first. Delivering makes (carrying P) false; the do-best
+    alternative ends with success (and the fact is asserted), it is not abandoned."""
+    extra = "(concepts ((carrying ?p) :percepts ((parcel ?p))))"
+    body = ("(do (do-best (((carrying ?p)) :utility 5 (do (*a ?p) (assert (served ?p)))))"
+            " (*e))")
+    d = Driver(body_program(body, extra))
+    assert d.step(extra=[["parcel", "P1"]]) == [["*a", "P1"]]
+    assert d.step() == [["*e"]]                    # P1 gone: the alternative ended
+    assert d.state.scs.model == (("served", "P1"),)
+    assert d.scs["choices"][0]["succeeded"] == 1

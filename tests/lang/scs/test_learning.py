@@ -54,11 +54,12 @@ def test_a_reward_expression_over_the_percepts_after_the_step_is_the_result():
 
 
 def test_an_abandoned_alternative_is_not_reinforced():
-    body = "(do-best (((flag x)) :utility 10 (do (*a) (*b))) (() :utility 1 (*c)))"
+    body = "(do-best (((flag x)) :utility 10 (do (*a) (*b) (*e))) (() :utility 1 (*c)))"
     d = Driver(body_program(body))
     assert d.run(3, lambda k: ["x"] if k < 2 else []) == ["a", "b", "c"]
     first = next(c for c in d.scs["choices"] if c["label"].startswith("(do"))
-    # x failed before (do ...) ended: chosen, but neither a success nor a failure
+    # x failed before (do ...) ended (it would go on with (*e)): chosen, but neither a
+    # success nor a failure
     assert (first["factor"], first["chosen"], first["succeeded"], first["failed"]) == \
         (1.0, 1, 0, 0)
 

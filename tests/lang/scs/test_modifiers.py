@@ -70,11 +70,12 @@ def test_conditions_are_checked_outermost_first():
 
 def test_a_failing_inner_condition_makes_new_choices_at_its_level_and_below_only():
     """Inside (repeat ...), the do-first switches branch when its first true condition
-    changes (abandoning the inner do, then starting it afresh) while the outer repeat keeps
-    its round and position: (*e) is not done again until the do-first ends."""
+    changes, abandoning the inner do (which would go on with (*c)), while the outer repeat
+    keeps its round and position. When x comes back, (*d) has just been done: that ends
+    the do-first (a finished step's result comes first), so the repeat goes on to (*e)."""
     body = "(repeat (*e) (do-first (((flag x)) (do (*a) (*b) (*c))) (() (*d))))"
     t, d = run(body, [["x"]] * 3 + [[]] + [["x"]] * 4)
-    assert t == ["e", "a", "b", "d", "a", "b", "c", "e"]
+    assert t == ["e", "a", "b", "d", "e", "a", "b", "c"]
 
 
 def test_while_on_a_starred_construct_with_failures():
