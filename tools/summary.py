@@ -1,6 +1,7 @@
 """The end-of-run summary of `teleo launch`, built from the files the processes leave in the
-run folder: the world's final counters (`world-final.json`), the goal store (`goals.json`),
-the snapshots for rendering (`snapshots.jsonl`) and the launcher's restart counts.
+run folder: the world's final counters and each agent's last memory (`world-final.json`), the
+goal store (`goals.json`), the snapshots for rendering (`snapshots.jsonl`) and the launcher's
+restart counts.
 """
 
 from __future__ import annotations
@@ -47,8 +48,24 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
+        "bodies": {a: b for a, m in sorted(final.get("memory", {}).items())
+                   if (b := bodies(m))},
         "trace": str(run_dir / TRACE),
     }
+
+
+def bodies(memory: dict[str, Any]) -> dict[str, Any]:
+    """What an agent's SCS bodies did, from its memory (docs/bus.md, "Agent memory"): the
+    tally, each do-best alternative's record and discount factor, the threads still running
+    and the world model; {} for an agent without bodies."""
+    scs = memory.get("scs") if isinstance(memory, dict) else None
+    if not isinstance(scs, dict) or not (scs.get("tally") or scs.get("threads")):
+        return {}
+    return {"tally": scs.get("tally", {}),
+            "choices": scs.get("choices", []),
+            "threads": [{k: t.get(k) for k in ("goal_id", "goal", "skill_name", "status", "note")}
+                        for t in scs.get("threads", [])],
+            "model": memory.get("model", [])}
 
 
 def echo(summary: dict[str, Any]) -> None:
@@ -68,6 +85,22 @@ def echo(summary: dict[str, Any]) -> None:
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+    for agent, b in summary.get("bodies", {}).items():
+        _echo_bodies(agent, b)
+
+
+def _echo_bodies(agent: str, b: dict[str, Any]) -> None:
+    tally = ", ".join(f"{k} {v}" for k, v in sorted(b["tally"].items()))
+    click.echo(f"  {agent} SCS bodies: {tally or 'nothing done'}")
+    for c in b["choices"]:
+        click.echo(f"    do-best {c['label']}: chosen {c['chosen']}, succeeded "
+                   f"{c['succeeded']}, failed {c['failed']}, discount factor {c['factor']:.3f}")
+    for t in b["threads"]:
+        click.echo(f"    thread {t['goal_id']} {t['goal']} <- {t['skill_name']}: "
+                   f"{t['status']} ({t['note']})")
+    if b["model"]:
+        click.echo("    world model: " + " ".join("(" + " ".join(map(str, f)) + ")"
+                                             for f in b["model"]))
 
 
 def _pairs(d: dict[str, Any]) -> str:

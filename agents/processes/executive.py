@@ -108,7 +108,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         executive.sync_goals(inputs[g_key].goals)
         seen = inputs[p_key]
-        executive.remember(seen.memory)
+        executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
+        executive.remember(seen.memory)                           # after a restart
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         actions = tuple(a.to_list() for a in decision.actions)
         env = Envelope.now(run, cycle, process)

@@ -468,7 +468,8 @@ class Tick:
         if found is not None:
             return found
         br = node.steps[i]
-        return Choice(key, f"{br.step} ({br.loc})")
+        when = f" when {' '.join(str(c) for c in br.conds)}" if br.conds else ""
+        return Choice(key, f"{br.step}{when} ({br.loc})")
 
     def set_choice(self, c: Choice) -> None:
         rest = [x for x in self.scs.choices if x.key != c.key]

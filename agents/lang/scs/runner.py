@@ -9,11 +9,14 @@ the next goal, so other threads run (seed 002, section 3, "Multiple Threads of E
 A goal that is not reached keeps its thread as it is (suspended); when it is reached again
 the thread resumes where it was, its condition stack checked first.
 
-Life cycle: a thread lives while its skill is on its goal's remembered path. ``begin`` (every
-cycle, before the goal walk) settles the outcome of each thread's last atomic step from the
-world's report and drops threads whose goal is gone or whose skill left the path (a failed
-body is given up, so its skill is entered afresh later); ``end`` drops threads of goals
-satisfied this cycle and adds the "scs" section to the decision. A body that ends with
+Life cycle: a thread lives while its skill stays on its goal's path. ``begin`` (every cycle,
+before the goal walk) settles the outcome of each thread's last atomic step from the world's
+report and drops threads whose goal is gone; ``end`` drops the threads of goals satisfied
+this cycle, and those of goals that acted (or were in impasse) this cycle without running
+them (the path went another way), and adds the "scs" section to the decision. A thread is
+kept by nothing else, so a restarted executive given its SCS state back (docs/bus.md,
+"Agent memory") resumes its threads though it remembers no skill path. A body that ended
+(failed) is started afresh when its skill is entered again in a later cycle. A body that ends with
 success while its goal is still false starts again at once, as a T-R program keeps running
 while its goal is unachieved (seed 002, Appendix B); one that fails is passed over with the
 reason, so the next skill for the goal is tried.
@@ -86,29 +89,29 @@ class ScsBody:
 
     # -- per-cycle hooks ---------------------------------------------------------------------
     def begin(self, finder: PathFinder, walk: Walk) -> None:
-        """Drop threads whose goal is gone or whose skill left its goal's path; settle the
-        outcome of every thread's atomic step of the last cycle."""
+        """Drop threads whose goal is gone; settle the outcome of every thread's atomic step
+        of the last cycle (also of threads whose goal is not reached this cycle)."""
         scs = walk.current("scs")
         if not scs.threads:
             return
-        state = walk.state
-        live = {e.id for e in state.goals}
+        live = {e.id for e in walk.state.goals}
         pool = list(walk.outcomes)
-        kept = []
-        for t in scs.threads:
-            on_path = any(st.goal == t.goal and st.skill == t.skill
-                          for st in state.path_of(t.goal_id))
-            if t.goal_id not in live or not on_path:
-                continue
-            kept.append(replace(t, root=_settle(t.root, pool, state.cycle)))
-        new = replace(scs, threads=tuple(kept))
+        kept = tuple(replace(t, root=_settle(t.root, pool, walk.state.cycle))
+                     for t in scs.threads if t.goal_id in live)
+        new = replace(scs, threads=kept)
         if new != scs:
             walk.updates["scs"] = new
 
     def end(self, finder: PathFinder, walk: Walk, reports: list[GoalReport]) -> None:
         """Drop threads of goals achieved this cycle; add the "scs" section."""
         scs = walk.current("scs")
+        cycle = walk.state.cycle
         done = {r.id for r in reports if r.status is GoalStatus.SATISFIED}
+        worked = {r.id for r in reports if r.status in _WORKED}
+        left = {t.key for t in scs.threads if t.goal_id in worked and t.last != cycle}
+        if left:   # its goal went another way: the path left this skill
+            scs = scs.without(left)
+            walk.updates["scs"] = scs
         ended = {t.key for t in scs.threads if t.goal_id in done}
         if ended:
             tally = dict(scs.tally)
@@ -119,6 +122,11 @@ class ScsBody:
             walk.updates["scs"] = scs
         if scs != ScsState() or any(s.kind == "body" for s in finder.program.skills):
             walk.sections.append(ScsSection(scs, finder.program, walk.state.cycle))
+
+
+_WORKED = (GoalStatus.ACTIVE, GoalStatus.IMPASSE, GoalStatus.FAILED)
+"""Goal statuses of a cycle in which its path was chosen afresh or given up: a thread of such
+a goal that did not run in that cycle is no longer on its path."""
 
 
 def _settle(root: Frame | None, pool: list[Outcome], cycle: int) -> Frame | None:

@@ -156,7 +156,10 @@ class Construct:
         return "repeat*" if self.kind is Kind.REPEAT else "do*" + self.kind.value[2:]
 
     def __str__(self) -> str:
-        return f"({self.name} ...)"
+        first = children(self)[0]
+        more = " ..." if len(self.steps) > 1 else ""
+        text = f"({self.name} {first}{more})"
+        return text if len(text) <= 60 else f"({self.name} ...)"
 
 
 Step = Act | Atomic | Subgoal | ModelUpdate | Wait | Construct

@@ -91,3 +91,20 @@ def test_threads_of_achieved_goals_are_dropped():
     d.step(extra=[["chores", "ME"]])
     assert [t["goal_id"] for t in d.scs["threads"]] == ["p2"]
     assert d.scs["tally"]["bodies ended: goal achieved"] == 1
+
+
+def test_a_restarted_executive_given_only_its_scs_state_resumes_its_threads():
+    """What the executive process gets back after a restart (docs/bus.md, "Agent memory"):
+    the SCS state, but no remembered skill path. The threads resume where they were."""
+    from dataclasses import replace
+
+    from agents.lang.scs.state import from_memory, to_memory
+    flags = [[], [], [], ["go"], ["go"]]
+    whole = Driver(engine()).run(5, lambda k: flags[k])
+    first = Driver(engine())
+    part = first.run(3, lambda k: flags[k])
+    again = Driver(engine())
+    memory = json.loads(json.dumps(to_memory(first.state.scs)))
+    again.state = replace(again.state, cycle=first.state.cycle, scs=from_memory(memory))
+    again.outcomes = first.outcomes
+    assert again.state.paths == () and part + again.run(2, lambda k: flags[k + 3]) == whole
