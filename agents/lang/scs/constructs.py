@@ -87,9 +87,9 @@ def show_conds(conds: tuple, env: dict | None = None) -> str:
 
 class Tick:
     """Runs one thread for one cycle. Reads percepts and beliefs from ``walk``; writes the
-    world model, do-best records and the tally straight into ``walk.updates["scs"]`` (so
-    bodies nested through subgoals, run meanwhile, keep theirs); collects the actions
-    issued (``actions``) or the subgoal path that acts (``sub``)."""
+    world model and do-best records straight into ``walk.updates["scs"]`` (so bodies nested
+    through subgoals, run meanwhile, keep theirs); collects the actions issued
+    (``actions``), the subgoal path that acts (``sub``) and what it did (``tally``)."""
 
     def __init__(self, finder: PathFinder, walk: Walk, skill: Skill, key: str, depth: int,
                  on_path: frozenset, prev_rest: Remembered):
@@ -100,6 +100,7 @@ class Tick:
         self.actions: list[Action] = []
         self.sub: Found | None = None
         self.draws = 0
+        self.tally: dict[str, int] = {}
 
     # -- shared state ---------------------------------------------------------------------
     @property
@@ -110,9 +111,8 @@ class Tick:
         self.walk.updates["scs"] = scs
 
     def bump(self, what: str, n: int = 1) -> None:
-        tally = dict(self.scs.tally)
-        tally[what] = tally.get(what, 0) + n
-        self.put(replace(self.scs, tally=tuple(sorted(tally.items()))))
+        """Count something done (added to the state's tally when the thread is stored)."""
+        self.tally[what] = self.tally.get(what, 0) + n
 
     def holds(self, conds: tuple, env: dict) -> dict | None:
         """The first solution (in sorted order) of ``conds`` extending ``env``, or None."""
@@ -234,7 +234,7 @@ class Tick:
                 sol = self.holds(mods.when, env)
                 if sol is None:
                     return _fail(f"({node.name} :when {show_conds(mods.when, env)}) is false")
-                frame = replace(frame, bind=added(sol, env))
+                frame = frame.but(bind=added(sol, env))
             if mods.unless is not None and self.holds(mods.unless, env_with(env, frame.bind)) \
                     is not None:
                 return _fail(f"({node.name} :unless {show_conds(mods.unless, env)}) holds")
@@ -265,14 +265,15 @@ class Tick:
         if frame.cur < 0 or frame.child is None:
             return None
         w = self.walk
-        saved = (dict(w.updates), len(w.why), self.actions, self.sub, self.budget, self.draws)
+        saved = (dict(w.updates), len(w.why), self.actions, self.sub, self.budget, self.draws,
+                 dict(self.tally))
         r = self._child(node, frame, env)
         if r.kind in (R.OK, R.FAIL):
             return r
         w.updates.clear()
         w.updates.update(saved[0])
         del w.why[saved[1]:]
-        self.actions, self.sub, self.budget, self.draws = saved[2:]
+        self.actions, self.sub, self.budget, self.draws, self.tally = saved[2:]
         return None
 
     def _child(self, node: Construct, frame: Frame, env: dict) -> Res:
@@ -281,14 +282,14 @@ class Tick:
         r = self.run(steps[frame.cur], frame.child, (*frame.at, frame.cur),
                      env_with(env, frame.alt))
         if r.kind in (R.ACT, R.IDLE):
-            return replace(r, frame=replace(frame, child=r.frame))
+            return Res(r.kind, frame.but(child=r.frame), r.why, r.status)
         return r
 
     def _retry_later(self, frame: Frame, node: Construct, why: str) -> Res | None:
         """A starred retry waits for the next cycle when the failed attempt started in
         this one (it took no cycle, so retrying now would only fail again)."""
         if frame.since == self.cycle:
-            return Res(R.IDLE, replace(frame, child=None),
+            return Res(R.IDLE, frame.but(child=None),
                        f"({node.name}) retries next cycle: {why}")
         return None
 
@@ -297,7 +298,7 @@ class Tick:
         until it succeeds; repeat starts again after the last step."""
         n = len(node.steps)
         if frame.cur < 0:
-            frame = replace(frame, cur=0, since=self.cycle, began=self.cycle)
+            frame = frame.but(cur=0, since=self.cycle, began=self.cycle)
         while True:
             r = self._child(node, frame, env)
             if r.kind is not R.OK and r.kind is not R.FAIL:
@@ -305,19 +306,19 @@ class Tick:
             if r.kind is R.FAIL:
                 if not node.star:
                     return _fail(r.why)
-                frame = replace(frame, child=None, tries=frame.tries + 1)
+                frame = frame.but(child=None, tries=frame.tries + 1)
                 later = self._retry_later(frame, node, r.why)
                 if later:
                     return later
-                frame = replace(frame, since=self.cycle)
+                frame = frame.but(since=self.cycle)
                 continue
             if frame.cur + 1 < n:
-                frame = replace(frame, cur=frame.cur + 1, child=None, since=self.cycle)
+                frame = frame.but(cur=frame.cur + 1, child=None, since=self.cycle)
                 continue
             if node.kind is not Kind.REPEAT:
                 return OK
             quick = frame.began == self.cycle
-            frame = replace(frame, cur=0, child=None, rounds=frame.rounds + 1,
+            frame = frame.but(cur=0, child=None, rounds=frame.rounds + 1,
                             since=self.cycle, began=self.cycle)
             if quick:
                 return Res(R.IDLE, frame, f"({node.name}) round {frame.rounds} took no "
@@ -331,16 +332,16 @@ class Tick:
                 left = [i for i in range(len(node.steps)) if i not in frame.done]
                 if not left:
                     return OK
-                frame = replace(frame, cur=self.pick(left, frame.at), child=None,
+                frame = frame.but(cur=self.pick(left, frame.at), child=None,
                                 since=self.cycle)
             r = self._child(node, frame, env)
             if r.kind is R.OK:
-                frame = replace(frame, done=tuple(sorted((*frame.done, frame.cur))), cur=-1,
+                frame = frame.but(done=tuple(sorted((*frame.done, frame.cur))), cur=-1,
                                 child=None)
             elif r.kind is R.FAIL:
                 if not node.star:
                     return _fail(r.why)
-                frame = replace(frame, cur=-1, tries=frame.tries + 1)
+                frame = frame.but(cur=-1, tries=frame.tries + 1)
                 later = self._retry_later(frame, node, r.why)
                 if later:
                     return later
@@ -356,14 +357,14 @@ class Tick:
                 left = [i for i in range(n) if node.star or i not in frame.failed]
                 if not left:
                     return _fail(f"({node.name}) every alternative failed")
-                frame = replace(frame, cur=self.pick(left, frame.at), child=None,
+                frame = frame.but(cur=self.pick(left, frame.at), child=None,
                                 since=self.cycle)
             r = self._child(node, frame, env)
             if r.kind is R.OK:
                 return OK
             if r.kind is not R.FAIL:
                 return r
-            frame = replace(frame, failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
+            frame = frame.but(failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
                             child=None, tries=frame.tries + 1)
             later = self._retry_later(frame, node, r.why) if node.star else None
             if later:
@@ -388,8 +389,8 @@ class Tick:
                 if j < 0:
                     return Res(R.IDLE, frame, f"({node.name}) no condition holds: inactive",
                                ThreadStatus.INACTIVE)
-                frame = replace(frame, alt=added(sol, env)) if same else \
-                    replace(frame, cur=j, alt=added(sol, env), child=None, since=self.cycle)
+                frame = frame.but(alt=added(sol, env)) if same else \
+                    frame.but(cur=j, alt=added(sol, env), child=None, since=self.cycle)
                 r = self._child(node, frame, env)
             if r.kind is R.OK:
                 return OK
@@ -397,7 +398,7 @@ class Tick:
                 return r
             if not node.star:
                 return _fail(r.why)
-            frame = replace(frame, cur=-1, alt=(), child=None, tries=frame.tries + 1)
+            frame = frame.but(cur=-1, alt=(), child=None, tries=frame.tries + 1)
             later = self._retry_later(frame, node, r.why)
             if later:
                 return later
@@ -410,11 +411,11 @@ class Tick:
             if frame.cur >= 0:
                 sol = self.still(node.steps[frame.cur], frame, env)
                 if sol is not None:
-                    frame = replace(frame, alt=added(sol, env))
+                    frame = frame.but(alt=added(sol, env))
                 else:
                     r = self.finished(node, frame, env)
                     if r is None:
-                        frame = replace(frame, cur=-1, alt=(), child=None)   # abandoned
+                        frame = frame.but(cur=-1, alt=(), child=None)   # abandoned
             if r is None:
                 if frame.cur < 0:
                     chosen = self._bid(node, frame, env)
@@ -427,7 +428,7 @@ class Tick:
             self._learn(node, frame, env, r.kind is R.OK)
             if r.kind is R.OK:
                 return OK
-            frame = replace(frame, failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
+            frame = frame.but(failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
                             alt=(), child=None, tries=frame.tries + 1)
             later = self._retry_later(frame, node, r.why) if node.star else None
             if later:
@@ -460,7 +461,7 @@ class Tick:
         sol = next(b[2] for b in bids if b[1] == i)
         c = self.choice(node, frame.at, i)
         self.set_choice(replace(c, chosen=c.chosen + 1))
-        return replace(frame, cur=i, alt=added(sol, env), child=None, since=self.cycle)
+        return frame.but(cur=i, alt=added(sol, env), child=None, since=self.cycle)
 
     def choice(self, node: Construct, at: tuple, i: int) -> Choice:
         key = f"{self.skill.name}@{'.'.join(map(str, (*at, i)))}"

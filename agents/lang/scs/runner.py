@@ -61,20 +61,23 @@ class ScsBody:
         tick = Tick(finder, walk, s, key, depth, on_path, prev_rest)
         r = tick.run(s.body, None if fresh else old.root, (), dict(b))
         started = walk.state.cycle if fresh else old.started
+        tally = tick.tally
         if r.kind is R.OK:
-            tick.bump("bodies succeeded")
+            tally["bodies succeeded"] = tally.get("bodies succeeded", 0) + 1
             if not fresh:   # ended now, goal still false: run it again (seed 002, App. B)
                 tick = Tick(finder, walk, s, key, depth, on_path, prev_rest)
+                tick.tally = tally
                 r = tick.run(s.body, None, (), dict(b))
                 started = walk.state.cycle
                 if r.kind is R.OK:
                     tick.bump("bodies succeeded")
+        if r.kind is R.FAIL:
+            tick.bump("bodies failed")
         thread = Thread(key, walk.goal_id, text, s.number, s.name,
                         r.frame if r.kind in (R.ACT, R.IDLE) else None, _status(r),
                         _note(r, tick), started, walk.state.cycle)
-        walk.updates["scs"] = walk.current("scs").with_thread(thread)
+        walk.updates["scs"] = walk.current("scs").with_thread(thread).counted(tick.tally)
         if r.kind is R.FAIL:
-            tick.bump("bodies failed")
             walk.passed(depth, text, s.name, b, f"body failed: {r.why}")
             return None
         if r.kind is R.OK:
@@ -96,11 +99,16 @@ class ScsBody:
             return
         live = {e.id for e in walk.state.goals}
         pool = list(walk.outcomes)
-        kept = tuple(replace(t, root=_settle(t.root, pool, walk.state.cycle))
-                     for t in scs.threads if t.goal_id in live)
-        new = replace(scs, threads=kept)
-        if new != scs:
-            walk.updates["scs"] = new
+        kept, changed = [], False
+        for t in scs.threads:
+            if t.goal_id not in live:
+                changed = True
+                continue
+            root = _settle(t.root, pool, walk.state.cycle)
+            changed |= root is not t.root
+            kept.append(t if root is t.root else replace(t, root=root))
+        if changed:
+            walk.updates["scs"] = replace(scs, threads=tuple(kept))
 
     def end(self, finder: PathFinder, walk: Walk, reports: list[GoalReport]) -> None:
         """Drop threads of goals achieved this cycle; add the "scs" section."""
@@ -114,11 +122,8 @@ class ScsBody:
             walk.updates["scs"] = scs
         ended = {t.key for t in scs.threads if t.goal_id in done}
         if ended:
-            tally = dict(scs.tally)
-            tally["bodies ended: goal achieved"] = (tally.get("bodies ended: goal achieved", 0)
-                                                    + sum(1 for t in scs.threads
-                                                          if t.key in ended and t.root))
-            scs = replace(scs.without(ended), tally=tuple(sorted(tally.items())))
+            n = sum(1 for t in scs.threads if t.key in ended and t.root)
+            scs = scs.without(ended).counted({"bodies ended: goal achieved": n} if n else {})
             walk.updates["scs"] = scs
         if scs != ScsState() or any(s.kind == "body" for s in finder.program.skills):
             walk.sections.append(ScsSection(scs, finder.program, walk.state.cycle))

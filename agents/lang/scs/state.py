@@ -7,6 +7,7 @@ of what the bodies did. Plain data in ``to_dict``, read back exactly by ``from_d
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from dataclasses import dataclass, replace
 from enum import StrEnum
 from typing import Any
@@ -52,6 +53,15 @@ class Frame:
     outcome: str = ""
     reason: str = ""
 
+    def but(self, **changes: Any) -> Frame:
+        """A copy with ``changes`` (dataclasses.replace, without its per-call field scan:
+        the interpreter makes several per step)."""
+        new = object.__new__(Frame)
+        for name in _FIELDS:
+            object.__setattr__(new, name, changes[name] if name in changes
+                               else getattr(self, name))
+        return new
+
     def chain(self) -> list[Frame]:
         """This frame and its running descendants, outermost first."""
         out, f = [], self
@@ -96,6 +106,8 @@ class Frame:
                    str(d.get("reason", "")))
 
 
+_FIELDS = ("at", "bind", "cur", "done", "failed", "alt", "tries", "rounds", "since", "began",
+           "child", "pending", "issued", "outcome", "reason")
 _FRAME_DEFAULTS = {"bind": (), "cur": -1, "done": (), "failed": (), "alt": (), "tries": 0,
                    "rounds": 0, "since": -1, "began": -1, "pending": (), "issued": -1,
                    "outcome": "", "reason": ""}
@@ -177,8 +189,21 @@ class ScsState:
         return next((c for c in self.choices if c.key == key), None)
 
     def with_thread(self, t: Thread) -> ScsState:
-        rest = [x for x in self.threads if x.key != t.key]
-        return replace(self, threads=tuple(sorted([*rest, t], key=lambda x: x.key)))
+        """This state with thread ``t`` stored (replacing the one of the same key)."""
+        ts = self.threads
+        keys = [x.key for x in ts]
+        i = bisect_left(keys, t.key)
+        tail = ts[i + 1:] if i < len(ts) and keys[i] == t.key else ts[i:]
+        return replace(self, threads=(*ts[:i], t, *tail))
+
+    def counted(self, more: dict[str, int]) -> ScsState:
+        """This state with ``more`` added to its tally."""
+        if not more:
+            return self
+        tally = dict(self.tally)
+        for k, n in more.items():
+            tally[k] = tally.get(k, 0) + n
+        return replace(self, tally=tuple(sorted(tally.items())))
 
     def without(self, keys: set[str]) -> ScsState:
         return replace(self, threads=tuple(t for t in self.threads if t.key not in keys))
