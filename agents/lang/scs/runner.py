@@ -98,7 +98,7 @@ class ScsBody:
         if not scs.threads:
             return
         live = {e.id for e in walk.state.goals}
-        pool = list(walk.outcomes)
+        pool = [(tuple(o.action.to_list()), o) for o in walk.outcomes]
         kept, changed = [], False
         for t in scs.threads:
             if t.goal_id not in live:
@@ -106,7 +106,9 @@ class ScsBody:
                 continue
             root = _settle(t.root, pool, walk.state.cycle)
             changed |= root is not t.root
-            kept.append(t if root is t.root else replace(t, root=root))
+            kept.append(t if root is t.root else Thread(t.key, t.goal_id, t.goal, t.skill,
+                                                         t.skill_name, root, t.status, t.note,
+                                                         t.started, t.last))
         if changed:
             walk.updates["scs"] = replace(scs, threads=tuple(kept))
 
@@ -134,7 +136,7 @@ _WORKED = (GoalStatus.ACTIVE, GoalStatus.IMPASSE, GoalStatus.FAILED)
 a goal that did not run in that cycle is no longer on its path."""
 
 
-def _settle(root: Frame | None, pool: list[Outcome], cycle: int) -> Frame | None:
+def _settle(root: Frame | None, pool: list[tuple[tuple, Outcome]], cycle: int) -> Frame | None:
     """``root`` with its atomic step of the last cycle marked done or failed by the world's
     outcomes (taken from ``pool``, each outcome used once)."""
     if root is None:
@@ -143,19 +145,19 @@ def _settle(root: Frame | None, pool: list[Outcome], cycle: int) -> Frame | None
     if not leaf.pending or leaf.outcome:
         return root
     if leaf.issued != cycle - 1:
-        return root.with_leaf(replace(leaf, outcome="failed", reason=f"no outcome: issued at "
-                                      f"cycle {leaf.issued}, now cycle {cycle}"))
+        return root.with_leaf(leaf.but(outcome="failed", reason=f"no outcome: issued at "
+                                       f"cycle {leaf.issued}, now cycle {cycle}"))
     status, reason = "done", ""
     for a in leaf.pending:
-        j = next((k for k, o in enumerate(pool) if o.action.to_list() == list(a)), None)
+        j = next((k for k, (done, _) in enumerate(pool) if done == a), None)
         if j is None:
             status, reason = "failed", f"no outcome reported for {Action.from_list(a)}"
             break
-        o = pool.pop(j)
+        o = pool.pop(j)[1]
         if not o.ok:
             status, reason = "failed", o.reason or "failed"
             break
-    return root.with_leaf(replace(leaf, outcome=status, reason=reason))
+    return root.with_leaf(leaf.but(outcome=status, reason=reason))
 
 
 def _status(r: Res) -> ThreadStatus:

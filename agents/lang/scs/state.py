@@ -77,7 +77,7 @@ class Frame:
         """This chain with its innermost frame replaced by ``leaf``."""
         if self.child is None:
             return leaf
-        return replace(self, child=self.child.with_leaf(leaf))
+        return self.but(child=self.child.with_leaf(leaf))
 
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"at": list(self.at)}
@@ -183,7 +183,10 @@ class ScsState:
     tally: tuple[tuple[str, int], ...] = ()
 
     def thread(self, key: str) -> Thread | None:
-        return next((t for t in self.threads if t.key == key), None)
+        for t in self.threads:
+            if t.key == key:
+                return t
+        return None
 
     def choice(self, key: str) -> Choice | None:
         return next((c for c in self.choices if c.key == key), None)
