@@ -73,6 +73,7 @@ class Domain:
 # that runs one domain never imports the others' physics).
 _MODULES = {
     "driving": "world.driving",
+    "blocks": "world.blocks",
 }
 DOMAINS: tuple[str, ...] = tuple(_MODULES)
 DEFAULT_DOMAIN = "driving"
