@@ -8,7 +8,7 @@ of what the bodies did. Plain data in ``to_dict``, read back exactly by ``from_d
 from __future__ import annotations
 
 from bisect import bisect_left
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import Any
 
@@ -181,23 +181,30 @@ class ScsState:
     choices: tuple[Choice, ...] = ()
     model: tuple[tuple, ...] = ()
     tally: tuple[tuple[str, int], ...] = ()
+    _keys: tuple | None = field(default=None, init=False, compare=False, repr=False)
+
+    def keys(self) -> tuple[str, ...]:
+        """The threads' keys, in order (cached: a lookup is a binary search)."""
+        if self._keys is None:
+            object.__setattr__(self, "_keys", tuple(t.key for t in self.threads))
+        return self._keys
 
     def thread(self, key: str) -> Thread | None:
-        for t in self.threads:
-            if t.key == key:
-                return t
-        return None
+        keys = self.keys()
+        i = bisect_left(keys, key)
+        return self.threads[i] if i < len(keys) and keys[i] == key else None
 
     def choice(self, key: str) -> Choice | None:
         return next((c for c in self.choices if c.key == key), None)
 
     def with_thread(self, t: Thread) -> ScsState:
         """This state with thread ``t`` stored (replacing the one of the same key)."""
-        ts = self.threads
-        keys = [x.key for x in ts]
+        ts, keys = self.threads, self.keys()
         i = bisect_left(keys, t.key)
-        tail = ts[i + 1:] if i < len(ts) and keys[i] == t.key else ts[i:]
-        return replace(self, threads=(*ts[:i], t, *tail))
+        j = i + 1 if i < len(keys) and keys[i] == t.key else i
+        new = replace(self, threads=(*ts[:i], t, *ts[j:]))
+        object.__setattr__(new, "_keys", (*keys[:i], t.key, *keys[j:]))
+        return new
 
     def counted(self, more: dict[str, int]) -> ScsState:
         """This state with ``more`` added to its tally."""
