@@ -9,9 +9,11 @@ with every action reported done the next cycle. N goals (done Ti), one per task 
   depth 5: five nested constructs around the same  vs a chain of five skills, each with one
            two actions (do* repeat do-any do-first    subgoal, down to the primitive skill
            do)
-  waits:   half the threads stand at a (wait ...)   vs the same skill list, half of whose
-           point, the others act                      goals' skills cannot start
-Prints the median ms per cycle of each and the ratio body / skills.
+  waits:   the threads of the last half of the      vs a skill that can start for the first
+           goals stand at a (wait ...) point, the     half only: the first goal without one
+           others act                                 is in impasse and blocks those after it
+Prints the median ms per cycle of each and the ratio body / skills. Times are this process's
+CPU time (time.process_time), so that other jobs on a shared machine do not count.
 Run: .venv/bin/python bench/bodies.py [--cycles N]
 """
 
@@ -25,7 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from agents.lang import Engine, load_program_text  # noqa: E402
+from agents.lang import Engine, Percept, load_program_text  # noqa: E402
 from agents.lang.store import PerceptIndex  # noqa: E402
 
 COMMON = """(concepts
@@ -61,7 +63,8 @@ def skill_program(case: str) -> str:
 
 
 def percepts(n: int) -> list[list]:
-    return [["task", f"T{i}", "ready", "T" if i % 2 else "NIL"] for i in range(n)]
+    """N tasks; the first half (rounded up) ready."""
+    return [["task", f"T{i}", "ready", "T" if i < (n + 1) // 2 else "NIL"] for i in range(n)]
 
 
 def per_cycle(text: str, n: int, cycles: int) -> tuple[float, int]:
@@ -70,16 +73,15 @@ def per_cycle(text: str, n: int, cycles: int) -> tuple[float, int]:
     state = engine.initial_state()
     for i in range(n):
         state = engine.add_goal(state, f"(done T{i})", goal_id=f"g{i}")
-    index = PerceptIndex([__import__("agents.lang").lang.Percept.from_list(p)
-                          for p in percepts(n)])
+    index = PerceptIndex([Percept.from_list(p) for p in percepts(n)])
     beliefs = engine.infer(index)
     outcomes: list = []
     times = []
     actions = 0
     for _ in range(cycles):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         decision, state = engine.decide(state, index, beliefs, outcomes)
-        times.append((time.perf_counter() - t0) * 1e3)
+        times.append((time.process_time() - t0) * 1e3)
         acts = [a.to_list() for a in decision.actions]
         outcomes = [{"action": a, "status": "done", "reason": ""} for a in acts]
         actions = len(acts)
