@@ -12,7 +12,7 @@ from .arith import OPS
 from .errors import Diagnostic
 from .pieces import PieceParser, items_of, op_name, suggest
 from .program import ConceptClause, GoalSpec, Skill
-from .scs.syntax import BodyReader
+from .scs.reader import BodyReader
 from .sexpr import Atom, SList, to_text
 from .terms import Literal, Loc, Test
 

@@ -25,7 +25,7 @@ from .syntax import (
     ModelUpdate,
     Subgoal,
     Wait,
-    _expr_vars,
+    expr_vars,
     walk_steps,
 )
 
@@ -150,7 +150,7 @@ class BodyChecks:
                 here = self.conds(part.conds, inner, f"alternative of {what}", binds=True)
                 for key, e in ((":utility", part.utility), (":reward", part.reward)):
                     if e is not None:
-                        self.c.unbound(_expr_vars(e) - here, part.loc, f"{key} {e} of an "
+                        self.c.unbound(expr_vars(e) - here, part.loc, f"{key} {e} of an "
                                        f"alternative of {what}", self.HINT, here)
                 self.step(part.step, here)
             else:

@@ -14,78 +14,24 @@ cycle its last attempt started waits for the next cycle, so a cycle always ends.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-from enum import StrEnum
+from dataclasses import replace
 
 from ..arith import evaluate
 from ..errors import EvalError
 from ..goals import satisfied
 from ..matcher import ground
-from ..paths import Found, PathFinder, Remembered, Walk, show
+from ..paths import Found, PathFinder, Remembered, Walk
 from ..program import Skill
 from ..terms import Action, Literal, Var
-from .learning import record, reward_value
-from .state import Choice, Frame, ScsState, ThreadStatus, model_of
-from .syntax import (
-    Act,
-    Atomic,
-    Branch,
-    Construct,
-    Kind,
-    ModelUpdate,
-    Subgoal,
-    Wait,
-    children,
-    uses,
-)
+from .choosing import Choosing
+from .results import OK, R, Res, added, env_with, fail, show_conds
+from .state import Frame, ScsState, ThreadStatus, model_of
+from .syntax import Act, Atomic, Construct, Kind, ModelUpdate, Subgoal, Wait, children
 
 STEP_BUDGET = 256   # steps entered per thread and cycle before it yields [steps]
 
 
-class R(StrEnum):
-    ACT = "act"     # an atomic step was issued (or a subgoal's path acts) this cycle
-    IDLE = "idle"   # nothing this cycle: waiting or inactive; the frame is kept
-    OK = "ok"       # the step ended with success
-    FAIL = "fail"   # the step ended with failure
-
-
-@dataclass(frozen=True, slots=True)
-class Res:
-    kind: R
-    frame: Frame | None = None
-    why: str = ""
-    status: ThreadStatus = ThreadStatus.WAITING
-
-
-OK = Res(R.OK)
-
-
-def _fail(why: str) -> Res:
-    return Res(R.FAIL, None, why)
-
-
-def env_with(env: dict, pairs: tuple) -> dict:
-    """``env`` extended by stored ((name, value), ...) bindings."""
-    if not pairs:
-        return env
-    out = dict(env)
-    for k, v in pairs:
-        out[Var(k)] = v
-    return out
-
-
-def added(sol: dict, env: dict) -> tuple:
-    """The bindings ``sol`` makes beyond ``env``, as sorted ((name, value), ...)."""
-    return tuple(sorted((v.name, x) for v, x in sol.items() if v not in env
-                        and not isinstance(x, Var)))
-
-
-def show_conds(conds: tuple, env: dict | None = None) -> str:
-    """Conditions as text, with the variables bound in ``env`` replaced by their values."""
-    return "(" + " ".join(show(c, env or {}) for c in conds) + ")"
-
-
-class Tick:
+class Tick(Choosing):
     """Runs one thread for one cycle. Reads percepts and beliefs from ``walk``; writes the
     world model and do-best records straight into ``walk.updates["scs"]`` (so bodies nested
     through subgoals, run meanwhile, keep theirs); collects the actions issued
@@ -148,7 +94,7 @@ class Tick:
             if self.holds(node.conds, env) is not None:
                 return OK
             return Res(R.IDLE, frame or Frame(at), f"waits for {show_conds(node.conds, env)}")
-        return _fail(f"unknown step {node!r:.60}")
+        return fail(f"unknown step {node!r:.60}")
 
     def atomic(self, node: Act | Atomic, frame: Frame | None, at: tuple, env: dict) -> Res:
         """An atomic action or group: issue it; next cycle, succeed or fail by its outcome."""
@@ -158,7 +104,7 @@ class Tick:
                 self.bump("actions done", len(frame.pending))
                 return OK
             self.bump("actions failed")
-            return _fail(f"{shown} failed: {frame.reason or 'no outcome reported'}")
+            return fail(f"{shown} failed: {frame.reason or 'no outcome reported'}")
         steps = node.steps if isinstance(node, Atomic) else (node,)
         actions = []
         for s in steps:
@@ -167,7 +113,7 @@ class Tick:
                     actions.append(Action(s.action.name, tuple(evaluate(x, env)
                                                                for x in s.action.args)))
                 except EvalError as exc:
-                    return _fail(f"action cannot be evaluated: {exc}")
+                    return fail(f"action cannot be evaluated: {exc}")
         clash = self.finder.conflict(self.walk, actions)
         if clash:
             return Res(R.IDLE, None, f"{' '.join(map(str, actions))} waits: {clash}")
@@ -198,7 +144,7 @@ class Tick:
         if self._blocked_by_resources(goal):
             return Res(R.IDLE, frame, f"subgoal {goal} waits: its path's resources are taken")
         self.bump("subgoals failed")
-        return _fail(f"subgoal {goal} has no executable path")
+        return fail(f"subgoal {goal} has no executable path")
 
     def _blocked_by_resources(self, goal: Literal) -> bool:
         """True when ``goal`` would have a path if no resource were taken this cycle."""
@@ -214,7 +160,7 @@ class Tick:
         """assert/retract: change the world model (a belief from the next cycle on)."""
         fact = ground(node.fact, env)
         if any(isinstance(a, Var) for a in fact.args):
-            return _fail(f"{node}: fact {fact} has an unbound variable")
+            return fail(f"{node}: fact {fact} has an unbound variable")
         row = (fact.pred, *fact.args)
         model = set(self.scs.model)
         if node.retract:
@@ -233,11 +179,11 @@ class Tick:
             if mods.when is not None:
                 sol = self.holds(mods.when, env)
                 if sol is None:
-                    return _fail(f"({node.name} :when {show_conds(mods.when, env)}) is false")
+                    return fail(f"({node.name} :when {show_conds(mods.when, env)}) is false")
                 frame = frame.but(bind=added(sol, env))
             if mods.unless is not None and self.holds(mods.unless, env_with(env, frame.bind)) \
                     is not None:
-                return _fail(f"({node.name} :unless {show_conds(mods.unless, env)}) holds")
+                return fail(f"({node.name} :unless {show_conds(mods.unless, env)}) holds")
         inner = env_with(env, frame.bind)
         if mods.while_ is not None and self.holds(mods.while_, inner) is None:
             return Res(R.IDLE, frame, f"({node.name} :while {show_conds(mods.while_, inner)}) "
@@ -248,34 +194,6 @@ class Tick:
         run = {Kind.DO: self.seq, Kind.REPEAT: self.seq, Kind.ALL: self.all,
                Kind.ANY: self.any, Kind.FIRST: self.first, Kind.BEST: self.best}[node.kind]
         return run(node, frame, inner)
-
-    def still(self, br: Branch, frame: Frame, env: dict) -> dict | None:
-        """Whether the chosen alternative's condition still holds: with the values of the
-        variables its step reads kept, the others matched afresh (a distance that changes
-        every cycle does not make it fail); the solution, or None."""
-        used = uses(br.step)
-        kept = tuple((k, v) for k, v in frame.alt if Var(k) in used)
-        return self.holds(br.conds, env_with(env, kept))
-
-    def finished(self, node: Construct, frame: Frame, env: dict) -> Res | None:
-        """Whether the running alternative has just ended (its last action's outcome or its
-        subgoal's achievement arrived this cycle): its result, or None when it would go on,
-        leaving no trace of having looked. An alternative whose condition no longer holds
-        is abandoned only if it has not ended: the finished action's result comes first."""
-        if frame.cur < 0 or frame.child is None:
-            return None
-        w = self.walk
-        saved = (dict(w.updates), len(w.why), self.actions, self.sub, self.budget, self.draws,
-                 dict(self.tally))
-        r = self._child(node, frame, env)
-        if r.kind in (R.OK, R.FAIL):
-            return r
-        w.updates.clear()
-        w.updates.update(saved[0])
-        del w.why[saved[1]:]
-        self.actions, self.sub, self.budget, self.draws, self.tally = saved[2:]
-        return None
-
     def _child(self, node: Construct, frame: Frame, env: dict) -> Res:
         """Run the frame's current child; on ACT/IDLE return with the frame updated."""
         steps = children(node)
@@ -305,7 +223,7 @@ class Tick:
                 return r
             if r.kind is R.FAIL:
                 if not node.star:
-                    return _fail(r.why)
+                    return fail(r.why)
                 frame = frame.but(child=None, tries=frame.tries + 1)
                 later = self._retry_later(frame, node, r.why)
                 if later:
@@ -340,7 +258,7 @@ class Tick:
                                 child=None)
             elif r.kind is R.FAIL:
                 if not node.star:
-                    return _fail(r.why)
+                    return fail(r.why)
                 frame = frame.but(cur=-1, tries=frame.tries + 1)
                 later = self._retry_later(frame, node, r.why)
                 if later:
@@ -356,7 +274,7 @@ class Tick:
             if frame.cur < 0:
                 left = [i for i in range(n) if node.star or i not in frame.failed]
                 if not left:
-                    return _fail(f"({node.name}) every alternative failed")
+                    return fail(f"({node.name}) every alternative failed")
                 frame = frame.but(cur=self.pick(left, frame.at), child=None,
                                 since=self.cycle)
             r = self._child(node, frame, env)
@@ -369,120 +287,3 @@ class Tick:
             later = self._retry_later(frame, node, r.why) if node.star else None
             if later:
                 return later
-
-    def first(self, node: Construct, frame: Frame, env: dict) -> Res:
-        """do-first: the step of the first pair whose condition holds, the conditions
-        rechecked every cycle as in a T-R program (seed 002, Appendix B); fails when that
-        step fails. do*-first tries again (after a fresh scan) instead."""
-        while True:
-            j, sol, same = -1, None, False
-            for i, br in enumerate(node.steps):
-                if i == frame.cur:
-                    sol = self.still(br, frame, env)
-                    same = sol is not None
-                sol = sol if same else self.holds(br.conds, env)
-                if sol is not None:
-                    j = i
-                    break
-            r = None if same else self.finished(node, frame, env)
-            if r is None:
-                if j < 0:
-                    return Res(R.IDLE, frame, f"({node.name}) no condition holds: inactive",
-                               ThreadStatus.INACTIVE)
-                frame = frame.but(alt=added(sol, env)) if same else \
-                    frame.but(cur=j, alt=added(sol, env), child=None, since=self.cycle)
-                r = self._child(node, frame, env)
-            if r.kind is R.OK:
-                return OK
-            if r.kind is not R.FAIL:
-                return r
-            if not node.star:
-                return _fail(r.why)
-            frame = frame.but(cur=-1, alt=(), child=None, tries=frame.tries + 1)
-            later = self._retry_later(frame, node, r.why)
-            if later:
-                return later
-
-    def best(self, node: Construct, frame: Frame, env: dict) -> Res:
-        """do-best: among the alternatives whose condition holds, the highest utility times
-        discount factor; ties by do-any rules; failures as do-any (do*-best: as do*-any)."""
-        while True:
-            r = None
-            if frame.cur >= 0:
-                sol = self.still(node.steps[frame.cur], frame, env)
-                if sol is not None:
-                    frame = frame.but(alt=added(sol, env))
-                else:
-                    r = self.finished(node, frame, env)
-                    if r is None:
-                        frame = frame.but(cur=-1, alt=(), child=None)   # abandoned
-            if r is None:
-                if frame.cur < 0:
-                    chosen = self._bid(node, frame, env)
-                    if isinstance(chosen, Res):
-                        return chosen
-                    frame = chosen
-                r = self._child(node, frame, env)
-            if r.kind is not R.OK and r.kind is not R.FAIL:
-                return r
-            self._learn(node, frame, env, r.kind is R.OK)
-            if r.kind is R.OK:
-                return OK
-            frame = frame.but(failed=tuple(sorted({*frame.failed, frame.cur})), cur=-1,
-                            alt=(), child=None, tries=frame.tries + 1)
-            later = self._retry_later(frame, node, r.why) if node.star else None
-            if later:
-                return later
-
-    def _bid(self, node: Construct, frame: Frame, env: dict) -> Frame | Res:
-        """Choose the alternative with the highest discounted utility (seed 002, section 3,
-        "Best-First Behavior"; Appendix A, "Learning")."""
-        bids = []
-        for i, br in enumerate(node.steps):
-            if not node.star and i in frame.failed:
-                continue
-            sol = self.holds(br.conds, env)
-            if sol is None:
-                continue
-            try:
-                u = evaluate(br.utility, sol)
-            except EvalError:
-                continue
-            if isinstance(u, bool) or not isinstance(u, int | float):
-                continue
-            bids.append((u * self.choice(node, frame.at, i).factor, i, sol))
-        if not bids:
-            if len(frame.failed) == len(node.steps) and not node.star:
-                return _fail(f"({node.name}) every alternative failed")
-            return Res(R.IDLE, frame, f"({node.name}) no alternative's condition holds: "
-                       "inactive", ThreadStatus.INACTIVE)
-        top = max(b[0] for b in bids)
-        i = self.pick([b[1] for b in bids if b[0] == top], frame.at)
-        sol = next(b[2] for b in bids if b[1] == i)
-        c = self.choice(node, frame.at, i)
-        self.set_choice(replace(c, chosen=c.chosen + 1))
-        return frame.but(cur=i, alt=added(sol, env), child=None, since=self.cycle)
-
-    def choice(self, node: Construct, at: tuple, i: int) -> Choice:
-        key = f"{self.skill.name}@{'.'.join(map(str, (*at, i)))}"
-        found = self.scs.choice(key)
-        if found is not None:
-            return found
-        br = node.steps[i]
-        when = f" when {' '.join(str(c) for c in br.conds)}" if br.conds else ""
-        return Choice(key, f"{br.step}{when} ({br.loc})")
-
-    def set_choice(self, c: Choice) -> None:
-        rest = [x for x in self.scs.choices if x.key != c.key]
-        self.put(replace(self.scs, choices=tuple(sorted([*rest, c], key=lambda x: x.key))))
-
-    def _learn(self, node: Construct, frame: Frame, env: dict, ok: bool) -> None:
-        """Reinforce the chosen alternative's discount factor by the measured result."""
-        br = node.steps[frame.cur]
-        result = 1.0
-        if ok and br.reward is not None:
-            try:
-                result = reward_value(evaluate(br.reward, env_with(env, frame.alt)))
-            except EvalError:
-                result = 0.0
-        self.set_choice(record(self.choice(node, frame.at, frame.cur), ok, result))

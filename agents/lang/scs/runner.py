@@ -32,7 +32,8 @@ from ..paths import Found, PathFinder, Remembered, Walk
 from ..program import Skill
 from ..state import StoredStep
 from ..terms import Action, Literal
-from .constructs import R, Res, Tick
+from .constructs import Tick
+from .results import R, Res
 from .section import ScsSection
 from .state import Frame, ScsState, Thread, ThreadStatus
 
