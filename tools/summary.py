@@ -1,7 +1,7 @@
 """The end-of-run summary of `teleo launch`, built from the files the processes leave in the
-run folder: the world's final counters (`world-final.json`), the goal store (`goals.json`),
-the snapshots for rendering (`snapshots.jsonl`), each agent's learned skills
-(`learned-AGENT.tlp`) and the launcher's restart counts.
+run folder: the world's final counters and each agent's last memory (`world-final.json`), the
+goal store (`goals.json`), the snapshots for rendering (`snapshots.jsonl`), each agent's
+learned skills (`learned-AGENT.tlp`) and the launcher's restart counts.
 """
 
 from __future__ import annotations
@@ -59,8 +59,24 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
                            for a, c in counters.items()},
         "counters": counters,
         "learned": _learned(run_dir),
+        "bodies": {a: b for a, m in sorted(final.get("memory", {}).items())
+                   if (b := bodies(m))},
         "trace": str(run_dir / TRACE),
     }
+
+
+def bodies(memory: dict[str, Any]) -> dict[str, Any]:
+    """What an agent's SCS bodies did, from its memory (docs/bus.md, "Agent memory"): the
+    tally, each do-best alternative's record and discount factor, the threads still running
+    and the world model; {} for an agent without bodies."""
+    scs = memory.get("scs") if isinstance(memory, dict) else None
+    if not isinstance(scs, dict) or not (scs.get("tally") or scs.get("threads")):
+        return {}
+    return {"tally": scs.get("tally", {}),
+            "choices": scs.get("choices", []),
+            "threads": [{k: t.get(k) for k in ("goal_id", "goal", "skill_name", "status", "note")}
+                        for t in scs.get("threads", [])],
+            "model": memory.get("model", [])}
 
 
 def echo(summary: dict[str, Any]) -> None:
@@ -84,6 +100,8 @@ def echo(summary: dict[str, Any]) -> None:
         heads = learned["skills"]
         click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
                    + "".join(f"\n    {h}" for h in heads))
+    for agent, b in summary.get("bodies", {}).items():
+        _echo_bodies(agent, b)
 
 
 def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
@@ -95,6 +113,20 @@ def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
         agent = path.stem.removeprefix("learned-")
         out[agent] = {"file": str(path), "skills": clause_heads(path.read_text())}
     return out
+
+
+def _echo_bodies(agent: str, b: dict[str, Any]) -> None:
+    tally = ", ".join(f"{k} {v}" for k, v in sorted(b["tally"].items()))
+    click.echo(f"  {agent} SCS bodies: {tally or 'nothing done'}")
+    for c in b["choices"]:
+        click.echo(f"    do-best {c['label']}: chosen {c['chosen']}, succeeded "
+                   f"{c['succeeded']}, failed {c['failed']}, discount factor {c['factor']:.3f}")
+    for t in b["threads"]:
+        click.echo(f"    thread {t['goal_id']} {t['goal']} <- {t['skill_name']}: "
+                   f"{t['status']} ({t['note']})")
+    if b["model"]:
+        click.echo("    world model: " + " ".join("(" + " ".join(map(str, f)) + ")"
+                                             for f in b["model"]))
 
 
 def _pairs(d: dict[str, Any]) -> str:

@@ -9,6 +9,7 @@ from dataclasses import replace
 from .errors import Diagnostic, ProgramError
 from .parser import Parts
 from .program import ConceptClause, Program, Skill
+from .scs.checks import BodyChecks, known_actions, model_facts
 from .stratify import dependency_graph, negative_cycle, sccs
 from .terms import Literal, Loc, Test, Var
 
@@ -32,9 +33,17 @@ class Checker:
             group = concepts.setdefault(c.head.pred, [])
             group.append(replace(c, index=len(group) + 1))
             self.define(c.head)
+        model = model_facts(self.parts.skills)
+        for u in model:   # the world model's predicates (seed 002: assert, retract)
+            if u.fact.pred not in self.arity:
+                self.define(u.fact)
+        for u in model:
+            self.use(u.fact, f"fact of {u}")
         for clauses in concepts.values():
             for c in clauses:
                 self.check_concept(c)
+        self.bodies = BodyChecks(self, self.parts.skills,
+                                 known_actions(self.parts.resources))
         skills = []
         by_pred: dict[str, list[Skill]] = {}
         for n, s in enumerate(self.parts.skills):
@@ -120,6 +129,8 @@ class Checker:
         for a in s.actions:
             self.unbound(a.variables() - bound, a.loc, f"action {a}",
                          "bind it in the head, :percepts, :start or :requires", bound)
+        if s.body is not None:
+            self.bodies.check(s, bound)
 
     def unbound(self, vs: set[Var], loc: Loc | None, where: str, hint: str,
                 bound: set[Var] = frozenset()) -> None:
