@@ -26,7 +26,7 @@ def scs_program(n: int) -> Engine:
     pairs = " ".join(f"(((flag {k})) (*a{i}))" for i, k in enumerate(K[:n]))
     body = f"(do*-first {pairs})"
     return Engine(load_program_text(HEAD + f"(skills ((never ?x) :percepts ((self ?x)) "
-                                           f":body {body}))", "scs.tlp"))
+                                           f":body {body}))", "scs.tlp"), solver=None)
 
 
 def tr_program(n: int) -> Engine:
@@ -35,7 +35,8 @@ def tr_program(n: int) -> Engine:
         earlier = " ".join(f"(not (flag {j}))" for j in K[:i])
         skills.append(f"((never ?x) :percepts ((self ?x)) :requires ((flag {k}) {earlier}) "
                       f":actions ((*a{i})))")
-    return Engine(load_program_text(HEAD + "(skills " + "\n".join(skills) + ")", "tr.tlp"))
+    return Engine(load_program_text(HEAD + "(skills " + "\n".join(skills) + ")", "tr.tlp"),
+                  solver=None)   # Appendix B compares the circuits alone, with no problem solver
 
 
 def run(engine: Engine, cycles: list[tuple[frozenset, bool]], seed: int) -> list:

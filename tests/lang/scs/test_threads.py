@@ -26,7 +26,7 @@ TWO = """
 
 
 def engine() -> Engine:
-    return Engine(load_program_text(TWO, "two.tlp"))
+    return Engine(load_program_text(TWO, "two.tlp"), solver=None)
 
 
 def test_a_waiting_thread_lets_lower_threads_run_and_resumes_at_its_wait_point():
