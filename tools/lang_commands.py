@@ -16,6 +16,7 @@ from agents.lang import (
     load_program,
     parse_percepts,
 )
+from agents.lang.limits import read_json
 from agents.lang.loader import read_text
 from agents.lang.terms import sort_key
 
@@ -49,6 +50,15 @@ def _percepts(path: str):
 
 def _sorted_beliefs(beliefs) -> list:
     return sorted(beliefs, key=lambda b: (b.pred, [sort_key(a) for a in b.args]))
+
+
+def _goal_option(option: str) -> tuple[str, int | None]:
+    """'(clear B):1' -> ('(clear B)', 1); without ':P' (P up to 18 digits) no priority."""
+    text, sep, prio = option.rpartition(":")
+    prio = prio.strip()
+    if sep and text and prio.isascii() and prio.isdigit() and len(prio) <= 18:
+        return text, int(prio)
+    return option, None
 
 
 @click.command()
@@ -103,12 +113,10 @@ def step(program: str, percepts_file: str, state_file: str | None, save_file: st
     engine = Engine(_load(program, includes))
     percepts = _percepts(percepts_file)
     try:
-        state = (EngineState.from_dict(json.loads(read_text(state_file))) if state_file
-                 else engine.initial_state())
+        state = (EngineState.from_dict(read_json(read_text(state_file), state_file))
+                 if state_file else engine.initial_state())
         for g in goals:
-            text, _, prio = g.rpartition(":") if g.rstrip().endswith(tuple("0123456789")) \
-                and ":" in g else (g, "", "")
-            state = engine.add_goal(state, text or g, int(prio) if prio else None)
+            state = engine.add_goal(state, *_goal_option(g))
         result = engine.cycle(state, percepts)
     except (LangError, json.JSONDecodeError) as exc:
         click.echo(f"{state_file or program}: {exc}", err=True)

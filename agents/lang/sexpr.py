@@ -8,9 +8,18 @@ splits such a token into two variables and emits a warning (documented in docs/l
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from .errors import Diagnostic
+from .limits import (
+    MAX_DEPTH,
+    MAX_DIAGNOSTICS,
+    MAX_TEXT_CHARS,
+    MAX_TOKEN_CHARS,
+    number_problem,
+    shorten,
+)
 from .terms import Var
 
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*([eE][+-]?\d+)?|\.\d+([eE][+-]?\d+)?)$")
@@ -47,13 +56,24 @@ def atom_value(token: str) -> object:
 
 
 def read(text: str, source: str = "<text>") -> tuple[list, list[Diagnostic]]:
-    """Read every top-level form of ``text``; return (forms, diagnostics). Never raises."""
+    """Read every top-level form of ``text``; return (forms, diagnostics). Never raises.
+
+    Within the bounds of limits.py: a text over MAX_TEXT_CHARS is not read, and reading stops
+    at a list nested deeper than MAX_DEPTH or after MAX_DIAGNOSTICS problems (the forms
+    completed so far are returned, so their own problems are reported too)."""
+    if len(text) > MAX_TEXT_CHARS:
+        return [], [Diagnostic(source, 1, 1, f"text of {len(text)} characters is longer than "
+                                             f"the limit of {MAX_TEXT_CHARS}")]
     diags: list[Diagnostic] = []
     forms: list = []
     stack: list[tuple[int, int, list]] = []  # (line, col, items) of open lists
     line, col, i, n = 1, 1, 0, len(text)
     suspect = None  # first '(' in column 1 inside an open list: where a ')' is likely missing
     while i < n:
+        if len(diags) >= MAX_DIAGNOSTICS:
+            diags.append(Diagnostic(source, line, col, f"more than {MAX_DIAGNOSTICS} problems; "
+                                    "reading stops here"))
+            return forms, diags
         c = text[i]
         if c == "\n":
             line, col, i = line + 1, 1, i + 1
@@ -66,6 +86,10 @@ def read(text: str, source: str = "<text>") -> tuple[list, list[Diagnostic]]:
                 i += 1
             continue
         if c == "(":
+            if len(stack) >= MAX_DEPTH:
+                diags.append(Diagnostic(source, line, col, f"lists nested deeper than {MAX_DEPTH}"
+                                        " levels; reading stops here"))
+                return forms, diags
             if col == 1 and stack and suspect is None:
                 suspect = (line, col)
             stack.append((line, col, []))
@@ -98,7 +122,13 @@ def read(text: str, source: str = "<text>") -> tuple[list, list[Diagnostic]]:
 
 
 def _atoms(token: str, line: int, col: int, source: str, diags: list[Diagnostic]) -> list[Atom]:
-    """Atoms of one token; ``?a?b`` becomes two variables with a warning (seed 000, Table 6)."""
+    """Atoms of one token; ``?a?b`` becomes two variables with a warning (seed 000, Table 6).
+    A token over MAX_TOKEN_CHARS or a number out of range gives an error and a stand-in atom
+    (its first characters, or 0), so that the error is not followed by others it caused."""
+    if len(token) > MAX_TOKEN_CHARS:
+        diags.append(Diagnostic(source, line, col, f"token {shorten(token)} is longer than "
+                                f"{MAX_TOKEN_CHARS} characters"))
+        return [Atom(atom_value(token[:MAX_TOKEN_CHARS]), line, col)]
     if '"' in token or "'" in token or "`" in token:
         diags.append(Diagnostic(source, line, col, f"unexpected quote character in {token!r}; "
                                 "strings are not part of the language, write a symbol"))
@@ -116,16 +146,37 @@ def _atoms(token: str, line: int, col: int, source: str, diags: list[Diagnostic]
     if token == "?":
         diags.append(Diagnostic(source, line, col, "'?' alone is not a variable; write ?name"))
         return []
-    return [Atom(atom_value(token), line, col)]
+    value = atom_value(token)
+    problem = number_problem(value) if isinstance(value, (int, float)) else ""
+    if problem:
+        diags.append(Diagnostic(source, line, col, f"{shorten(token)}: {problem}"))
+        return [Atom(0, line, col)]
+    return [Atom(value, line, col)]
 
 
-def to_text(node: object) -> str:
-    """Render a node back to s-expression text (for messages)."""
+def to_text(node: object, width: int = 200) -> str:
+    """Render a node back to s-expression text for a message, cut after ``width`` characters
+    (a form can be as long as the file)."""
+    parts: list[str] = []
+    size = 0
+    for piece in _pieces(node):
+        parts.append(piece)
+        size += len(piece)
+        if size > width:
+            return "".join(parts)[:width] + " ..."
+    return "".join(parts)
+
+
+def _pieces(node: object) -> Iterator[str]:
     if isinstance(node, SList):
-        return "(" + " ".join(to_text(x) for x in node.items) + ")"
-    if isinstance(node, Atom):
-        return fmt_value(node.value)
-    return fmt_value(node)
+        yield "("
+        for k, item in enumerate(node.items):
+            if k:
+                yield " "
+            yield from _pieces(item)
+        yield ")"
+    else:
+        yield fmt_value(node.value if isinstance(node, Atom) else node)
 
 
 def fmt_value(v: object) -> str:
