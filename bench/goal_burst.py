@@ -1,6 +1,6 @@
 """A burst of goal requests against a running launch: does it slow the run? (fault drill 4d, O5)
 
-    .venv/bin/python bench/goal_burst.py [--requests 1200] [--window 5] [--scenario FILE]
+    .venv/bin/python bench/goal_burst.py [--requests 1200] [--clients 1] [--window 5]
 
 It launches SCENARIO (lockstep, endless), measures the cycle rate for WINDOW seconds, then
 sends REQUESTS goal requests as fast as one client can (the drill's mix: valid posts of
@@ -21,6 +21,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -42,9 +43,12 @@ def rate(run_dir: Path, seconds: float) -> float:
     return (cycles_done(run_dir) - start) / (time.monotonic() - t0)
 
 
-def request_mix(n: int, agent: str, seed: int) -> list[tuple[str, str, int, str]]:
-    """(op, goal, priority, goal_id) of drill 4d: mostly posts, some huge, some junk."""
+def request_mix(n: int, agent: str, seed: int, mix: str) -> list[tuple[str, str, int, str]]:
+    """(op, goal, priority, goal_id) of drill 4d: mostly posts, some huge, some junk; or, for
+    mix "posts", only posts of goals nobody can achieve, all at priority 1 (the costliest)."""
     rng = random.Random(seed)
+    if mix == "posts":
+        return [("post", f"(package-delivered P{i})", 1, "") for i in range(n)]
     out = []
     for i in range(n):
         kind = rng.random()
@@ -66,8 +70,9 @@ def request_mix(n: int, agent: str, seed: int) -> list[tuple[str, str, int, str]
     return out
 
 
-def burst(endpoint: str, run: str, agent: str, requests: list) -> dict:
-    """Send every request, one after another; count the answers and time them [ms]."""
+def burst(endpoint: str, run: str, agent: str, requests: list, clients: int) -> dict:
+    """Send every request, one after another, from `clients` sender names in turn (one
+    session); count the answers and time them [ms]."""
     from bus import keys
     from bus.config import BusConfig
     from bus.errors import BusError
@@ -78,12 +83,12 @@ def burst(endpoint: str, run: str, agent: str, requests: list) -> dict:
     times = []
     cfg = BusConfig(mode="client", connect=(endpoint,), listen=())
     with open_node(cfg, run, "burst") as node:
-        for op, goal, priority, goal_id in requests:
+        for i, (op, goal, priority, goal_id) in enumerate(requests):
+            env = replace(node.envelope(), sender=f"burst{i % clients}")
             t0 = time.perf_counter()
             try:
                 reply = node.query(keys.goals(run, agent),
-                                   GoalRequest(node.envelope(), op, agent, goal, priority,
-                                               goal_id), 5.0)
+                                   GoalRequest(env, op, agent, goal, priority, goal_id), 5.0)
                 counts["ok" if reply.ok else "refused"] += 1
             except BusError:
                 counts["unanswered"] += 1
@@ -97,7 +102,12 @@ def burst(endpoint: str, run: str, agent: str, requests: list) -> dict:
 @click.option("--scenario", default=str(ROOT / "scenarios" / "driving_demo.toml"),
               show_default=True, type=click.Path(exists=True))
 @click.option("--seed", default=4, show_default=True, help="Seed of the request mix.")
-def main(requests: int, window: float, scenario: str, seed: int) -> None:
+@click.option("--clients", default=1, show_default=True,
+              help="Sender names the requests take in turn (each is a client to the limits).")
+@click.option("--mix", type=click.Choice(["drill", "posts"]), default="drill", show_default=True,
+              help="drill: drill 4d's mix; posts: unachievable goals at priority 1.")
+def main(requests: int, window: float, scenario: str, seed: int, clients: int,
+         mix: str) -> None:
     """Measure the cycle rate before, during and after a burst of goal requests."""
     from tools import runfile
 
@@ -123,7 +133,7 @@ def main(requests: int, window: float, scenario: str, seed: int) -> None:
             before = rate(run_dir, window)
             c0, t0 = cycles_done(run_dir), time.monotonic()
             result = burst(info.endpoint, info.run, info.agents[0],
-                           request_mix(requests, info.agents[0], seed))
+                           request_mix(requests, info.agents[0], seed, mix), clients)
             during = (cycles_done(run_dir) - c0) / (time.monotonic() - t0)
             burst_s = time.monotonic() - t0
             after = rate(run_dir, window)
@@ -132,14 +142,15 @@ def main(requests: int, window: float, scenario: str, seed: int) -> None:
         finally:
             launcher.send_signal(signal.SIGINT)
             launcher.wait(60)
-    times = sorted(result["times"])
+    times = sorted(result["times"]) or [0.0]
     c = result["counts"]
-    click.echo(f"goal burst: {requests} requests in {burst_s:.1f} s against {Path(scenario).name}")
+    click.echo(f"goal burst: {requests} requests ({mix}) from {clients} client(s) in "
+               f"{burst_s:.1f} s against {Path(scenario).name}")
     click.echo(f"  cycles/s before {before:.1f}, during {during:.1f}, after {after:.1f}; "
                f"after/before {after / before:.2f}")
     click.echo(f"  replies: {c['ok']} ok, {c['refused']} refused, {c['unanswered']} unanswered")
     click.echo(f"  reply time [ms]: median {statistics.median(times):.1f}, "
-               f"p99 {times[int(len(times) * 0.99) - 1]:.1f}, max {times[-1]:.1f}")
+               f"p99 {times[max(int(len(times) * 0.99) - 1, 0)]:.1f}, max {times[-1]:.1f}")
     click.echo(f"  goals.json: {size} bytes")
 
 

@@ -16,7 +16,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from agents.lang import LangError
+from agents.lang import ProgramError
 from agents.lang.limits import MAX_GOAL_CHARS, read_json
 from agents.processes.goal_store import GoalStore, GoalStoreError
 
@@ -65,8 +65,10 @@ def read_store(path: Path) -> GoalStore:
                              f"{exc.start})") from None
     try:
         doc = read_json(text, str(path), MAX_STORE_BYTES, max_string=16 * MAX_GOAL_CHARS)
-    except LangError as exc:
-        raise GoalStoreError(f"not a goal store: {exc}") from None
+    except ProgramError as exc:
+        where = exc.diagnostics[0]
+        raise GoalStoreError(f"not valid JSON at {where.line}:{where.col}: {where.message}") \
+            from None
     return GoalStore.from_json(doc)
 
 
