@@ -15,24 +15,30 @@ from .terms import Percept, is_const
 
 
 def read_text(path: str | Path) -> str:
-    """Contents of ``path`` (UTF-8, a leading byte-order mark skipped); raises ProgramError naming
-    the file if it cannot be read, is over MAX_TEXT_CHARS bytes, or holds a byte that is not
-    UTF-8 (with the line:col of that byte)."""
+    """Contents of ``path``; raises ProgramError naming the file if it cannot be read, is over
+    MAX_TEXT_CHARS bytes, or is not UTF-8 (``decode_text``)."""
     try:
         with open(path, "rb") as f:
             data = f.read(MAX_TEXT_CHARS + 1)
     except OSError as exc:
         raise ProgramError([Diagnostic(str(path), 0, 0, f"cannot read file: {exc.strerror}")]) \
             from None
+    return decode_text(data, str(path))
+
+
+def decode_text(data: bytes, source: str) -> str:
+    """``data`` as UTF-8 text (a leading byte-order mark skipped); raises ProgramError when it
+    is over MAX_TEXT_CHARS bytes or holds a byte that is not UTF-8 (with that byte's
+    line:col)."""
     if len(data) > MAX_TEXT_CHARS:
-        raise ProgramError([Diagnostic(str(path), 0, 0, f"file is larger than the limit of "
-                                                        f"{MAX_TEXT_CHARS} bytes")])
+        raise ProgramError([Diagnostic(source, 0, 0, f"file is larger than the limit of "
+                                                     f"{MAX_TEXT_CHARS} bytes")])
     if data.startswith(codecs.BOM_UTF8):
         data = data[len(codecs.BOM_UTF8):]
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise ProgramError([_not_utf8(str(path), data, exc)]) from None
+        raise ProgramError([_not_utf8(source, data, exc)]) from None
 
 
 def _not_utf8(source: str, data: bytes, exc: UnicodeDecodeError) -> Diagnostic:
