@@ -220,18 +220,17 @@ def request_reader(tmp: Path) -> Reader:
 
     def make(rng: random.Random) -> bytes:
         env = Envelope(1, "fuzz", -1, rng.choice(["cli", "x" * 300, "fuzz"]), 0)
-        if rng.random() < 0.05:
-            data = encode(WorldEvent(env, {"kind": value(rng)}))
-        else:
-            goal = f"(package-delivered P{rng.randint(1, 60)})"
-            fields = [rng.choice(ops), "ME" if rng.random() < 0.9 else value(rng),
-                      mutate(goal, rng) if rng.random() < 0.5 else goal,
-                      rng.randint(1, 300), f"g{rng.randint(1, 40)}"]
-            fields[rng.randrange(5)] = value(rng) if rng.random() < 0.3 else fields[0]
-            try:
-                data = encode(GoalRequest(env, *fields))
-            except CodecError:
-                data = encode(GoalRequest(env, "list", "ME"))
+        goal = f"(package-delivered P{rng.randint(1, 60)})"
+        fields = [rng.choice(ops), "ME" if rng.random() < 0.9 else value(rng),
+                  mutate(goal, rng) if rng.random() < 0.5 else goal,
+                  rng.randint(1, 300), f"g{rng.randint(1, 40)}"]
+        fields[rng.randrange(5)] = value(rng) if rng.random() < 0.3 else fields[0]
+        message = WorldEvent(env, {"kind": value(rng)}) if rng.random() < 0.05 \
+            else GoalRequest(env, *fields)
+        try:
+            data = encode(message)
+        except CodecError:  # not msgpack-able (a lone surrogate, an int over 64 bits)
+            data = encode(GoalRequest(env, "list", "ME"))
         if rng.random() < 0.3:
             data = noisy(mutate(data.decode("latin-1"), rng).encode("latin-1", "replace"), rng)
         return data

@@ -19,6 +19,9 @@ program has 9,364)."""
 MAX_DEPTH = 64
 """[levels] of nested lists in an s-expression or of arrays/objects in JSON. Programs use ~8;
 64 keeps every recursive walk of a form (checks, compiled tests) far from Python's limit."""
+MAX_LIST_ITEMS = 256
+"""Items of one inner list (a clause, a literal, a percept: any list inside another list);
+a top-level list (a section, Table 3's list of percepts) may hold any number."""
 MAX_TOKEN_CHARS = 256
 """[characters] of one symbol, variable or number, and of one JSON string."""
 INT_MIN, INT_MAX = -(2**63), 2**63 - 1

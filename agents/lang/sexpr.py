@@ -15,6 +15,7 @@ from .errors import Diagnostic
 from .limits import (
     MAX_DEPTH,
     MAX_DIAGNOSTICS,
+    MAX_LIST_ITEMS,
     MAX_TEXT_CHARS,
     MAX_TOKEN_CHARS,
     number_problem,
@@ -23,7 +24,6 @@ from .limits import (
 from .terms import Var
 
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*([eE][+-]?\d+)?|\.\d+([eE][+-]?\d+)?)$")
-_DELIMS = set("() \t\r\n;")
 
 
 @dataclass(frozen=True, slots=True)
@@ -59,66 +59,84 @@ def read(text: str, source: str = "<text>") -> tuple[list, list[Diagnostic]]:
     """Read every top-level form of ``text``; return (forms, diagnostics). Never raises.
 
     Within the bounds of limits.py: a text over MAX_TEXT_CHARS is not read, and reading stops
-    at a list nested deeper than MAX_DEPTH or after MAX_DIAGNOSTICS problems (the forms
-    completed so far are returned, so their own problems are reported too)."""
+    at a list nested deeper than MAX_DEPTH, at an inner list longer than MAX_LIST_ITEMS, or
+    after MAX_DIAGNOSTICS problems (the forms completed so far are returned, so that their
+    own problems are reported too)."""
     if len(text) > MAX_TEXT_CHARS:
         return [], [Diagnostic(source, 1, 1, f"text of {len(text)} characters is longer than "
                                              f"the limit of {MAX_TEXT_CHARS}")]
-    diags: list[Diagnostic] = []
-    forms: list = []
-    stack: list[tuple[int, int, list]] = []  # (line, col, items) of open lists
-    line, col, i, n = 1, 1, 0, len(text)
-    suspect = None  # first '(' in column 1 inside an open list: where a ')' is likely missing
-    while i < n:
-        if len(diags) >= MAX_DIAGNOSTICS:
-            diags.append(Diagnostic(source, line, col, f"more than {MAX_DIAGNOSTICS} problems; "
-                                    "reading stops here"))
-            return forms, diags
-        c = text[i]
-        if c == "\n":
-            line, col, i = line + 1, 1, i + 1
-            continue
-        if c in " \t\r":
-            i, col = i + 1, col + 1
-            continue
-        if c == ";":
-            while i < n and text[i] != "\n":
-                i += 1
-            continue
-        if c == "(":
-            if len(stack) >= MAX_DEPTH:
-                diags.append(Diagnostic(source, line, col, f"lists nested deeper than {MAX_DEPTH}"
-                                        " levels; reading stops here"))
-                return forms, diags
-            if col == 1 and stack and suspect is None:
-                suspect = (line, col)
-            stack.append((line, col, []))
-            i, col = i + 1, col + 1
-            continue
-        if c == ")":
-            if not stack:
-                diags.append(Diagnostic(source, line, col, "unexpected ')' with no list open"))
+    return _Reader(source).run(text)
+
+
+# One lexeme: a newline, blanks, a comment, a parenthesis, or a token (anything else).
+_LEXEME = re.compile(r"\n|[ \t\r]+|;[^\n]*|[()]|[^() \t\r\n;]+")
+
+
+class _Reader:
+    """The state of one ``read``: the open lists, the forms done, the diagnostics."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+        self.diags: list[Diagnostic] = []
+        self.forms: list = []
+        self.stack: list[tuple[int, int, list]] = []  # (line, col, items) of open lists
+        self.suspect: tuple[int, int] | None = None  # first '(' in column 1 inside a list
+
+    def run(self, text: str) -> tuple[list, list[Diagnostic]]:
+        line, line_start = 1, 0
+        for match in _LEXEME.finditer(text):
+            lexeme = match.group()
+            first = lexeme[0]
+            if first == "\n":
+                line, line_start = line + 1, match.end()
+                continue
+            if first in " \t\r;":
+                continue
+            col = match.start() - line_start + 1
+            if len(self.diags) >= MAX_DIAGNOSTICS:
+                return self.stop(line, col, f"more than {MAX_DIAGNOSTICS} problems")
+            if first == "(":
+                if len(self.stack) >= MAX_DEPTH:
+                    return self.stop(line, col, f"lists nested deeper than {MAX_DEPTH} levels")
+                if col == 1 and self.stack and self.suspect is None:
+                    self.suspect = (line, col)
+                self.stack.append((line, col, []))
+            elif first == ")":
+                self.close(line, col)
             else:
-                ol, oc, items = stack.pop()
-                node = SList(tuple(items), ol, oc)
-                (stack[-1][2] if stack else forms).append(node)
-            i, col = i + 1, col + 1
-            continue
-        start, scol = i, col
-        while i < n and text[i] not in _DELIMS:
-            i += 1
-        col += i - start
-        token = text[start:i]
-        for node in _atoms(token, line, scol, source, diags):
-            (stack[-1][2] if stack else forms).append(node)
-    if stack:
-        ol, oc, _ = stack[0]
+                for node in _atoms(lexeme, line, col, self.source, self.diags):
+                    self.add(node)
+            if len(self.stack) > 1 and len(self.stack[-1][2]) > MAX_LIST_ITEMS:
+                return self.stop(line, col, f"the list opened at {self.stack[-1][0]}:"
+                                 f"{self.stack[-1][1]} has more than {MAX_LIST_ITEMS} items")
+        if self.stack:
+            self.unclosed()
+        return self.forms, self.diags
+
+    def add(self, node: object) -> None:
+        (self.stack[-1][2] if self.stack else self.forms).append(node)
+
+    def close(self, line: int, col: int) -> None:
+        if not self.stack:
+            self.diags.append(Diagnostic(self.source, line, col,
+                                         "unexpected ')' with no list open"))
+            return
+        ol, oc, items = self.stack.pop()
+        self.add(SList(tuple(items), ol, oc))
+
+    def stop(self, line: int, col: int, why: str) -> tuple[list, list[Diagnostic]]:
+        """Give up at line:col, keeping the forms completed so far."""
+        self.diags.append(Diagnostic(self.source, line, col, f"{why}; reading stops here"))
+        return self.forms, self.diags
+
+    def unclosed(self) -> None:
+        ol, oc, _ = self.stack[0]
         hint = ""
-        if suspect is not None:
-            hint = (f"; the form starting here seems to end before line {suspect[0]}, where a "
-                    "new top-level form starts")
-        diags.append(Diagnostic(source, ol, oc, f"'(' is never closed (missing ')'{hint})"))
-    return forms, diags
+        if self.suspect is not None:
+            hint = (f"; the form starting here seems to end before line {self.suspect[0]}, "
+                    "where a new top-level form starts")
+        self.diags.append(Diagnostic(self.source, ol, oc,
+                                     f"'(' is never closed (missing ')'{hint})"))
 
 
 def _atoms(token: str, line: int, col: int, source: str, diags: list[Diagnostic]) -> list[Atom]:
