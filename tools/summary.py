@@ -42,6 +42,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int]) -> dict
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g.get("status") == "achieved"),
         "goal_store_incidents": incidents,
+        "goals_lost": any(i.startswith("GOALS LOST") for i in incidents),
         "deliveries": {a: int(c.get("deliveries", 0)) for a, c in counters.items()},
         "law_violations": {a: {k: int(c.get(k, 0)) for k in LAW_COUNTERS}
                            for a, c in counters.items()},

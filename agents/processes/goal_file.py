@@ -21,6 +21,8 @@ from agents.lang.limits import MAX_GOAL_CHARS, read_json
 from agents.processes.goal_store import GoalStore, GoalStoreError
 
 BACKUP_SUFFIX = ".bak"
+LOST = "GOALS LOST: "
+"""How an incident in which nothing could be recovered begins (the summary looks for it)."""
 MAX_STORE_BYTES = 16 * 1024 * 1024
 """[bytes] of a store file; a bounded store (goal_store.py limits) is far smaller."""
 
@@ -97,7 +99,7 @@ def open_store(path: Path) -> Opened:
         outcome = (f"its last good copy {backup}: {exc}{aside}; NOTHING RECOVERED: the goals "
                    "users posted are lost (the scenario's scripted goals are posted again)")
         lost = True
-    incident = f"{damaged}; {outcome}"
+    incident = f"{LOST if lost else ''}{damaged}; {outcome}"
     store = store.noted(incident)
     try:
         save(store, path)

@@ -71,7 +71,7 @@ class GoalEntry:
         self.clock = clock  # [s], monotonic: for the rate limits and the status saves
         opened = goal_file.open_store(store_path)
         if opened.incident:
-            log.error("%s%s", "GOALS LOST: " if opened.lost else "", opened.incident)
+            log.error("%s", opened.incident)
         self.store = opened.store
         self.limiter = RequestLimiter()
         self.lock = threading.Lock()  # the query handler runs on zenoh's thread

@@ -103,10 +103,13 @@ def test_with_no_good_copy_the_loss_is_said_and_the_run_goes_on(tmp_path):
     write(backup_path(path), "")
     opened = open_store(path)
     assert opened.lost and opened.store.goals == ()
+    assert opened.incident.startswith(f"GOALS LOST: goal store {path}: expected an object")
     assert "NOTHING RECOVERED: the goals users posted are lost" in opened.incident
     assert (tmp_path / "goals.json.damaged-1").read_text() == "[]"
     assert (tmp_path / "goals.json.bak.damaged-1").exists()
     assert read_store(path).incidents == (opened.incident,)  # kept for the summary
+    base = {"run": "r", "scenario": "s", "mode": "lockstep", "seed": 1, "cycles_requested": 0}
+    assert summary.build(tmp_path, base, {})["goals_lost"]
 
 
 def test_a_missing_store_with_a_copy_is_recovered_and_a_new_run_starts_empty(tmp_path):
@@ -154,7 +157,7 @@ def test_the_summary_shows_what_recovery_did(tmp_path, capsys):
     base = {"run": "r", "scenario": "s", "mode": "lockstep", "seed": 1, "cycles_requested": 0}
     result = summary.build(tmp_path, base, {})
     summary.echo(result)
-    assert result["goal_store_incidents"] == [opened.incident]
+    assert result["goal_store_incidents"] == [opened.incident] and not result["goals_lost"]
     out = capsys.readouterr().out
     assert f"GOAL STORE: {opened.incident}" in out
     assert "g1 ME (package-delivered P1) p5: pending" in out
