@@ -17,6 +17,8 @@ OVERALL = (60, 20.0)
 """(burst [requests], sustained rate [requests/s]) of all clients together."""
 MAX_CLIENTS = 256
 """Clients remembered; the least recently seen is forgotten first (its bucket starts full)."""
+MAX_SENDER_CHARS = 64
+"""[characters] of a sender name that tell clients apart (a longer name is cut)."""
 
 
 @dataclass
@@ -51,11 +53,12 @@ class RequestLimiter:
 
     def admit(self, sender: str, now: float) -> str:
         """"" if the request of `sender` at `now` [s] may go ahead, else why not."""
+        sender = sender[:MAX_SENDER_CHARS]
         bucket = self._client(sender, now)
         wait = bucket.take(now)
         if wait:
             burst, rate = self.per_client
-            return (f"too many requests from client {sender[:64]!r}: at most {burst} at once "
+            return (f"too many requests from client {sender!r}: at most {burst} at once "
                     f"and {rate:g} per second; try again in {wait:.1f} s")
         if self._all is None:
             self._all = TokenBucket(self.overall[0], self.overall[1], self.overall[0], now)
