@@ -7,8 +7,8 @@ sends REQUESTS goal requests as fast as one client can (the drill's mix: valid p
 goals nobody can achieve, 1 MB goals, priorities up to 2^64-1, cancels, reprioritisations,
 lists and junk), and measures the rate during the burst and for WINDOW seconds after it.
 Printed: cycles/s before, during and after, the ratio after/before (the drill, before the
-limits: 441 -> 42 cycles/s, 0.10), the replies (ok, refused, unanswered), reply times and
-the goal store's size.
+limits: 441 -> 42 cycles/s, 0.10), the replies (ok, refused, unanswered), reply times, the
+goal store's size, and each process's mean compute time per cycle before and after.
 """
 
 from __future__ import annotations
@@ -36,11 +36,23 @@ def cycles_done(run_dir: Path) -> int:
     return path.read_bytes().count(b"\n") if path.exists() else 0
 
 
-def rate(run_dir: Path, seconds: float) -> float:
-    """Cycles per second over the next `seconds`."""
-    start, t0 = cycles_done(run_dir), time.monotonic()
-    time.sleep(seconds)
-    return (cycles_done(run_dir) - start) / (time.monotonic() - t0)
+def measure(run_dir: Path, endpoint: str, run: str, seconds: float) -> tuple[float, dict]:
+    """Cycles per second over the next `seconds`, and each process's mean compute time per
+    cycle [ms] from its ProcessStats."""
+    from bus import keys
+    from bus.config import BusConfig
+    from bus.node import open_node
+
+    cfg = BusConfig(mode="client", connect=(endpoint,), listen=())
+    with open_node(cfg, run, "burst-stats") as node:
+        ring = node.subscribe_ring(keys.all_stats(run), capacity=200_000)
+        start, t0 = cycles_done(run_dir), time.monotonic()
+        time.sleep(seconds)
+        cycles_per_s = (cycles_done(run_dir) - start) / (time.monotonic() - t0)
+        per: dict[str, list[float]] = {}
+        for got in ring.drain():
+            per.setdefault(got.msg.process, []).append(got.msg.compute_ms)
+    return cycles_per_s, {p: statistics.mean(v) for p, v in sorted(per.items())}
 
 
 def request_mix(n: int, agent: str, seed: int, mix: str) -> list[tuple[str, str, int, str]]:
@@ -130,13 +142,13 @@ def main(requests: int, window: float, scenario: str, seed: int, clients: int,
                     time.sleep(0.1)
             run_dir = Path(info.run_dir)
             time.sleep(1.0)  # past start-up
-            before = rate(run_dir, window)
+            before, ms_before = measure(run_dir, info.endpoint, info.run, window)
             c0, t0 = cycles_done(run_dir), time.monotonic()
             result = burst(info.endpoint, info.run, info.agents[0],
                            request_mix(requests, info.agents[0], seed, mix), clients)
             during = (cycles_done(run_dir) - c0) / (time.monotonic() - t0)
             burst_s = time.monotonic() - t0
-            after = rate(run_dir, window)
+            after, ms_after = measure(run_dir, info.endpoint, info.run, window)
             store = run_dir / "goals.json"
             size = store.stat().st_size if store.exists() else 0
         finally:
@@ -152,6 +164,8 @@ def main(requests: int, window: float, scenario: str, seed: int, clients: int,
     click.echo(f"  reply time [ms]: median {statistics.median(times):.1f}, "
                f"p99 {times[max(int(len(times) * 0.99) - 1, 0)]:.1f}, max {times[-1]:.1f}")
     click.echo(f"  goals.json: {size} bytes")
+    click.echo("  compute per cycle [ms], before -> after: " + ", ".join(
+        f"{p} {ms_before.get(p, 0.0):.2f} -> {ms_after.get(p, 0.0):.2f}" for p in ms_after))
 
 
 if __name__ == "__main__":

@@ -20,9 +20,10 @@ from agents.lang.limits import MAX_GOAL_CHARS, shorten
 STORE_VERSION = 1
 MAX_PRIORITY = 1_000_000
 """Priorities are 1..MAX_PRIORITY (lower is more important); program goals have 1..n."""
-MAX_LIVE_GOALS = 32
+MAX_LIVE_GOALS = 16
 """User goals per agent that are not withdrawn (pending, active, suspended or achieved: the
-executive is given all of them every cycle); a post beyond it is refused."""
+executive is given all of them every cycle, and looks for a path for each one it has not
+achieved, at a cost of about 1-2 ms per goal per cycle); a post beyond it is refused."""
 MAX_KEPT_WITHDRAWN = 100
 """Cancelled and failed goals kept per agent (for `teleo goal list`); older ones are dropped."""
 MAX_ID_CHARS = 32
