@@ -202,7 +202,7 @@ def request_reader(tmp: Path) -> Reader:
     from bus.codec import decode, encode
     from bus.errors import CodecError
     from bus.messages import Envelope, GoalRequest, WorldEvent
-    from tools.scenario import load_scenario
+    from world.run_scenario import load_scenario
 
     scenario = load_scenario(ROOT / "scenarios" / "driving_demo.toml")
     log = logging.getLogger("fuzz.goals")

@@ -36,7 +36,7 @@ from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
 from bus.node import Node, open_node
-from tools.scenario import Scenario, ScriptedGoal, load_scenario
+from world.run_scenario import Scenario, ScriptedGoal, load_scenario
 
 PROCESS = "goals"
 SAVE_PERIOD = 1.0  # [s] between saves of statuses mirrored from the executives' intentions

@@ -124,6 +124,19 @@ def test_any_history_survives_a_restart(history):
     assert len(ids) == len(set(ids))
 
 
+def test_impasse_and_failure_are_reported_as_they_are_with_the_engines_note():
+    store, _ = GoalStore().post("ME", "(clear A)", 3, 0, accept_all)
+    store = store.update_from_intention("ME", {"goals": [
+        {"id": "g1", "status": "impasse", "note": "no executable skill path"}]}, 4)
+    assert (store.get("g1").status, store.get("g1").note) == (GoalState.IMPASSE,
+                                                               "no executable skill path")
+    store = store.update_from_intention("ME", {"goals": [
+        {"id": "g1", "status": "failed", "note": "every alternative failed"}]}, 9)
+    assert (store.get("g1").status, store.get("g1").note) == (GoalState.FAILED,
+                                                               "every alternative failed")
+    assert store.goal_list("ME") == ()     # a failed goal is no longer pursued
+
+
 # -- bounds on requests (fault drill O5) ---------------------------------------------------
 
 def test_a_goal_over_the_length_limit_is_refused_before_it_is_read():
