@@ -101,6 +101,8 @@ def enumerable(goal: Literal, program: Program) -> str:
         if not isinstance(arg, Var):
             continue
         for clause in program.concepts.get(goal.pred, ()):
+            if len(clause.head.args) != len(goal.args):
+                continue  # an arity mismatch, reported by the checker
             head = clause.head.args[i]
             if isinstance(head, Var) and not any(head in p.variables() for p in clause.percepts):
                 return (f"variable {arg} cannot mean every instance: clause "

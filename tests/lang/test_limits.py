@@ -100,6 +100,14 @@ def test_messages_show_a_bounded_form():
     assert len(text) <= 204 and text.endswith(" ...")
 
 
+def test_a_goal_of_a_concept_defined_with_two_arities_is_an_error_not_a_crash():
+    # found by bench/fuzz.py: goals.enumerable indexed past a shorter clause head
+    errors = program_errors("(concepts ((c ?x) :percepts ((o ?x)))\n"
+                            "          ((c ?x ?y) :percepts ((o ?x a ?y))))\n(goals (c ?p ?q))")
+    assert errors[0].startswith("p.tlp:2:12: concept c defined with 2 argument(s) here but with "
+                                "1 at p.tlp:1:12")
+
+
 def test_an_empty_program_loads_with_a_warning():
     program = load_program_text("; only a comment\n", "empty.tlp")
     assert [str(w) for w in program.warnings] == [
