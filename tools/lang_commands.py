@@ -17,6 +17,7 @@ from agents.lang import (
     load_program,
     parse_percepts,
 )
+from agents.lang.limits import read_json
 from agents.lang.loader import read_text
 from agents.lang.outcomes import as_outcomes
 from agents.lang.solving.learned import is_learned_text, read_learned
@@ -71,6 +72,15 @@ def _outcomes(path: str) -> tuple:
 
 def _sorted_beliefs(beliefs) -> list:
     return sorted(beliefs, key=lambda b: (b.pred, [sort_key(a) for a in b.args]))
+
+
+def _goal_option(option: str) -> tuple[str, int | None]:
+    """'(clear B):1' -> ('(clear B)', 1); without ':P' (P up to 18 digits) no priority."""
+    text, sep, prio = option.rpartition(":")
+    prio = prio.strip()
+    if sep and text and prio.isascii() and prio.isdigit() and len(prio) <= 18:
+        return text, int(prio)
+    return option, None
 
 
 @click.command()
@@ -153,12 +163,10 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     percepts = _percepts(percepts_file)
     outcomes = _outcomes(outcomes_file) if outcomes_file else ()
     try:
-        state = (EngineState.from_dict(json.loads(read_text(state_file))) if state_file
-                 else engine.initial_state())
+        state = (EngineState.from_dict(read_json(read_text(state_file), state_file))
+                 if state_file else engine.initial_state())
         for g in goals:
-            text, _, prio = g.rpartition(":") if g.rstrip().endswith(tuple("0123456789")) \
-                and ":" in g else (g, "", "")
-            state = engine.add_goal(state, text or g, int(prio) if prio else None)
+            state = engine.add_goal(state, *_goal_option(g))
         result = engine.cycle(state, percepts, outcomes)
     except (LangError, json.JSONDecodeError) as exc:
         click.echo(f"{state_file or program}: {exc}", err=True)

@@ -36,8 +36,9 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     from world.domain import get_domain
 
     spec = get_domain(domain)
-    final = _read_json(run_dir / WORLD_FINAL) or {}
-    goals = (_read_json(run_dir / GOALS_FILE) or {}).get("goals", [])
+    final = _read_json(run_dir / WORLD_FINAL)
+    final = final if isinstance(final, dict) else {}
+    goals, incidents = _goals(run_dir / GOALS_FILE)
     counters: dict[str, dict[str, int]] = final.get("counters", {})
     elapsed = float(final.get("elapsed_s", 0.0))
     cycles = int(final.get("cycles", 0))
@@ -52,6 +53,8 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "restarts": {name: n for name, n in restarts.items() if n},
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g.get("status") == "achieved"),
+        "goal_store_incidents": incidents,
+        "goals_lost": any(i.startswith("GOALS LOST") for i in incidents),
         "domain": domain,
         "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
                          for a, c in counters.items()},
@@ -89,9 +92,11 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"  late stages: {sum(late.values())}{_pairs(late)}")
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
     click.echo(f"  goals achieved: {summary['goals_achieved']} of {len(summary['goals'])}")
+    for incident in summary.get("goal_store_incidents", ()):
+        click.echo(f"  GOAL STORE: {incident}")
     for goal in summary["goals"]:
-        click.echo(f"    {goal['id']} {goal['agent']} {goal['goal']} p{goal['priority']}: "
-                   f"{goal['status']}")
+        fields = [str(goal.get(k, "?")) for k in ("id", "agent", "goal", "priority", "status")]
+        click.echo("    {} {} {} p{}: {}".format(*fields))
     for agent, laws in summary["law_violations"].items():
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
@@ -149,8 +154,31 @@ def render(run_dir: Path, out: Path, agent: str) -> int:
     return domain_of(snaps[0]).render(snaps, out, agent)
 
 
-def _read_json(path: Path) -> dict[str, Any] | None:
+def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
+    """The goal records and recovery incidents of the goal store, whatever shape the file has:
+    only records that are objects are kept; a file that is not a goal store adds an incident
+    saying so (drill F2: a goal that was an integer crashed the summary)."""
+    doc = _read_json(path)
+    if doc is None:
+        return [], ([f"{path}: not readable as JSON"] if path.exists() else [])
+    goals = doc.get("goals", []) if isinstance(doc, dict) else None
+    if not isinstance(goals, list):
+        return [], [f"{path}: not a goal store (no list of goals)"]
+    keep = [g for g in goals if isinstance(g, dict)]
+    incidents = [str(i) for i in doc.get("incidents", [])] \
+        if isinstance(doc.get("incidents"), list) else []
+    if len(keep) != len(goals):
+        incidents.append(f"{path}: {len(goals) - len(keep)} goal record(s) are not objects")
+    return keep, incidents
+
+
+def _read_json(path: Path) -> Any:
+    """The JSON in `path`, or None when it is absent or not bounded JSON (any bytes)."""
+    from agents.lang import LangError
+    from agents.lang.limits import read_json
+
     try:
-        return json.loads(path.read_text())
-    except (FileNotFoundError, ValueError):
+        text = path.read_bytes().decode("utf-8", errors="replace")
+        return read_json(text, str(path), max_chars=64 << 20, max_string=1 << 20)
+    except (OSError, LangError):
         return None

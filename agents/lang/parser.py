@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from .arith import OPS
 from .errors import Diagnostic
+from .limits import MAX_DIAGNOSTICS
 from .pieces import PieceParser, items_of, op_name, suggest
 from .program import ConceptClause, GoalSpec, Skill
 from .scs.reader import BodyReader
@@ -227,8 +228,14 @@ SECTIONS = {
 
 
 def parse_forms(forms: list, source: str, parts: Parts) -> None:
-    """Add every top-level form of ``source`` to ``parts``."""
+    """Add every top-level form of ``source`` to ``parts``; stop after MAX_DIAGNOSTICS
+    problems of this source (limits.py), saying where."""
     p = Parser(source, parts)
+    before = len(parts.diags)
     for f in forms:
+        if len(parts.diags) - before > MAX_DIAGNOSTICS:
+            p.err(f, f"more than {MAX_DIAGNOSTICS} problems; the rest of {source} is not "
+                  "checked")
+            return
         p.form(f)
 
