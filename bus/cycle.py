@@ -95,6 +95,7 @@ class CycleBook:
     cycle: int
     agents: frozenset[str]
     actions: dict[str, tuple] = field(default_factory=dict)
+    memory: dict[str, dict] = field(default_factory=dict)
     stage_ms: dict[str, float] = field(default_factory=dict)
 
     def record(self, msg: Message, last_seen: dict[str, int]) -> None:
@@ -106,6 +107,7 @@ class CycleBook:
                 self.stage_ms[msg.process] = msg.compute_ms
         elif isinstance(msg, Actions) and msg.env.cycle == self.cycle and msg.agent in self.agents:
             self.actions.setdefault(msg.agent, msg.actions)
+            self.memory.setdefault(msg.agent, msg.memory)
 
     def has(self, agent: str) -> bool:
         return agent in self.actions
@@ -130,7 +132,8 @@ class CycleReport:
     republished: how many times state t was re-sent for a restarted stage;
     elapsed_ms: publish to return [ms]; stage_ms: each stage's compute time this cycle [ms];
     stalled: the stages the clock was still waiting for when the cycle passed the stall
-    threshold (a lockstep cycle that waited, but whose actions did come).
+    threshold (a lockstep cycle that waited, but whose actions did come);
+    memory: agent -> the memory sent with its actions (absent for agents given the no-op).
     """
 
     cycle: int
@@ -142,6 +145,7 @@ class CycleReport:
     elapsed_ms: float = 0.0
     stage_ms: dict[str, float] = field(default_factory=dict)
     stalled: tuple[str, ...] = ()
+    memory: dict[str, dict] = field(default_factory=dict)
 
     @property
     def clean(self) -> bool:

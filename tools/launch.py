@@ -23,6 +23,7 @@ import os
 import secrets
 import signal
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -32,7 +33,7 @@ from tools.run_plan import Plan, PlanError, check_secrets, select, uses_clients
 from tools.run_secrets import RunSecrets, host_of, make_secrets
 from tools.scenario_check import load_checked
 from tools.supervision import Outcome, supervise
-from world.run_scenario import ScenarioError
+from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
 REMOTE_READY_TIMEOUT = 600.0  # [s] the world waits for stages started on other hosts
@@ -73,16 +74,22 @@ def _catch_signals() -> None:
 @click.option("--run", "run_id", default=None, help="Run id (required with --join).")
 @click.option("--secrets", "secrets_dir", default=None, type=click.Path(file_okay=False),
               help="A secured run's secrets folder (copied from the first host, with --join).")
+@click.option("--learned", type=click.Path(exists=True, dir_okay=False),
+              help="Start every agent from the skills learned in an earlier run (its "
+                   "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
            summary_file: str | None, render_file: str | None, secure: bool,
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
-           run_id: str | None, secrets_dir: str | None) -> None:
+           run_id: str | None, secrets_dir: str | None, learned: str | None) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     _catch_signals()
     try:
         scenario, _ = load_checked(scenario_file)
+        if learned:
+            check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
+        plan = replace(plan, learned=learned)
     except (ScenarioError, PlanError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
@@ -104,6 +111,21 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
     raise SystemExit(summary.exit_code(result))
+
+
+def check_learned(scenario: Scenario, learned: str) -> None:
+    """Refuse a learned file that does not fit every agent's program, before any process
+    starts (the message names file:line:col, e.g. a concept the program does not define)."""
+    from agents.lang import LangError, load_program
+    from agents.lang.loader import read_text
+    from agents.lang.solving.learned import read_learned
+
+    try:
+        text = read_text(learned)
+        for agent in scenario.agents:
+            read_learned(load_program(agent.program), text, learned)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from exc
 
 
 def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_id,

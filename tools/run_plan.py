@@ -21,7 +21,7 @@ from pathlib import Path
 from bus.config import BusConfig, Mode
 from tools.run_secrets import RunSecrets, host_of
 from tools.supervisor import ProcSpec, module_argv
-from world.run_scenario import AGENT_STAGES, Scenario
+from world.run_scenario import AGENT_STAGES, AgentSpec, Scenario
 
 _MODULES = {"perception": "agents.processes.perception",
             "inference": "agents.processes.inference",
@@ -51,6 +51,7 @@ class Plan:
     client: bool = False            # processes are clients of the router
     joined: bool = False
     ready_timeout: float = 60.0     # [s] the world waits for every stage
+    learned: str | None = None      # skills learned in an earlier run, for every executive
 
     @property
     def runs_world(self) -> bool:
@@ -116,9 +117,22 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
             agent, _, stage = name.rpartition(".")
             spec = sc.agent(agent)
             extra = [] if stage == "perception" else ["--program", str(spec.program.resolve())]
+            if stage == "executive":
+                extra += _executive_args(plan, spec)
             specs.append(ProcSpec(name, module_argv(_MODULES[stage], *common, "--agent", agent,
                                                     *extra), spec.max_restarts(stage)))
     return specs
+
+
+def _executive_args(plan: Plan, spec: AgentSpec) -> list[str]:
+    """Each executive keeps its engine state and learned skills in the run folder
+    (summary.state_file, summary.learned_file), starting from `plan.learned` if given."""
+    from tools import summary
+
+    return ["--state", str(summary.state_file(plan.run_dir, spec.id)),
+            "--learned-out", str(summary.learned_file(plan.run_dir, spec.id)),
+            *(["--learned", plan.learned] if plan.learned else []),
+            *([] if spec.solver else ["--no-solver"])]
 
 
 def check_secrets(plan: Plan) -> None:

@@ -16,7 +16,9 @@ from typing import Any
 
 import click
 
-from agents.lang import Engine, EngineState, load_program
+from agents.lang import Engine, EngineState, LangError, load_program
+from agents.lang.loader import read_text
+from agents.lang.solving.learned import clause_heads, learned_text, read_learned
 from tools.scenario_check import load_checked
 from world.domain import get_domain
 from world.run_scenario import Scenario, ScenarioError
@@ -25,11 +27,13 @@ from world.run_scenario import Scenario, ScenarioError
 @dataclass
 class SimRun:
     """The outcome of an in-process run: per-cycle records, the kept snapshots and the final
-    one (snapshot dicts of the scenario's domain, world/domain.py)."""
+    one (snapshot dicts of the scenario's domain, world/domain.py), and each agent's learned
+    skills at the end (EngineState.learned: the ones it started from, then the new ones)."""
 
     records: list[dict[str, Any]] = field(default_factory=list)
     snapshots: list[dict[str, Any]] = field(default_factory=list)
     final: dict[str, Any] = field(default_factory=dict)
+    learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
 
 def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
@@ -48,13 +52,19 @@ def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
 
 
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
-             keep_every: int = 0) -> SimRun:
-    """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot."""
+             keep_every: int = 0, learned: Path | None = None) -> SimRun:
+    """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
+    every agent starts from the skills in the learned file `learned` (raises LangError with
+    file:line:col if it does not fit an agent's program)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
-    engines = {a.id: Engine(load_program(a.program)) for a in scenario.agents}
-    states = {a: engines[a].initial_state() for a in agents}
+    programs = {a.id: load_program(a.program) for a in scenario.agents}
+    engines = {a.id: Engine(programs[a.id], solver="means-ends" if a.solver else None)
+               for a in scenario.agents}
+    text = read_text(learned) if learned else ""
+    states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
+                                          if learned else ()) for a in agents}
     run = SimRun()
     outcomes: dict[str, list[dict[str, Any]]] = {}
     total = scenario.run.cycles if cycles is None else cycles
@@ -76,10 +86,27 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             record[a] = {"actions": actions,
                          "goals": [(g["id"], g["status"]) for g in
                                    result.decision.to_dict()["goals"]]}
+            solver = result.decision.section("solver")
+            if solver is not None:
+                record[a]["solver"] = solver.to_dict()
         run.records.append(record)
         sim.step()
     run.final = sim.snapshot_dict()
+    run.learned = {a: states[a].learned for a in agents}
     return run
+
+
+def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
+    """Write each agent's learned skills to `out` (one agent) or `out` with `-AGENT` before
+    its suffix (several agents); returns the files written."""
+    written = []
+    for a in scenario.agents:
+        path = out if len(scenario.agents) == 1 else out.with_name(f"{out.stem}-{a.id}"
+                                                                  f"{out.suffix}")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(learned_text(run.learned[a.id], str(a.program)))
+        written.append(path)
+    return written
 
 
 @click.command("simulate")
@@ -90,14 +117,22 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
               help="Write one JSON line per cycle (actions and goal statuses) to this file.")
 @click.option("--render", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Write a picture of the run (.png: the last cycle, .gif: the whole run).")
+@click.option("--learned", type=click.Path(exists=True, dir_okay=False, path_type=Path),
+              default=None, help="Start every agent from the skills in this learned file.")
+@click.option("--learned-out", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Write the learned skills (those started from, then the new ones) here.")
 def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
-                     render: Path | None) -> None:
+                     render: Path | None, learned: Path | None,
+                     learned_out: Path | None) -> None:
     """Run SCENARIO in one process, without the bus (for writing and debugging programs)."""
     try:
         sc, _ = load_checked(scenario)
-    except ScenarioError as exc:
+        run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
+                       learned=learned)
+    except (ScenarioError, LangError) as exc:
         raise click.ClickException(str(exc)) from exc
-    run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0)
+    if learned_out:
+        write_learned(run, sc, learned_out)
     if trace:
         trace.parent.mkdir(parents=True, exist_ok=True)
         trace.write_text("".join(json.dumps(r) + "\n" for r in run.records))
@@ -107,7 +142,9 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
     last = run.records[-1] if run.records else {}
     click.echo(json.dumps({"cycles": len(run.records), "time": run.final.get("time"),
                            "counters": run.final.get("counters", {}),
-                           "goals": {a: last.get(a, {}).get("goals", []) for a in sc.agent_ids}}))
+                           "goals": {a: last.get(a, {}).get("goals", []) for a in sc.agent_ids},
+                           "learned": {a: clause_heads("\n".join(run.learned[a]))
+                                       for a in sc.agent_ids}}))
 
 
 commands = [simulate_command]

@@ -3,7 +3,8 @@ run folder (world/recorder.py): the trace (cycles run, last counters), the world
 record (agents left uncontrolled, late, dead and stalled stages, world restarts), the world's
 final totals when it wrote them, the goal store, and the launcher's own record (restarts per
 process, processes left down, why the run ended). The files are read as they are, so the
-figures stay true when the world was killed.
+figures stay true when the world was killed. Also each agent's learned skills
+(`learned-AGENT.tlp`) and what its SCS bodies did (its last memory, from the trace).
 
 The run's status (docs/faults.md, "What counts as a failed run"):
 - failed (exit 1): an agent was uncontrolled for at least one cycle (its actions did not
@@ -11,7 +12,8 @@ The run's status (docs/faults.md, "What counts as a failed run"):
   restarts, or a world that could not resume), a goal could not be kept (the executive
   reported it failed), or the world stopped before its cycles were done for any other reason
   than a stop asked for. A goal still at an impasse at the end (no skill path yet; the
-  problem solver may have been working on it) is listed as not achieved, not as failed;
+  problem solver may have been working on it) is listed as not achieved, not as failed.
+  Goals the goal store lost (a damaged file it could not recover) fail the run too;
 - interrupted (exit 130): stopped on request (Ctrl-C, `teleo stop`) before its cycles were
   done, with nothing failed; a run without a cycle limit ends this way and counts as completed;
 - completed (exit 0): otherwise. Stalls, late stages and restarts that recovered are shown
@@ -20,7 +22,6 @@ The run's status (docs/faults.md, "What counts as a failed run"):
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +32,18 @@ from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, read_jsonl
 GOALS_FILE = "goals.json"
 EXIT_CODES = {"completed": 0, "failed": 1, "interrupted": 130}
 _NOT_KEPT = ("failed",)
-__all__ = ["GOALS_FILE", "SNAPSHOTS", "build", "echo", "exit_code", "render"]
+__all__ = ["GOALS_FILE", "SNAPSHOTS", "build", "echo", "exit_code", "learned_file", "render",
+           "state_file"]
+
+
+def learned_file(run_dir: Path, agent: str) -> Path:
+    """Where the executive of ``agent`` writes its learned skills (program syntax)."""
+    return run_dir / f"learned-{agent}.tlp"
+
+
+def state_file(run_dir: Path, agent: str) -> Path:
+    """Where the executive of ``agent`` keeps its engine state across a restart."""
+    return run_dir / f"state-{agent}.json"
 
 
 def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
@@ -45,13 +57,16 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     spec = get_domain(domain)
     trace = read_jsonl(run_dir / TRACE)
     health = read_jsonl(run_dir / HEALTH)
-    final = _read_json(run_dir / WORLD_FINAL) or {}
+    final = _read_json(run_dir / WORLD_FINAL)
+    final = final if isinstance(final, dict) else {}
     cycles = len(trace)
     counters: dict[str, dict[str, int]] = trace[-1].get("counters", {}) if trace else {}
     elapsed = _elapsed(health)
-    raw = (_read_json(run_dir / GOALS_FILE) or {}).get("goals")
-    goals = [g for g in raw if isinstance(g, dict)] if isinstance(raw, list) else []
+    goals, incidents = _goals(run_dir / GOALS_FILE)
     totals = _totals(health)
+    memory: dict[str, Any] = {}
+    for line in trace:  # each change of an agent's memory, in order
+        memory.update(line.get("memory", {}))
     summary = {
         **base,
         "cycles": cycles,
@@ -67,12 +82,16 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "left_down": list(left_down),
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g.get("status") == "achieved"),
+        "goal_store_incidents": incidents,
+        "goals_lost": any(i.startswith("GOALS LOST") for i in incidents),
         "domain": domain,
         "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
                          for a, c in counters.items()},
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
+        "learned": _learned(run_dir),
+        "bodies": {a: b for a, m in sorted(memory.items()) if (b := bodies(m))},
         "trace": str(run_dir / TRACE),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
     }
@@ -115,6 +134,7 @@ def _failures(s: dict[str, Any], ended: str) -> list[str]:
     out += [f"goal {g.get('id')} {g.get('goal')} could not be kept: {g.get('status')}"
             + (f" ({g['note']})" if g.get("note") else "")
             for g in s["goals"] if g.get("status") in _NOT_KEPT]
+    out += [f"goal store: {i}" for i in s["goal_store_incidents"] if i.startswith("GOALS LOST")]
     if ended:
         out.append(ended)
     return out
@@ -160,13 +180,60 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
                    f"{r['replayed']} cycles replayed)")
     click.echo(f"  goals achieved: {summary['goals_achieved']} of {len(summary['goals'])}")
+    for incident in summary.get("goal_store_incidents", ()):
+        click.echo(f"  GOAL STORE: {incident}")
     for goal in summary["goals"]:
-        click.echo(f"    {goal.get('id')} {goal.get('agent')} {goal.get('goal')} "
-                   f"p{goal.get('priority')}: {goal.get('status')}")
+        fields = [str(goal.get(k, "?")) for k in ("id", "agent", "goal", "priority", "status")]
+        click.echo("    {} {} {} p{}: {}".format(*fields))
     for agent, laws in summary["law_violations"].items():
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+    for agent, learned in summary.get("learned", {}).items():
+        heads = learned["skills"]
+        click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
+                   + "".join(f"\n    {h}" for h in heads))
+    for agent, b in summary.get("bodies", {}).items():
+        _echo_bodies(agent, b)
+
+
+def bodies(memory: dict[str, Any]) -> dict[str, Any]:
+    """What an agent's SCS bodies did, from its memory (docs/bus.md, "Agent memory"): the
+    tally, each do-best alternative's record and discount factor, the threads still running
+    and the world model; {} for an agent without bodies."""
+    scs = memory.get("scs") if isinstance(memory, dict) else None
+    if not isinstance(scs, dict) or not (scs.get("tally") or scs.get("threads")):
+        return {}
+    return {"tally": scs.get("tally", {}),
+            "choices": scs.get("choices", []),
+            "threads": [{k: t.get(k) for k in ("goal_id", "goal", "skill_name", "status", "note")}
+                        for t in scs.get("threads", [])],
+            "model": memory.get("model", [])}
+
+
+def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
+    """Per agent: its learned-skills file and the head of each skill in it."""
+    from agents.lang.solving.learned import clause_heads
+
+    out = {}
+    for path in sorted(run_dir.glob("learned-*.tlp")):
+        agent = path.stem.removeprefix("learned-")
+        out[agent] = {"file": str(path), "skills": clause_heads(path.read_text())}
+    return out
+
+
+def _echo_bodies(agent: str, b: dict[str, Any]) -> None:
+    tally = ", ".join(f"{k} {v}" for k, v in sorted(b["tally"].items()))
+    click.echo(f"  {agent} SCS bodies: {tally or 'nothing done'}")
+    for c in b["choices"]:
+        click.echo(f"    do-best {c['label']}: chosen {c['chosen']}, succeeded "
+                   f"{c['succeeded']}, failed {c['failed']}, discount factor {c['factor']:.3f}")
+    for t in b["threads"]:
+        click.echo(f"    thread {t['goal_id']} {t['goal']} <- {t['skill_name']}: "
+                   f"{t['status']} ({t['note']})")
+    if b["model"]:
+        click.echo("    world model: " + " ".join("(" + " ".join(map(str, f)) + ")"
+                                             for f in b["model"]))
 
 
 def _pairs(d: dict[str, Any]) -> str:
@@ -186,9 +253,31 @@ def render(run_dir: Path, out: Path, agent: str) -> int:
     return domain_of(snaps[0]).render(snaps, out, agent)
 
 
-def _read_json(path: Path) -> dict[str, Any] | None:
+def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
+    """The goal records and recovery incidents of the goal store, whatever shape the file has:
+    only records that are objects are kept; a file that is not a goal store adds an incident
+    saying so (drill F2: a goal that was an integer crashed the summary)."""
+    doc = _read_json(path)
+    if doc is None:
+        return [], ([f"{path}: not readable as JSON"] if path.exists() else [])
+    goals = doc.get("goals", []) if isinstance(doc, dict) else None
+    if not isinstance(goals, list):
+        return [], [f"{path}: not a goal store (no list of goals)"]
+    keep = [g for g in goals if isinstance(g, dict)]
+    incidents = [str(i) for i in doc.get("incidents", [])] \
+        if isinstance(doc.get("incidents"), list) else []
+    if len(keep) != len(goals):
+        incidents.append(f"{path}: {len(goals) - len(keep)} goal record(s) are not objects")
+    return keep, incidents
+
+
+def _read_json(path: Path) -> Any:
+    """The JSON in `path`, or None when it is absent or not bounded JSON (any bytes)."""
+    from agents.lang import LangError
+    from agents.lang.limits import read_json
+
     try:
-        doc = json.loads(path.read_text())
-    except (OSError, ValueError):
+        text = path.read_bytes().decode("utf-8", errors="replace")
+        return read_json(text, str(path), max_chars=64 << 20, max_string=1 << 20)
+    except (OSError, LangError):
         return None
-    return doc if isinstance(doc, dict) else None

@@ -9,6 +9,10 @@ t through bus.clock.Clock, apply them (the world's safe action for an agent whos
 not arrive) and step the physics by dt. The files it keeps in DIR are described in
 world/recorder.py. `--resume` (the launcher restarting a world that died) first brings the
 simulation back to the cycle the run had reached (world/resume.py), then goes on from there.
+Each agent's memory (what its executive sends with its actions: world-model facts, SCS
+threads and discount factors) is kept and handed back in the next world state, so a restarted
+agent process loses none of it (docs/bus.md, "Agent memory"); the trace records each change
+of it, so a restarted world hands back the same.
 
 Exit status: 0 when the cycles are done or a signal stopped it; EXIT_CANNOT_RESUME when a
 restart cannot get back to the run's state, EXIT_NOT_READY when the stages did not all
@@ -77,7 +81,7 @@ def _begin(domain: Domain, scenario: Scenario, seed: int, out: Path, again: bool
     if again:
         return resume(domain, scenario.world_table, seed, agents, out)
     return Resumed(domain.create(scenario.world_table, seed, agents), 0,
-                   {a: [] for a in agents}, -1, 0)
+                   {a: [] for a in agents}, -1, 0, {a: {} for a in agents})
 
 
 def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
@@ -107,7 +111,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         node.announce()
-        outcomes = begun.outcomes
+        outcomes, memory = begun.outcomes, begun.memory
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
                              ready_timeout)
@@ -123,20 +127,22 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 snap = sim.snapshot_dict()
                 world_ms = (time.perf_counter() - w0) * 1e3
                 report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes,
-                                                       injected))
+                                                       injected, dict(memory)))
+                changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
+                memory.update(changed)  # an agent given the no-op keeps its last memory
                 w0 = time.perf_counter()
                 applied = {a: _actions_of(sim, a, acts, report.noop)
                            for a, acts in report.actions.items()}
                 outcomes = {a: sim.apply_actions(a, acts) for a, acts in applied.items()}
                 sim.step()
                 rec.cycle(t, snap, applied, injected, report,
-                          world_ms + (time.perf_counter() - w0) * 1e3)
+                          world_ms + (time.perf_counter() - w0) * 1e3, changed)
                 if saving and (t + 1) % CHECKPOINT_EVERY == 0:
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
         completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
-        rec.finish(completed, time.monotonic() - start, reason)
+        rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
              "complete" if completed else "early", reason)
     return completed

@@ -2,9 +2,9 @@
 
 trace.jsonl      one line per cycle run: the actions applied to each agent (its own, or the
                  world's safe action when they did not arrive), the counters, a digest of the
-                 state and the outcomes of injected events. Nothing that depends on timing,
-                 so two lockstep runs with one seed give the same file; it is also what a
-                 restarted world replays.
+                 state, the outcomes of injected events and each agent memory that changed.
+                 Nothing that depends on timing, so two lockstep runs with one seed give the
+                 same file; it is also what a restarted world replays.
 health.jsonl     what did depend on timing: every cycle that was not clean (agents given the
                  safe action, late, dead or stalled stages, re-sent states, how long it took),
                  each start of the world (and from which cycle it resumed), a progress line
@@ -128,13 +128,17 @@ class Recorder:
         self.health.write(json.dumps(line, sort_keys=True) + "\n")
 
     def cycle(self, t: int, snap: dict[str, Any], applied: dict[str, list],
-              injected: list[dict[str, Any]], report: CycleReport, world_ms: float) -> None:
-        """Record cycle `t`: its trace line, a health line if it was not clean, totals."""
+              injected: list[dict[str, Any]], report: CycleReport, world_ms: float,
+              memory: dict[str, Any] | None = None) -> None:
+        """Record cycle `t`: its trace line, a health line if it was not clean, totals.
+        `memory`: the agents whose memory changed this cycle, with the new one."""
         line: dict[str, Any] = {"cycle": t, "actions": {a: [list(x) for x in acts]
                                                         for a, acts in sorted(applied.items())},
                                 "counters": snap["counters"], "digest": digest(snap)}
         if injected:
             line["events"] = injected
+        if memory:
+            line["memory"] = memory
         self.trace.write(json.dumps(line, sort_keys=True) + "\n")
         if not report.clean or report.stalled or report.republished:
             self.event("cycle", cycle=t, noop=list(report.noop), late=list(report.late),
@@ -168,8 +172,10 @@ class Recorder:
                          "outcomes": outcomes}, f)
         os.replace(tmp, self.out / CHECKPOINT)
 
-    def finish(self, completed: bool, elapsed_s: float, reason: str) -> None:
-        """Close the files and write world-final.json (totals of the whole run)."""
+    def finish(self, completed: bool, elapsed_s: float, reason: str,
+               memory: dict[str, Any] | None = None) -> None:
+        """Close the files and write world-final.json (totals of the whole run, and each
+        agent's last memory)."""
         if self.last_snapshot is not None and self.last_written != self.cycles - 1:
             self._snapshot(self.cycles - 1, self.last_snapshot)
         self.event("end", cycle=self.cycles, completed=completed, reason=reason)
@@ -181,6 +187,7 @@ class Recorder:
             "counters": (self.last_snapshot or {}).get("counters", {}),
             "timing_ms": {"cycle": self.cycle_ms, "world": self.world_ms,
                           "stages": dict(self.stage_ms)},
+            "memory": memory or {},
         }
         tmp = self.out / (WORLD_FINAL + ".tmp")
         tmp.write_text(json.dumps(final, indent=1))

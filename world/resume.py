@@ -34,14 +34,16 @@ class CannotResume(WorldError):
 
 @dataclass
 class Resumed:
-    """A world ready to run cycle `cycle`, the outcomes to publish with it, and how it got
-    there (the checkpoint's cycle, or -1 for none, and the number of cycles replayed)."""
+    """A world ready to run cycle `cycle`, the outcomes and agent memories to publish with
+    it, and how it got there (the checkpoint's cycle, or -1 for none, and the number of
+    cycles replayed)."""
 
     world: World
     cycle: int
     outcomes: dict[str, list[dict[str, Any]]]
     checkpoint: int
     replayed: int
+    memory: dict[str, Any]
 
 
 def resume(domain: Domain, table: dict[str, Any], seed: int, agents: list[str],
@@ -51,7 +53,11 @@ def resume(domain: Domain, table: dict[str, Any], seed: int, agents: list[str],
     world, start, outcomes = _start(domain, table, seed, agents, out, len(lines))
     for line in lines[start:]:
         outcomes = _replay(world, line, agents)
-    return Resumed(world, len(lines), outcomes, start if start else -1, len(lines) - start)
+    memory: dict[str, Any] = {a: {} for a in agents}
+    for line in lines:
+        memory.update(line.get("memory", {}))
+    return Resumed(world, len(lines), outcomes, start if start else -1, len(lines) - start,
+                   memory)
 
 
 def _start(domain: Domain, table: dict[str, Any], seed: int, agents: list[str], out: Path,
