@@ -7,9 +7,10 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+import sys
 
 import pytest
-from e2e_helpers import TELEO, Teleo, wait_for
+from e2e_helpers import ROOT, TELEO, Teleo, wait_for
 from fault_helpers import (
     cycles,
     journal,
@@ -168,3 +169,15 @@ def test_a_lockstep_stall_is_reported_and_changes_nothing(teleo, reference):
     assert "stalls: 1 (ME.inference" in teleo.launch_output() or len(s["stalls"]) > 1
     assert trace(info) == reference
     assert [e["event"] for e in journal(info)][:1] == ["ready"]
+
+
+def test_the_launcher_drill_runs_as_a_user_would_run_it(tmp_path):
+    """bench/drills.py stays runnable: its launcher drill, on the small scenario."""
+    done = subprocess.run([sys.executable, "bench/drills.py", "launcher", "--scenario",
+                           str(scenario(tmp_path))], cwd=ROOT, capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    rows = [line for line in done.stdout.splitlines() if "drill=" in line]
+    assert [r.split("  ")[1] for r in rows] == ["drill=SIGKILL launcher",
+                                                "drill=SIGHUP launcher"]
+    assert all("left=0" in r and "all_gone_ms=None" not in r for r in rows)

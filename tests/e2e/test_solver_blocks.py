@@ -137,7 +137,9 @@ def test_an_impossible_goal_is_failed_with_its_reason_in_teleo_goal_list(teleo):
         assert "-- (on A A) cannot be achieved: every alternative failed ((stack A A): its " \
                "subgoal (stackable A A) cannot be achieved" in failed()
     finally:
-        assert interrupt(launcher) == 0, teleo.launch_output()
+        # a goal that could not be kept fails the run (docs/faults.md): exit 1, and says why
+        assert interrupt(launcher) == 1, teleo.launch_output()
+    assert "failed: goal g2 (on A A) could not be kept: failed" in teleo.launch_output()
 
 
 def test_an_executive_killed_mid_problem_keeps_its_goal_stack_and_skills(teleo, tmp_path):
