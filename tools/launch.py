@@ -140,6 +140,7 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
         raise PlanError(f"a secured run listens and connects on tls/ endpoints, got "
                         f"{join or listen!r}")
     run = run_id or f"{scenario.run.name}-{secrets.token_hex(3)}"
+    _check_run_id(run)
     local = select(scenario, only)
     run_dir = runfile.base_dir() / "runs" / run
     if join:
@@ -160,6 +161,16 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
                 else 60.0)
     check_secrets(plan)
     return plan
+
+
+def _check_run_id(run: str) -> None:
+    from bus.errors import KeyFormatError
+    from bus.keys import check_chunk
+
+    try:
+        check_chunk(run, "run id")
+    except KeyFormatError as exc:
+        raise PlanError(f"--run: {exc}") from exc
 
 
 def _echo_joined(plan: Plan, outcome: Outcome) -> None:
