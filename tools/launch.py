@@ -73,8 +73,12 @@ def _raise_interrupt(signum: int, frame: object) -> None:
               help="Write the summary JSON here.")
 @click.option("--render", "render_file", type=click.Path(dir_okay=False),
               help="Draw the run: a .png of the last state or a .gif of the run.")
+@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
+              help="Plot the run record (PNG): speed, goal timeline, stage times.")
+@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
-           summary_file: str | None, render_file: str | None) -> None:
+           summary_file: str | None, render_file: str | None, plot_file: str | None,
+           no_record: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     try:
         scenario, _ = load_checked(scenario_file)
@@ -88,7 +92,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     base = {"run": run, "scenario": str(scenario.path), "mode": mode, "seed": seed,
             "cycles_requested": cycles}
     signal.signal(signal.SIGTERM, _raise_interrupt)
-    restarts = _run(scenario, run, run_dir, cycles, seed, mode)
+    restarts = _run(scenario, run, run_dir, cycles, seed, mode, not no_record or bool(plot_file))
     result = summary.build(run_dir, base, restarts, scenario.domain)
     summary.echo(result)
     if summary_file:
@@ -99,19 +103,25 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
+    if plot_file:
+        from tools.plot import plot_command_output
+
+        click.echo(plot_command_output(run_dir, Path(plot_file)))
     if not result["completed"]:
         raise SystemExit(1)
 
 
 def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
-         mode: str) -> dict[str, int]:
+         mode: str, record: bool = True) -> dict[str, int]:
     """Start, supervise and stop the processes; returns restarts per process."""
     from bus.config import BusConfig
     from bus.router import spawn_router
+    from tools.recorder import start_run_recorder
 
     run_dir.mkdir(parents=True, exist_ok=True)
     router = spawn_router()
     cfg = BusConfig(connect=(router.endpoint,))
+    recorder = start_run_recorder(cfg, run, run_dir, scenario) if record else None
     sup = Supervisor(run_dir / "logs")
     info = runfile.RunInfo(run, router.endpoint, os.getpid(), tuple(scenario.agent_ids),
                            str(run_dir), str(scenario.path))
@@ -125,6 +135,8 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
         click.echo("interrupted: stopping the run")
     finally:
         sup.stop_all(stop_order(scenario))
+        if recorder is not None:
+            recorder.stop()
         router.stop()
         runfile.remove(info)
     return sup.restarts()

@@ -11,6 +11,8 @@ from typing import Any
 
 import click
 
+from tools import records
+
 WORLD_FINAL = "world-final.json"
 GOALS_FILE = "goals.json"
 SNAPSHOTS = "snapshots.jsonl"
@@ -27,6 +29,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     spec = get_domain(domain)
     final = _read_json(run_dir / WORLD_FINAL) or {}
     goals = (_read_json(run_dir / GOALS_FILE) or {}).get("goals", [])
+    goals = records.with_history(goals, run_dir)  # when each became active, achieved, ...
     counters: dict[str, dict[str, int]] = final.get("counters", {})
     elapsed = float(final.get("elapsed_s", 0.0))
     cycles = int(final.get("cycles", 0))
@@ -63,7 +66,7 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"  goals achieved: {summary['goals_achieved']} of {len(summary['goals'])}")
     for goal in summary["goals"]:
         click.echo(f"    {goal['id']} {goal['agent']} {goal['goal']} p{goal['priority']}: "
-                   f"{goal['status']}")
+                   f"{goal['status']}{records.history_text(goal.get('history', []))}")
     for agent, laws in summary["law_violations"].items():
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
