@@ -158,7 +158,8 @@ def locate(run: str | Path) -> Path:
     """The record of RUN: an .mcap file, a run folder holding record.mcap, or a run id under
     the runs folder ($TELEO_RUN_DIR/runs, default out/runs). Raises RecordError."""
     path = Path(run)
-    candidates = [path, path / RECORD_FILE, runfile.base_dir() / "runs" / str(run) / RECORD_FILE]
+    candidates = list(dict.fromkeys([path, path / RECORD_FILE,
+                                     runfile.base_dir() / "runs" / str(run) / RECORD_FILE]))
     for c in candidates:
         if c.is_file():
             return c
@@ -167,8 +168,8 @@ def locate(run: str | Path) -> Path:
         if runs.is_dir() else []
     hint = f"; runs with a record in {runs}: {', '.join(known[-5:])}" if known else \
         f"; no run in {runs} has a record"
-    raise RecordError(f"{run}: no run record here (looked for {candidates[0]}, "
-                      f"{candidates[1]}, {candidates[2]}){hint}")
+    raise RecordError(f"{run}: no run record here (looked for "
+                      f"{', '.join(str(c) for c in candidates)}){hint}")
 
 
 class RunRecord:
