@@ -112,7 +112,7 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
     end = None if seconds is None else time.monotonic() + seconds
     while not stop.wait(0.05):
         if (end is not None and time.monotonic() >= end) or \
-                (count is not None and recorder.writer.messages >= count):
+                (count is not None and recorder.received >= count):
             break
     writer = recorder.stop()
     click.echo(f"recorded {writer.messages} messages ({writer.cycles} cycles) of run {run_id} "

@@ -46,6 +46,7 @@ class BusRecorder:
                  process: str = "record") -> None:
         self.cfg, self.run, self.process = cfg, run, process
         self.writer = RecordWriter(path, run, meta)
+        self.received = 0
         self.dropped = 0
         self.error: BaseException | None = None
         self._ready = threading.Event()
@@ -95,6 +96,7 @@ class BusRecorder:
                         return
                 continue
             quiet_since = None
+            self.received += 1
             try:
                 self.writer.add(item.key, to_record(item.key, item.payload))
             except (CodecError, KeyError, TypeError, ValueError) as exc:

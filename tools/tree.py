@@ -129,10 +129,10 @@ def _field(name: str, value: Any) -> Node:
                                                 else value)):
         return Node("field", name, children=_fields(value))
     if isinstance(value, dict):
-        return Node("field", f"{name}: " + ", ".join(f"{k}={_atom(v)}" for k, v in
-                                                     value.items()))
+        return Node("field", f"{name}: " + (", ".join(f"{k}={_atom(v)}" for k, v in
+                                                      value.items()) or "(none)"))
     if isinstance(value, list):
-        return Node("field", f"{name}: " + ", ".join(_atom(v) for v in value))
+        return Node("field", f"{name}: " + (", ".join(_atom(v) for v in value) or "(none)"))
     return Node("field", f"{name}: {_atom(value)}")
 
 
