@@ -74,6 +74,7 @@ class Domain:
 _MODULES = {
     "driving": "world.driving",
     "blocks": "world.blocks",
+    "office": "world.office",
 }
 DOMAINS: tuple[str, ...] = tuple(_MODULES)
 DEFAULT_DOMAIN = "driving"
