@@ -1,8 +1,8 @@
 """`teleo plot RUN`: a run record drawn as one PNG, over world time [s]:
 
 1. what the domain has to show: driving, each agent's speed and the limit it perceives;
-   blocks, each block's height; any other domain, nothing here;
-2. the domain's counters (violations and work done) as they grow;
+   blocks, each block's height; office, how far each robot has gone; others, nothing here;
+2. the domain's counters of violations and of work done (world/domain.py) as they grow;
 3. each agent's goals as a timeline, coloured by status;
 4. the compute time of every stage per cycle [ms] (a rolling mean), stacked.
 
@@ -70,17 +70,36 @@ def _blocks(ax: Any, s: Series) -> bool:
     return bool(heights)
 
 
+def _office(ax: Any, s: Series) -> bool:
+    travel: dict[str, list[tuple[int, float]]] = defaultdict(list)
+    for c in s.cycles:
+        for agent, counts in s.snapshots[c].get("counters", {}).items():
+            if "travel_cm" in counts:
+                travel[agent].append((c, counts["travel_cm"] / 100.0))
+    for agent, rows in sorted(travel.items()):
+        ax.plot(s.t([c for c, _ in rows]), [m for _, m in rows], label=f"{agent} travelled")
+    ax.set_ylabel("distance [m]")
+    return bool(travel)
+
+
 DOMAIN_PANELS = {"driving": (_driving, "speed and the perceived limit"),
-                 "blocks": (_blocks, "block heights")}
+                 "blocks": (_blocks, "block heights"),
+                 "office": (_office, "distance each robot has travelled")}
 """domain -> draws its own panel (returns False when it had nothing to draw)."""
 
 
 def _counters(ax: Any, s: Series) -> bool:
+    """The domain's law violations and work done (world/domain.py), as they grow."""
+    from world.domain import DOMAINS, get_domain
+
+    spec = get_domain(s.domain) if s.domain in DOMAINS else None
+    wanted = set(spec.violations + spec.achievements) if spec else None
     rows: dict[str, list[tuple[int, int]]] = defaultdict(list)
     for c in s.cycles:
         for agent, counts in s.snapshots[c].get("counters", {}).items():
             for name, n in counts.items():
-                rows[f"{agent} {name}"].append((c, int(n)))
+                if wanted is None or name in wanted:
+                    rows[f"{agent} {name}"].append((c, int(n)))
     shown = {k: v for k, v in rows.items() if any(n for _, n in v)}
     for label, pts in sorted(shown.items()):
         ax.step(s.t([c for c, _ in pts]), [n for _, n in pts], where="post", label=label)
@@ -150,7 +169,7 @@ def plot_record(path: Path, out: Path) -> Path:
     if not s.cycles:
         raise RecordError(f"{path}: no world state recorded: nothing to plot")
     panels = [DOMAIN_PANELS[s.domain]] if s.domain in DOMAIN_PANELS else []
-    panels += [(_counters, "counters"), (_goals, "goal statuses"),
+    panels += [(_counters, "violations and work done"), (_goals, "goal statuses"),
                (_stages, "stage compute time per cycle")]
     n_goals = sum(len({g["id"] for r in i.values() for g in r["decision"].get("goals", ())})
                   for i in s.intentions.values())

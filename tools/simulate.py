@@ -148,7 +148,7 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
     if plot:
         from tools.plot import plot_record
 
-        plot_record(recorder.writer.path, plot)
+        click.echo(f"plot written to {plot_record(recorder.writer.path, plot)}", err=True)
     if trace:
         trace.parent.mkdir(parents=True, exist_ok=True)
         trace.write_text("".join(json.dumps(r) + "\n" for r in run.records))

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from tools.records import RecordWriter, RunRecord
 from tools.recorder import SimRecorder
+from tools.records import RecordWriter, RunRecord
 from tools.scenario_check import load_checked
 from tools.simulate import simulate
 from tools.tree import decision_tree, to_json
@@ -130,3 +130,15 @@ def test_a_model_follows_one_run_only(record):
     model = ViewModel(run="someone-else")
     load_file(model, record)
     assert model.frame() is None and model.status(0)["last"] is None
+
+
+def test_the_office_floor_is_the_domains_own_picture(tmp_path) -> None:
+    scenario, _ = load_checked(ROOT / "scenarios" / "office_errand.toml")
+    path = tmp_path / "office.mcap"
+    with RecordWriter(path, "office-1") as writer:
+        simulate(scenario, cycles=12, recorder=SimRecorder(writer, "office-1"))
+    model = ViewModel()
+    load_file(model, path)
+    assert model.map["domain"] == "office" and not model.map["drawn"]
+    assert "config" not in model.frame(11)["world"]
+    assert scene.render_png(model.snapshots_for_render(11), "ME")[:4] == b"\x89PNG"

@@ -12,7 +12,7 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-STATIC_KEYS = {"driving": ("config",), "blocks": ("table", "resolution")}
+STATIC_KEYS = {"driving": ("config",), "blocks": ("table", "resolution"), "office": ("config",)}
 """Snapshot keys that stay the same for a whole run: sent in the map, not in every frame."""
 
 DRAWN = frozenset({"driving", "blocks"})
