@@ -16,7 +16,7 @@ from typing import Any
 import click
 
 from tools.records import RecordError, RunRecord, locate
-from tools.tree import decision_tree, render_text, to_json
+from tools.tree import decision_tree, fold, render_text, to_json
 
 PROGRAM_GOAL = re.compile(r"p\d+")  # the engine's ids of program goals (Engine.initial_state)
 
@@ -117,9 +117,11 @@ def _history_text(rec: RunRecord, agent: str, goal_id: str, changes: list[dict])
 @click.option("--goal", "goal_id", default=None, help="Show this goal's history instead.")
 @click.option("--percepts", "percepts", is_flag=True,
               help="Print the cycle's percepts as a file `teleo step --percepts` reads.")
+@click.option("--brief", is_flag=True,
+              help="Fold the skills passed over for goals that do not act into one line.")
 @click.option("--json", "as_json", is_flag=True, help="One JSON object, for scripts.")
 def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
-            percepts: bool, as_json: bool) -> None:
+            percepts: bool, brief: bool, as_json: bool) -> None:
     """Explain a recorded decision: goals with statuses, the skill path with bindings, the
     skills passed over and why (RUN: a run folder, a run id or an .mcap file)."""
     if goal_id is not None and (cycle is not None or percepts):
@@ -144,6 +146,7 @@ def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
     cycle, intention = _of_cycle(rec, "intention", agent, cycle)
     tree = decision_tree(intention["decision"], f"goals of {agent} at cycle {cycle} "
                                                 f"(run {rec.run})")
+    tree = fold(tree) if brief else tree
     if as_json:
         click.echo(json.dumps({"run": rec.run, "agent": agent, "cycle": cycle,
                                "decision": intention["decision"], "tree": to_json(tree)},

@@ -33,6 +33,7 @@ from tools.records import RECORD_FILE, RecordWriter
 
 log = logging.getLogger(__name__)
 NICE = 10  # the recording thread yields the CPU to the run's processes (it catches up later)
+RECORDER_META = "teleo.recorder"
 
 
 class BusRecorder:
@@ -48,6 +49,7 @@ class BusRecorder:
         self.writer = RecordWriter(path, run, meta)
         self.received = 0
         self.dropped = 0
+        self.cpu_s = 0.0
         self.error: BaseException | None = None
         self._ready = threading.Event()
         self._stop = threading.Event()
@@ -62,12 +64,16 @@ class BusRecorder:
         return self
 
     def stop(self, quiet_s: float = 0.3, timeout: float = 30.0) -> RecordWriter:
-        """Finish: drain until quiet, close the record; returns the writer (its counts)."""
+        """Finish: drain until quiet, close the record (with this recorder's own costs in
+        its metadata `teleo.recorder`); returns the writer (its counts)."""
         self._quiet_s = quiet_s
         self._stop.set()
         self._thread.join(timeout)
         if self._thread.is_alive():
             log.warning("recorder of run %s still draining after %.0f s", self.run, timeout)
+        self.writer.meta(RECORDER_META, {"received": str(self.received),
+                                         "dropped": str(self.dropped),
+                                         "cpu_ms": f"{self.cpu_s * 1e3:.1f}"})
         self.writer.close()
         return self.writer
 
@@ -80,6 +86,7 @@ class BusRecorder:
                     node.announce()
                 self._ready.set()
                 self._pump(inbox)
+                self.cpu_s = time.thread_time()  # this thread's CPU time [s]
         except Exception as exc:  # reported by start()/the launcher, never a silent stop
             self.error = exc
             self._ready.set()

@@ -22,6 +22,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import orjson
 from mcap.exceptions import McapError
 from mcap.reader import make_reader
 from mcap.well_known import MessageEncoding, SchemaEncoding
@@ -80,6 +81,7 @@ class RecordWriter:
         self._times: dict[int, int] = {}  # cycle -> world time [ns]
         self._pending: dict[int, list[tuple[str, dict[str, Any], int]]] = defaultdict(list)
         self.history = GoalHistory()
+        self._extra_meta: dict[str, dict[str, str]] = {}
         self.messages = 0
         self.cycles = 0
         self._closed = False
@@ -102,10 +104,16 @@ class RecordWriter:
                 self._write(k, r, self._times[cycle], s)
             if len(self._times) > _KEEP_TIMES:
                 del self._times[min(self._times)]
-        elif cycle in self._times or cycle < 0:
-            self._write(key, record, self._times.get(cycle, self._latest()), sent)
+        elif cycle in self._times:
+            self._write(key, record, self._times[cycle], sent)
+        elif cycle < 0:
+            self._write(key, record, self._latest(), sent)
         else:
             self._pending[cycle].append((key, record, sent))
+
+    def meta(self, name: str, data: dict[str, str]) -> None:
+        """Add a metadata record (written when the record closes)."""
+        self._extra_meta[name] = dict(data)
 
     def _latest(self) -> int:
         return self._times[max(self._times)] if self._times else 0
@@ -128,7 +136,7 @@ class RecordWriter:
         if record["kind"] == "Intention":
             self.history.feed(record)
         self._mcap.add_message(channel_id=channel, log_time=max(0, log_ns),
-                               data=json.dumps(record, separators=(",", ":")).encode(),
+                               data=orjson.dumps(record),
                                publish_time=max(0, sent_ns))
         self.messages += 1
 
@@ -150,6 +158,8 @@ class RecordWriter:
         self._pending.clear()
         self._mcap.add_metadata(RUN_META, {**self._meta, "cycles": str(self.cycles)})
         self._mcap.add_metadata(GOALS_META, self.history.to_meta())
+        for name, data in self._extra_meta.items():
+            self._mcap.add_metadata(name, data)
         self._mcap.finish()
         self._file.close()
 
@@ -195,9 +205,9 @@ class RunRecord:
         if self._records is None:
             try:
                 with self.path.open("rb") as f:
-                    self._records = [(ch.topic, json.loads(msg.data)) for _, ch, msg in
+                    self._records = [(ch.topic, orjson.loads(msg.data)) for _, ch, msg in
                                      make_reader(f).iter_messages(log_time_order=True)]
-            except (McapError, OSError, ValueError) as exc:
+            except (McapError, OSError, ValueError, orjson.JSONDecodeError) as exc:
                 raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
         return self._records
 

@@ -153,6 +153,20 @@ def bindings_text(bindings: tuple) -> str:
     return "{" + ", ".join(f"?{k}={_atom(v)}" for k, v in bindings) + "}"
 
 
+def fold(node: Node) -> Node:
+    """The tree with the skills passed over for goals that do not act folded into one line
+    ("... 6 skills passed over"), as py_trees folds the branches it did not visit."""
+    children = tuple(fold(c) for c in node.children)
+    if node.kind == "goal" and node.status != "active":
+        passed = [c for c in children if c.kind == "passed"]
+        if passed:
+            rest = tuple(c for c in children if c.kind != "passed")
+            many = "s" if len(passed) > 1 else ""
+            children = rest + (Node("passed", f"... {len(passed)} skill{many} passed over"),)
+    return Node(node.kind, node.label, node.status, node.bindings, node.where, node.note,
+                node.tip, children)
+
+
 # -- back ends -------------------------------------------------------------------------------
 def walk(node: Node, symbols: dict[str, str] = ASCII, prefix: str = "",
          last: bool = True, root: bool = True) -> Iterator[tuple[str, Node]]:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from tools.tree import UNICODE, decision_tree, render_text, to_json
+from tools.tree import UNICODE, decision_tree, fold, render_text, to_json
 
 GOLDEN = Path(__file__).with_name("golden")
 CASES = sorted(p.stem for p in GOLDEN.glob("*.json") if p.suffixes == [".json"])
@@ -41,6 +41,12 @@ def test_the_json_nodes_match_the_golden_file(case: str) -> None:
     decision = json.loads((GOLDEN / f"{case}.json").read_text())
     _check(GOLDEN / f"{case}.tree.json", json.dumps(to_json(decision_tree(decision)),
                                                     indent=1) + "\n")
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_brief_rendering_folds_what_goals_that_do_not_act_passed_over(case: str) -> None:
+    decision = json.loads((GOLDEN / f"{case}.json").read_text())
+    _check(GOLDEN / f"{case}.brief.txt", render_text(fold(decision_tree(decision))) + "\n")
 
 
 def test_the_golden_cases_are_all_there() -> None:
