@@ -141,7 +141,8 @@ def _pairs(bindings: Any) -> tuple:
 
 
 def _atom(v: Any) -> str:
-    return repr(v) if isinstance(v, float) else str(v)
+    """A value as people read it: floats to 4 decimals (the JSON keeps them exact)."""
+    return repr(round(v, 4)) if isinstance(v, float) else str(v)
 
 
 def _action(a: list[Any]) -> str:

@@ -59,8 +59,9 @@ def test_every_goal_and_action_of_the_decision_is_in_the_tree() -> None:
         text = render_text(decision_tree(decision))
         for goal in decision["goals"]:
             assert f"{goal['id']} {goal['status']}: {goal['goal']}" in text
-        for action in decision["actions"]:
-            assert "(" + " ".join(str(x) for x in action) + ")" in text
+        for action in decision["actions"]:  # numbers shown to 4 decimals
+            shown = (repr(round(x, 4)) if isinstance(x, float) else str(x) for x in action)
+            assert "(" + " ".join(shown) + ")" in text
         assert text.count("<- ") == len(decision["path"]) + len(decision["why"]) + sum(
             len(p["path"]) for p in decision["parallel"])
 

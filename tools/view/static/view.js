@@ -33,8 +33,21 @@ function treeNode(node) {
   if (node.where) li.append(" ", el("span", "where", `(${node.where})`));
   if (node.note) li.append(" ", el("span", "note", (node.kind === "passed" ? ": " : "-- ") + node.note));
   if (node.children.length) {
+    // skills passed over by a goal that does not act are folded (click to open)
+    const fold = node.kind === "goal" && node.status !== "active";
+    const passed = node.children.filter((c) => fold && c.kind === "passed");
     const ul = el("ul");
-    node.children.forEach((c) => ul.append(treeNode(c)));
+    node.children.filter((c) => !passed.includes(c)).forEach((c) => ul.append(treeNode(c)));
+    if (passed.length) {
+      const details = el("details", "passed");
+      details.append(el("summary", "", `${passed.length} skill${passed.length > 1 ? "s" : ""} passed over`));
+      const inner = el("ul");
+      passed.forEach((c) => inner.append(treeNode(c)));
+      details.append(inner);
+      const item = el("li");
+      item.append(details);
+      ul.append(item);
+    }
     li.append(ul);
   }
   return li;
