@@ -111,12 +111,20 @@ class BusRecorder:
                 log.warning("not recorded: %s", exc)
 
 
-def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path, scenario: Any) -> BusRecorder:
+def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
+                       scenario: Any) -> BusRecorder | None:
     """The launcher's recorder of `run`, subscribed before any process starts (so the
-    record holds cycle 0), writing run_dir/record.mcap."""
+    record holds cycle 0), writing run_dir/record.mcap; None (said on the log) when it
+    cannot subscribe: the run goes on unrecorded."""
     meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain}
     client = BusConfig(mode="client", connect=cfg.connect, listen=())
-    return BusRecorder(client, run, run_dir / RECORD_FILE, meta, process="launch.record").start()
+    recorder = BusRecorder(client, run, run_dir / RECORD_FILE, meta, process="launch.record")
+    try:
+        return recorder.start()
+    except BusError as exc:
+        log.error("run %s is not recorded: %s", run, exc)
+        recorder.writer.close()
+        return None
 
 
 def _lower_priority() -> None:

@@ -24,7 +24,7 @@ from typing import Any
 
 import orjson
 from mcap.exceptions import McapError
-from mcap.reader import make_reader
+from mcap.reader import NonSeekingReader, make_reader
 from mcap.well_known import MessageEncoding, SchemaEncoding
 from mcap.writer import CompressionType, Writer
 
@@ -34,6 +34,7 @@ from tools import runfile
 
 log = logging.getLogger(__name__)
 RECORD_FILE = "record.mcap"
+MCAP_MAGIC = b"\x89MCAP0\r\n"
 RUN_META = "teleo.run"
 GOALS_META = "teleo.goals"
 _KEEP_TIMES = 4096  # cycles whose world time is remembered (a forever run must not grow)
@@ -189,11 +190,18 @@ class RunRecord:
         self.path = Path(path)
         self._records: list[tuple[str, dict[str, Any]]] | None = None
         self.meta: dict[str, dict[str, str]] = {}
+        self.truncated = False  # never closed (its writer was killed): read as far as it goes
         try:
             with self.path.open("rb") as f:
-                reader = make_reader(f)
-                self.meta = {m.name: dict(m.metadata) for m in reader.iter_metadata()}
-        except (McapError, OSError, ValueError) as exc:
+                if f.read(len(MCAP_MAGIC)) != MCAP_MAGIC:
+                    raise RecordError(f"{self.path}: not a readable run record (not MCAP)")
+                f.seek(0)
+                self.meta = {m.name: dict(m.metadata) for m in make_reader(f).iter_metadata()}
+        except (McapError, ValueError) as exc:
+            self.truncated = True
+            log.warning("%s: no summary section (%s); reading it as far as it goes",
+                        self.path, exc)
+        except OSError as exc:
             raise RecordError(f"{self.path}: not a readable run record ({exc})") from exc
 
     @property
@@ -203,11 +211,16 @@ class RunRecord:
     def records(self) -> list[tuple[str, dict[str, Any]]]:
         """Every (key, record) in log-time order (within a cycle, in the order written)."""
         if self._records is None:
+            self._records = []
             try:
                 with self.path.open("rb") as f:
-                    self._records = [(ch.topic, orjson.loads(msg.data)) for _, ch, msg in
-                                     make_reader(f).iter_messages(log_time_order=True)]
-            except (McapError, OSError, ValueError, orjson.JSONDecodeError) as exc:
+                    reader = NonSeekingReader(f) if self.truncated else make_reader(f)
+                    for _, ch, msg in reader.iter_messages(log_time_order=not self.truncated):
+                        self._records.append((ch.topic, orjson.loads(msg.data)))
+            except (McapError, ValueError, orjson.JSONDecodeError) as exc:
+                if not self.truncated:
+                    raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
+            except OSError as exc:
                 raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
         return self._records
 

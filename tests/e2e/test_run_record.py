@@ -8,17 +8,20 @@ from __future__ import annotations
 import json
 import re
 import shlex
+import subprocess
 import threading
+import urllib.request
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from e2e_helpers import ROOT, Teleo, wait_for
+from e2e_helpers import ROOT, TELEO, Teleo, wait_for
 from mcap.reader import make_reader
 
 from bus import keys
 from bus.config import BusConfig
 from bus.node import open_node
+from bus.router import spawn_router
 from tools.cli import cli
 from tools.records import RunRecord
 from tools.tree import decision_tree, to_json
@@ -142,7 +145,7 @@ def test_the_percepts_of_a_cycle_replay_its_decision_in_teleo_step(demo, tmp_pat
     _, _, path, _ = demo
     recorded = RunRecord(path).by_cycle("intention", "ME")
     runner = CliRunner()
-    for cycle in range(0, CYCLES, 65):
+    for cycle in range(0, CYCLES, 130):
         shown = runner.invoke(cli, ["explain", str(path), "--percepts", "--cycle", str(cycle)])
         assert shown.exit_code == 0, shown.output
         percepts = tmp_path / f"percepts-{cycle}.txt"
@@ -167,3 +170,39 @@ def test_the_plots_are_pictures(demo, tmp_path):
 
     with Image.open(tmp_path / "again.png") as img:
         assert img.width >= 800 and img.height >= 800
+
+
+def test_a_record_its_writer_never_closed_is_read_as_far_as_it_goes(demo, tmp_path):
+    _, _, path, _ = demo
+    cut = tmp_path / "killed.mcap"
+    data = path.read_bytes()
+    cut.write_bytes(data[:len(data) * 4 // 5])  # no summary, the last chunk cut short
+    rec = RunRecord(cut)
+    cycles = sorted(rec.by_cycle("intention", "ME"))
+    assert rec.truncated and cycles == list(range(len(cycles))) and len(cycles) > 100
+
+
+def test_a_replayed_record_shows_in_the_view(demo, tmp_path):
+    _, summary, path, _ = demo
+    teleo = Teleo(tmp_path)  # no launch here: the router is named with --connect
+    with spawn_router() as router:
+        viewer = subprocess.Popen([*TELEO, "view", "--connect", router.endpoint, "--port", "0"],
+                                  cwd=ROOT, env=teleo.env, stdout=subprocess.PIPE, text=True)
+        try:
+            url = viewer.stdout.readline().split(" at ")[1].split()[0]
+            played = teleo("replay", str(path), "--connect", router.endpoint, "--speed", "0",
+                           "--wait", "30", timeout=300)
+            assert played.returncode == 0, played.stderr
+            assert f"replayed {CYCLES * 10} messages of run {summary['run']} to router " \
+                   f"{router.endpoint}" in played.stderr
+
+            def status() -> dict:
+                return json.loads(urllib.request.urlopen(url + "api/status", timeout=30).read())
+            assert wait_for(lambda: status()["last"] == CYCLES - 1, 60), status()
+            assert status()["run"] == summary["run"]
+            frame = json.loads(urllib.request.urlopen(url + "api/frame?cycle=300").read())
+            recorded = RunRecord(path).by_cycle("intention", "ME")[300]["decision"]
+            assert frame["agents"]["ME"]["goals"] == recorded["goals"]
+        finally:
+            viewer.terminate()
+            viewer.wait(30)

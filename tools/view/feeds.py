@@ -64,7 +64,7 @@ class BusFeed:
                     self._pump(inbox, 0.2)
                     if presence is None and self.model.run:
                         presence = Presence(node.session, self.model.run)
-                    if presence is not None:
+                    if presence is not None and presence.incarnations():  # a replay has none
                         self.model.set_presence(presence.snapshot(), presence.incarnations())
         except BusError as exc:
             self.error = str(exc)
