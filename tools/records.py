@@ -269,7 +269,7 @@ def with_history(goals: list[dict[str, Any]], run_dir: Path) -> list[dict[str, A
         history = {}
     return [{**g, "history": [{"cycle": c["cycle"], "status": USER_STATUS.get(c["status"],
                                                                                c["status"])}
-                              for c in history.get(g.get("agent", ""), {}).get(g["id"], [])]}
+                              for c in history.get(g.get("agent"), {}).get(g.get("id"), [])]}
             for g in goals]
 
 

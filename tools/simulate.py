@@ -17,7 +17,9 @@ from typing import Any
 
 import click
 
-from agents.lang import Engine, EngineState, load_program
+from agents.lang import Engine, EngineState, LangError, load_program
+from agents.lang.loader import read_text
+from agents.lang.solving.learned import clause_heads, learned_text, read_learned
 from tools.scenario_check import load_checked
 from world.domain import get_domain
 from world.run_scenario import Scenario, ScenarioError
@@ -26,11 +28,13 @@ from world.run_scenario import Scenario, ScenarioError
 @dataclass
 class SimRun:
     """The outcome of an in-process run: per-cycle records, the kept snapshots and the final
-    one (snapshot dicts of the scenario's domain, world/domain.py)."""
+    one (snapshot dicts of the scenario's domain, world/domain.py), and each agent's learned
+    skills at the end (EngineState.learned: the ones it started from, then the new ones)."""
 
     records: list[dict[str, Any]] = field(default_factory=list)
     snapshots: list[dict[str, Any]] = field(default_factory=list)
     final: dict[str, Any] = field(default_factory=dict)
+    learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
 
 def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
@@ -66,7 +70,7 @@ def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str
     t0 = time.perf_counter()
     percepts = domain.perceive(snap, agent)
     t1 = time.perf_counter()
-    beliefs = engine.infer(percepts)
+    beliefs = engine.infer(percepts, state.scs.model)  # as Engine.cycle does
     t2 = time.perf_counter()
     decision, state = engine.decide(state, percepts, beliefs, outcomes)
     t3 = time.perf_counter()
@@ -76,14 +80,20 @@ def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str
 
 
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
-             keep_every: int = 0, recorder: Any = None) -> SimRun:
+             keep_every: int = 0, learned: Path | None = None, recorder: Any = None) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
-    `recorder` (a tools.recorder.SimRecorder) gets every cycle's messages."""
+    every agent starts from the skills in the learned file `learned` (raises LangError with
+    file:line:col if it does not fit an agent's program); `recorder` (a
+    tools.recorder.SimRecorder) gets every cycle's messages."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
-    engines = {a.id: Engine(load_program(a.program)) for a in scenario.agents}
-    states = {a: engines[a].initial_state() for a in agents}
+    programs = {a.id: load_program(a.program) for a in scenario.agents}
+    engines = {a.id: Engine(programs[a.id], solver="means-ends" if a.solver else None)
+               for a in scenario.agents}
+    text = read_text(learned) if learned else ""
+    states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
+                                          if learned else ()) for a in agents}
     run = SimRun()
     outcomes: dict[str, list[dict[str, Any]]] = {}
     total = scenario.run.cycles if cycles is None else cycles
@@ -107,6 +117,9 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             world_ms += (time.perf_counter() - w0) * 1e3
             record[a] = {"actions": actions,
                          "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
+            solver = seen.decision.section("solver")
+            if solver is not None:
+                record[a]["solver"] = solver.to_dict()
             if recorder is not None:
                 recorder.agent(cycle, a, seen)
         run.records.append(record)
@@ -115,7 +128,21 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         if recorder is not None:
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
     run.final = sim.snapshot_dict()
+    run.learned = {a: states[a].learned for a in agents}
     return run
+
+
+def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
+    """Write each agent's learned skills to `out` (one agent) or `out` with `-AGENT` before
+    its suffix (several agents); returns the files written."""
+    written = []
+    for a in scenario.agents:
+        path = out if len(scenario.agents) == 1 else out.with_name(f"{out.stem}-{a.id}"
+                                                                  f"{out.suffix}")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(learned_text(run.learned[a.id], str(a.program)))
+        written.append(path)
+    return written
 
 
 @click.command("simulate")
@@ -126,22 +153,27 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
               help="Write one JSON line per cycle (actions and goal statuses) to this file.")
 @click.option("--render", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Write a picture of the run (.png: the last cycle, .gif: the whole run).")
+@click.option("--learned", type=click.Path(exists=True, dir_okay=False, path_type=Path),
+              default=None, help="Start every agent from the skills in this learned file.")
+@click.option("--learned-out", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Write the learned skills (those started from, then the new ones) here.")
 @click.option("--plot", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Write plots of the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
-                     render: Path | None, plot: Path | None, no_record: bool) -> None:
+                     render: Path | None, learned: Path | None, learned_out: Path | None,
+                     plot: Path | None, no_record: bool) -> None:
     """Run SCENARIO in one process, without the bus (for writing and debugging programs)."""
     from tools.recorder import SimRecorder
 
+    recorder = None
     try:
         sc, _ = load_checked(scenario)
-    except ScenarioError as exc:
-        raise click.ClickException(str(exc)) from exc
-    recorder = None if no_record and not plot else SimRecorder.create(sc)
-    try:
+        recorder = None if no_record and not plot else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
-                       recorder=recorder)
+                       learned=learned, recorder=recorder)
+    except (ScenarioError, LangError) as exc:
+        raise click.ClickException(str(exc)) from exc
     finally:
         if recorder is not None:
             recorder.writer.close()
@@ -149,6 +181,8 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
         from tools.plot import plot_record
 
         click.echo(f"plot written to {plot_record(recorder.writer.path, plot)}", err=True)
+    if learned_out:
+        write_learned(run, sc, learned_out)
     if trace:
         trace.parent.mkdir(parents=True, exist_ok=True)
         trace.write_text("".join(json.dumps(r) + "\n" for r in run.records))
@@ -159,6 +193,8 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
     click.echo(json.dumps({"cycles": len(run.records), "time": run.final.get("time"),
                            "counters": run.final.get("counters", {}),
                            "goals": {a: last.get(a, {}).get("goals", []) for a in sc.agent_ids},
+                           "learned": {a: clause_heads("\n".join(run.learned[a]))
+                                       for a in sc.agent_ids},
                            "record": str(recorder.writer.path) if recorder else None}))
 
 
