@@ -50,6 +50,7 @@ class BusRecorder:
         self.received = 0
         self.dropped = 0
         self.cpu_s = 0.0
+        self._announce, self._quiet_s = False, 0.3
         self.error: BaseException | None = None
         self._ready = threading.Event()
         self._stop = threading.Event()

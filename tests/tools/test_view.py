@@ -87,6 +87,9 @@ def test_frames_hold_the_world_and_each_agents_decision_tree(served, record):
     assert newest["cycle"] == 29
     with pytest.raises(urllib.error.HTTPError, match="404"):
         _get(url + "api/frame?cycle=999")
+    for bad in ("api/frame?cycle=x", "api/render.png?cycle=x"):
+        with pytest.raises(urllib.error.HTTPError, match="400"):
+            _get(url + bad)
 
 
 def test_the_map_and_status(served):

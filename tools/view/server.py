@@ -86,8 +86,12 @@ class _Handler(BaseHTTPRequestHandler):
         self._json(frame)
 
     def _render(self, model: ViewModel, cycle: str | None) -> None:
-        newest = model.newest()
-        snaps = model.snapshots_for_render(int(cycle) if cycle else (newest or 0))
+        try:
+            shown = int(cycle) if cycle else (model.newest() or 0)
+        except ValueError:
+            return self._send(HTTPStatus.BAD_REQUEST, b"cycle: expected an integer\n",
+                              "text/plain")
+        snaps = model.snapshots_for_render(shown)
         if not snaps:
             return self._send(HTTPStatus.NOT_FOUND, b"no snapshot yet\n", "text/plain")
         agent = next(iter(sorted(model.agents)), None)
