@@ -77,10 +77,14 @@ def _catch_signals() -> None:
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
               help="Start every agent from the skills learned in an earlier run (its "
                    "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
+@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
+              help="Plot the run record (PNG): speed, goal timeline, stage times.")
+@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
            summary_file: str | None, render_file: str | None, secure: bool,
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
-           run_id: str | None, secrets_dir: str | None, learned: str | None) -> None:
+           run_id: str | None, secrets_dir: str | None, learned: str | None,
+           plot_file: str | None, no_record: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     _catch_signals()
     try:
@@ -89,7 +93,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
-        plan = replace(plan, learned=learned)
+        plan = replace(plan, learned=learned, record=not no_record or bool(plot_file))
     except (ScenarioError, PlanError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
@@ -110,6 +114,10 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         frames = summary.render(plan.run_dir, Path(render_file), scenario.agent_ids[0])
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
+    if plot_file:
+        from tools.plot import plot_command_output
+
+        click.echo(plot_command_output(plan.run_dir, Path(plot_file)))
     raise SystemExit(summary.exit_code(result))
 
 

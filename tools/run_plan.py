@@ -52,6 +52,7 @@ class Plan:
     joined: bool = False
     ready_timeout: float = 60.0     # [s] the world waits for every stage
     learned: str | None = None      # skills learned in an earlier run, for every executive
+    record: bool = True             # write the run record (record.mcap; the world's host only)
 
     @property
     def runs_world(self) -> bool:

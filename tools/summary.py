@@ -27,6 +27,7 @@ from typing import Any
 
 import click
 
+from tools import records
 from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, read_jsonl
 
 GOALS_FILE = "goals.json"
@@ -63,6 +64,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     counters: dict[str, dict[str, int]] = trace[-1].get("counters", {}) if trace else {}
     elapsed = _elapsed(health)
     goals, incidents = _goals(run_dir / GOALS_FILE)
+    goals = records.with_history(goals, run_dir)  # when each became active, achieved, ...
     totals = _totals(health)
     memory: dict[str, Any] = {}
     for line in trace:  # each change of an agent's memory, in order
@@ -184,7 +186,8 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"  GOAL STORE: {incident}")
     for goal in summary["goals"]:
         fields = [str(goal.get(k, "?")) for k in ("id", "agent", "goal", "priority", "status")]
-        click.echo("    {} {} {} p{}: {}".format(*fields))
+        click.echo("    {} {} {} p{}: {}".format(*fields)
+                   + records.history_text(goal.get("history", [])))
     for agent, laws in summary["law_violations"].items():
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())

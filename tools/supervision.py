@@ -71,9 +71,16 @@ def supervise(plan: Plan) -> Outcome:
     journal = _Journal(plan.run_dir / "supervision.jsonl")
     outcome = Outcome()
     info: runfile.RunInfo | None = None
+    recorder = None
     try:
         if not plan.joined:
             plan = _start_router(plan, sup)
+        if plan.record and plan.runs_world:
+            from tools.recorder import start_run_recorder
+
+            # subscribed before any process starts, so the record holds cycle 0
+            recorder = start_run_recorder(bus_config(plan, "operator"), plan.run,
+                                          plan.run_dir, plan.scenario)
         for spec in process_specs(plan):
             sup.start(spec)
         where = "joined router" if plan.joined else "router"
@@ -90,6 +97,8 @@ def supervise(plan: Plan) -> Outcome:
         t0 = time.monotonic()
         sup.stop_all(["world"], last=["router"])
         journal.write("stopped", seconds=round(time.monotonic() - t0, 3))
+        if recorder is not None:
+            recorder.stop()
         if info is not None:
             runfile.remove(info)
     outcome.restarts = sup.restarts()
