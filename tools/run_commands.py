@@ -20,7 +20,7 @@ import click
 
 from tools import runfile
 
-STOP_TIMEOUT = 10.0  # [s] for a launcher to stop its run
+STOP_TIMEOUT = 60.0  # [s] for a launcher to stop its run (2 s) and write its summary
 KILL_AFTER = 2.0     # [s] between SIGTERM and SIGKILL for orphans
 
 
