@@ -34,6 +34,7 @@ class SimRun:
     snapshots: list[dict[str, Any]] = field(default_factory=list)
     final: dict[str, Any] = field(default_factory=dict)
     learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    states: dict[str, EngineState] = field(default_factory=dict)
 
 
 def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
@@ -60,8 +61,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
     programs = {a.id: load_program(a.program) for a in scenario.agents}
-    engines = {a.id: Engine(programs[a.id], solver="means-ends" if a.solver else None)
-               for a in scenario.agents}
+    engines = {a.id: Engine(programs[a.id], solver=a.impasse_handler) for a in scenario.agents}
     text = read_text(learned) if learned else ""
     states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
                                           if learned else ()) for a in agents}
@@ -86,13 +86,15 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             record[a] = {"actions": actions,
                          "goals": [(g["id"], g["status"]) for g in
                                    result.decision.to_dict()["goals"]]}
-            solver = result.decision.section("solver")
-            if solver is not None:
-                record[a]["solver"] = solver.to_dict()
+            for name in ("solver", "planner"):
+                section = result.decision.section(name)
+                if section is not None:
+                    record[a][name] = section.to_dict()
         run.records.append(record)
         sim.step()
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
+    run.states = states
     return run
 
 

@@ -1,0 +1,131 @@
+"""Monitoring execution (seed 003, section 6). A step's commands are sent once; the planner
+then waits for the world's outcome of each (the office world reports one when an operation
+ends). When they are all in, the step is judged by a second observation: its primary effect
+must hold in what the robot perceives now ("ROGUE always verifies the location with a
+secondary test"). A navigation reported done while the robot is elsewhere is a false
+success: the state already holds the actual position (it comes from perception), and the
+request is planned again from there; a step that ended without its effect (the room was
+occupied) announces its :on-failure commands and its request is planned again, so that
+control rules see the new facts; a failed step (a blocked door, a bump) is retried after
+RETRY_AFTER cycles, by whatever route or action the state then suggests. Effects on the
+planner's own predicates (no percept shows them) are taken from the outcome."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..outcomes import Outcome
+from ..solving.task import Task, literal
+from ..store import FactStore, PerceptIndex
+from ..terms import Literal
+from .domain import Domain, Metric, project, with_facts
+from .state import Applied, Executing, PlannerState, PlanStep, Task as Request
+
+WATCHDOG = 1200      # cycles without an outcome before a step counts as failed [cycles]
+RETRY_AFTER = 10     # cycles a request waits after a failed step [cycles]
+MAX_HEAD = 400       # head-plan entries kept [entries]
+
+
+@dataclass
+class Env:
+    """One cycle's view: the domain, percepts, beliefs (with the planner's facts), the
+    cycle, the travel metric."""
+
+    domain: Domain
+    pidx: PerceptIndex
+    store: FactStore
+    cycle: int
+    metric: Metric
+
+    def holds(self, text: str, extra: tuple[str, ...] = ()) -> bool:
+        return Task(self.domain.program, self.pidx, with_facts(self.store, extra)).holds(text)
+
+    def place(self) -> str:
+        return self.domain.place(self.store)
+
+
+def monitor(ps: PlannerState, env: Env, outcomes: tuple[Outcome, ...],
+            events: list[str]) -> PlannerState:
+    """Take this cycle's outcomes for the step being executed; judge it once all are in."""
+    ex = ps.executing
+    if ex is None:
+        return ps
+    waiting, failed = list(ex.waiting), ex.failed
+    for o in outcomes:
+        cmd = tuple(o.action.to_list())
+        if cmd in waiting:
+            waiting.remove(cmd)
+            if not o.ok and not failed:
+                failed = o.reason or f"{o.action} failed"
+    if waiting and env.cycle - ex.sent < WATCHDOG:
+        return replace(ps, executing=replace(ex, waiting=tuple(waiting), failed=failed))
+    if waiting:
+        failed = failed or f"no outcome for {len(waiting)} command(s) in {WATCHDOG} cycles"
+    return conclude(replace(ps, executing=None), env, ex, failed, events)
+
+
+def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
+             events: list[str]) -> PlannerState:
+    """Record the step in the head-plan with what monitoring found, and update the tasks."""
+    step, dom = ex.step, env.domain
+    verified = False
+    if failed:
+        result, note = "failed", failed
+    elif literal(step.primary).pred in dom.model_preds or env.holds(step.primary):
+        result, note, verified = "verified", _verified(step, env), True
+    elif dom.travel is not None and literal(step.primary).pred == dom.travel.location.pred:
+        result = "false-success"
+        note = (f"{' '.join(map(str, step.actions[-1]))} reported done, but the robot is in "
+                f"{env.place() or 'an unknown place'} (second observation): replanning "
+                f"from there")
+    else:
+        result = "not-achieved"
+        note = f"{step.primary} does not hold after it: replanning"
+    events.append(f"cycle {env.cycle}: {step.text} {result}: {note}")
+    if step.on_failure and result == "not-achieved":
+        ps = replace(ps, announce=ps.announce + step.on_failure)
+        events.append(f"cycle {env.cycle}: announcing "
+                      + " ".join(" ".join(map(str, a[1:])) for a in step.on_failure))
+    head = (ps.head + (Applied(step.text, ex.tasks, ex.sent, env.cycle, result, note),))
+    ps = replace(ps, head=head[-MAX_HEAD:])
+    if verified:
+        ps = apply_model(ps, dom, step)
+        ps = replace(ps, travel=replace(ps.travel, route=_grow(ps.travel.route, step.place)))
+    tasks = tuple(_after(t, ex, step, verified, failed, env.cycle) if t.goal_id in ex.tasks
+                  else t for t in ps.tasks)
+    return replace(ps, tasks=tasks)
+
+
+def apply_model(ps: PlannerState, dom: Domain, step: PlanStep) -> PlannerState:
+    """The step's effects on the planner's own predicates, applied to its facts."""
+    mine = tuple(e for e in step.effects if literal(e).pred in dom.model_preds)
+    if not mine:
+        return ps
+    store = project(with_facts(FactStore(), ps.model), mine)
+    facts = sorted(str(Literal(p, tuple(args))) for p, rows in store.facts.items()
+                   for args in rows)
+    return replace(ps, model=tuple(facts))
+
+
+def _verified(step: PlanStep, env: Env) -> str:
+    if not step.actions:
+        return "applied in the planner's model"
+    return f"{step.primary} observed" if literal(step.primary).pred not in \
+        env.domain.model_preds else "done"
+
+
+def _after(t: Request, ex: Executing, step: PlanStep, verified: bool, failed: str,
+           cycle: int) -> Request:
+    """A served task after its step: done (its first step leaves the tail-plan), or to be
+    planned again (not achieved: the plan is made afresh; failed: retried later)."""
+    places = _grow(t.places, step.place) if verified else t.places
+    if verified:
+        plan = t.plan[1:] if t.plan and t.plan[0].actions == step.actions else t.plan
+        return replace(t, plan=plan, places=places)
+    if failed:
+        return replace(t, failures=t.failures + 1, retry_at=cycle + RETRY_AFTER)
+    return replace(t, plan=(), failures=t.failures + 1)
+
+
+def _grow(route: tuple[str, ...], place: str) -> tuple[str, ...]:
+    return route if not place or (route and route[-1] == place) else route + (place,)
