@@ -13,9 +13,9 @@ from .extend import extend_program
 from .goals import GoalEntry, enumerable, parse_goal
 from .inference import Inference
 from .outcomes import as_outcomes
+from .planning.rogue import RoguePlanner
 from .program import Program
 from .reuse import InferStats
-from .planning.rogue import RoguePlanner
 from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, FactStore, PerceptIndex, store_of

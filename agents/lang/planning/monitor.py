@@ -19,7 +19,8 @@ from ..solving.task import Task, literal
 from ..store import FactStore, PerceptIndex
 from ..terms import Literal
 from .domain import Domain, Metric, project, with_facts
-from .state import Applied, Executing, PlannerState, PlanStep, Task as Request
+from .state import Applied, Executing, PlannerState, PlanStep
+from .state import Task as Request
 
 WATCHDOG = 1200      # cycles without an outcome before a step counts as failed [cycles]
 RETRY_AFTER = 10     # cycles a request waits after a failed step [cycles]
