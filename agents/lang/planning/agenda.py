@@ -53,7 +53,10 @@ def sync(ps: PlannerState, env: Env, goals: tuple[GoalEntry, ...], failed: dict[
             events.append(f"cycle {env.cycle}: {t.goal_id} withdrawn: its tail-plan is dropped")
         elif env.holds(t.goal, t.knowledge):
             done.append(_finish(t, env.cycle, "achieved"))
-            events.append(f"cycle {env.cycle}: {t.goal_id} {t.goal} achieved")
+            rest = " ".join(s.text for s in t.plan[1:] if ps.executing is None or
+                            s.actions != ps.executing.step.actions) if t.plan else ""
+            events.append(f"cycle {env.cycle}: {t.goal_id} {t.goal} achieved" + (
+                f"; steps made unnecessary by the world, skipped: {rest}" if rest else ""))
         else:
             tasks.append(replace(t, priority=e.priority))
     known = {t.goal_id for t in ps.tasks} | {f.goal_id for f in ps.finished}
@@ -82,6 +85,7 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Outcome:
     """Plan, select and propose the next step (step 2 above)."""
     out = Outcome(ps)
     control = Control(env.domain.rules, out.firings)
+    before = {t.goal_id: (t.status, t.note) for t in ps.tasks}
     tasks = [t for t in (_planned(t, env, control, out, events) for t in ps.tasks) if t]
     for _ in range(8):   # planner-only steps are applied at once, then the choice is redone
         ready = [_gate(t, env, out, events) for t in tasks]
@@ -101,6 +105,9 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Outcome:
         events.append(f"cycle {env.cycle}: {step.text} applied in the planner's model")
         tasks = [replace(t, plan=t.plan[1:]) if t.goal_id in out.choice.tasks else t
                  for t in tasks]
+    for t in tasks:
+        if before.get(t.goal_id, ("new", ""))[0] != t.status and t.status != "new":
+            events.append(f"cycle {env.cycle}: {t.goal_id} {t.status}: {t.note}")
     proposed = None
     if out.choice is not None and out.choice.step.actions:
         proposed = Executing(out.choice.step, out.choice.tasks, env.cycle,
@@ -118,7 +125,8 @@ def _planned(t: Task, env: Env, control: Control, out: Outcome, events: list[str
     """``t`` with a tail-plan that holds in the current state (kept, or made afresh)."""
     goal = literal(t.goal)
     base = with_facts(env.store, t.knowledge)
-    why = check(env.domain, t.plan, goal, base, env.pidx) if t.plan else ""
+    fired = len(control.firings)
+    why = t.replan or (check(env.domain, t.plan, goal, base, env.pidx) if t.plan else "")
     if t.plan and not why:
         return t
     built = build(env.domain, goal, base, env.pidx, control, env.metric)
@@ -130,7 +138,8 @@ def _planned(t: Task, env: Env, control: Control, out: Outcome, events: list[str
     events.append(f"cycle {env.cycle}: {t.goal_id} " + (
         f"replanned ({why}): {replan_note(t.plan, built.steps)}" if why else
         f"tail-plan: {shown}"))
-    return replace(t, plan=built.steps)
+    events += [f"cycle {env.cycle}: rule fired: {f}" for f in control.firings[fired:]]
+    return replace(t, plan=built.steps, replan="")
 
 
 def _gate(t: Task, env: Env, out: Outcome, events: list[str]) -> Task:

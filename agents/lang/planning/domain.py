@@ -113,6 +113,14 @@ def with_facts(store: FactStore, facts: tuple[str, ...]) -> FactStore:
     return FactStore(table)
 
 
+def refresh(store: FactStore, old: tuple[str, ...], new: tuple[str, ...]) -> FactStore:
+    """``store`` with the planner's facts ``old`` replaced by ``new`` (literal text)."""
+    if old == new:
+        return store
+    gone = set(old) - set(new)
+    return project(store, tuple(f"(not {f})" for f in sorted(gone)) + tuple(new))
+
+
 def project(store: FactStore, effects: tuple[str, ...]) -> FactStore:
     """The state after effects (literal text): every negated one deleted (a variable in it
     matches any value), then every positive one added."""

@@ -76,8 +76,8 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
         result, note, verified = "verified", _verified(step, env), True
     elif dom.travel is not None and literal(step.primary).pred == dom.travel.location.pred:
         result = "false-success"
-        note = (f"{' '.join(map(str, step.actions[-1]))} reported done, but the robot is in "
-                f"{env.place() or 'an unknown place'} (second observation): replanning "
+        note = (f"({' '.join(map(str, step.actions[-1]))}) reported done, but the robot is "
+                f"in {env.place() or 'an unknown place'} (second observation): replanning "
                 f"from there")
     else:
         result = "not-achieved"
@@ -89,11 +89,12 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
                       + " ".join(" ".join(map(str, a[1:])) for a in step.on_failure))
     head = (ps.head + (Applied(step.text, ex.tasks, ex.sent, env.cycle, result, note),))
     ps = replace(ps, head=head[-MAX_HEAD:])
+    where = step.place if verified else env.place() if result == "false-success" else ""
     if verified:
         ps = apply_model(ps, dom, step)
-        ps = replace(ps, travel=replace(ps.travel, route=_grow(ps.travel.route, step.place)))
-    tasks = tuple(_after(t, ex, step, verified, failed, env.cycle) if t.goal_id in ex.tasks
-                  else t for t in ps.tasks)
+    ps = replace(ps, travel=replace(ps.travel, route=_grow(ps.travel.route, where)))
+    tasks = tuple(_after(t, step, where, verified, failed, env.cycle)
+                  if t.goal_id in ex.tasks else t for t in ps.tasks)
     return replace(ps, tasks=tasks)
 
 
@@ -115,17 +116,20 @@ def _verified(step: PlanStep, env: Env) -> str:
         env.domain.model_preds else "done"
 
 
-def _after(t: Request, ex: Executing, step: PlanStep, verified: bool, failed: str,
+def _after(t: Request, step: PlanStep, where: str, verified: bool, failed: str,
            cycle: int) -> Request:
     """A served task after its step: done (its first step leaves the tail-plan), or to be
-    planned again (not achieved: the plan is made afresh; failed: retried later)."""
-    places = _grow(t.places, step.place) if verified else t.places
+    planned again (not achieved: the plan is made afresh; failed: retried later); ``where``
+    the robot went for it ("" if nowhere new)."""
+    places = _grow(t.places, where)
+    t = replace(t, places=places)
     if verified:
         plan = t.plan[1:] if t.plan and t.plan[0].actions == step.actions else t.plan
         return replace(t, plan=plan, places=places)
     if failed:
         return replace(t, failures=t.failures + 1, retry_at=cycle + RETRY_AFTER)
-    return replace(t, plan=(), failures=t.failures + 1)
+    return replace(t, failures=t.failures + 1, replan=f"{step.text} did not achieve "
+                   f"{step.primary}")
 
 
 def _grow(route: tuple[str, ...], place: str) -> tuple[str, ...]:

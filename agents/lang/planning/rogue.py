@@ -30,7 +30,7 @@ from ..state import EngineState
 from ..store import FactStore
 from ..terms import Action, Literal
 from .agenda import decide, sync
-from .domain import Domain, Metric, with_facts
+from .domain import Domain, Metric, refresh, with_facts
 from .monitor import Env, monitor
 from .section import PlannerSection
 from .state import PlannerState
@@ -62,7 +62,9 @@ class RoguePlanner:
         env = Env(dom, walk.pidx, walk.store, walk.state.cycle, Metric(dom.travel, walk.pidx))
         events: list[str] = []
         failed = dict(walk.current("failed"))
+        model = ps.model
         ps = monitor(ps, env, walk.outcomes, events)
+        env.store = refresh(env.store, model, ps.model)
         ps = sync(ps, env, walk.state.goals, failed, events)
         section = PlannerSection(ps)
         if ps.executing is None:

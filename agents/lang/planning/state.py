@@ -58,8 +58,9 @@ class Task:
     knowledge added when it arrived, its tail-plan, ``status`` (new, selected, waiting,
     blocked) with a ``note``, ``places`` (where steps for it were executed, in order),
     ``failures`` (steps that failed or did not achieve their effect), ``blocked_since`` (the
-    cycle its next place became unreachable, -1) and ``retry_at`` (no step of it before that
-    cycle, after a failure)."""
+    cycle its next place became unreachable, -1), ``retry_at`` (no step of it before that
+    cycle, after a failure) and ``replan`` (why its tail-plan must be made afresh: a step
+    of it did not achieve its effect; "" when it may be kept while it holds)."""
 
     goal_id: str
     goal: str
@@ -74,13 +75,15 @@ class Task:
     failures: int = 0
     blocked_since: int = -1
     retry_at: int = -1
+    replan: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         return {"goal_id": self.goal_id, "goal": self.goal, "priority": self.priority,
                 "seq": self.seq, "arrived": self.arrived, "knowledge": list(self.knowledge),
                 "plan": [s.to_dict() for s in self.plan], "status": self.status,
                 "note": self.note, "places": list(self.places), "failures": self.failures,
-                "blocked_since": self.blocked_since, "retry_at": self.retry_at}
+                "blocked_since": self.blocked_since, "retry_at": self.retry_at,
+                "replan": self.replan}
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Task:
@@ -89,7 +92,8 @@ class Task:
                    tuple(PlanStep.from_dict(s) for s in d.get("plan", ())),
                    str(d.get("status", "new")), str(d.get("note", "")),
                    _texts(d.get("places")), int(d.get("failures", 0)),
-                   int(d.get("blocked_since", -1)), int(d.get("retry_at", -1)))
+                   int(d.get("blocked_since", -1)), int(d.get("retry_at", -1)),
+                   str(d.get("replan", "")))
 
 
 @dataclass(frozen=True, slots=True)
