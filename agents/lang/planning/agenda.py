@@ -27,7 +27,7 @@ from .state import Applied, Executing, Finished, PlannerState, Task
 
 MAX_MERGED = 4          # lower-priority requests merged with the top-priority ones [requests]
 MAX_FAILURES = 5        # failed or unachieved steps before a request is given up [steps]
-BLOCKED_LIMIT = 1200    # cycles a request may stay blocked before it is given up [cycles]
+BLOCKED_LIMIT = 600     # cycles a request may stay blocked before it is given up [cycles]
 
 
 @dataclass
@@ -53,8 +53,8 @@ def sync(ps: PlannerState, env: Env, goals: tuple[GoalEntry, ...], failed: dict[
             events.append(f"cycle {env.cycle}: {t.goal_id} withdrawn: its tail-plan is dropped")
         elif env.holds(t.goal, t.knowledge):
             done.append(_finish(t, env.cycle, "achieved"))
-            rest = " ".join(s.text for s in t.plan[1:] if ps.executing is None or
-                            s.actions != ps.executing.step.actions) if t.plan else ""
+            running = ps.executing.step.text if ps.executing else ""
+            rest = " ".join(s.text for s in t.plan if s.text != running)
             events.append(f"cycle {env.cycle}: {t.goal_id} {t.goal} achieved" + (
                 f"; steps made unnecessary by the world, skipped: {rest}" if rest else ""))
         else:
@@ -143,13 +143,14 @@ def _planned(t: Task, env: Env, control: Control, out: Outcome, events: list[str
 
 
 def _gate(t: Task, env: Env, out: Outcome, events: list[str]) -> Task:
-    """Blocked (its next place unreachable, or waiting after a failure), or given up."""
+    """Blocked (a place of its tail-plan unreachable: it is not started, or not carried on,
+    until a route is known; or waiting after a failure), or given up."""
     if t.failures >= MAX_FAILURES:
         out.failed[t.goal_id] = f"{t.goal}: given up after {t.failures} failed steps"
         events.append(f"cycle {env.cycle}: {t.goal_id} failed: {out.failed[t.goal_id]}")
         return t
-    place = t.plan[0].place if t.plan else ""
-    if not env.metric.reachable(place):
+    place = next((s.place for s in t.plan if not env.metric.reachable(s.place)), "")
+    if place:
         since = t.blocked_since if t.blocked_since >= 0 else env.cycle
         if env.cycle - since > BLOCKED_LIMIT:
             out.failed[t.goal_id] = f"{t.goal}: {place} unreachable since cycle {since}"

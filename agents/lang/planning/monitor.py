@@ -13,6 +13,7 @@ planner's own predicates (no percept shows them) are taken from the outcome."""
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 from ..outcomes import Outcome
 from ..solving.task import Task, literal
@@ -30,13 +31,17 @@ MAX_HEAD = 400       # head-plan entries kept [entries]
 @dataclass
 class Env:
     """One cycle's view: the domain, percepts, beliefs (with the planner's facts), the
-    cycle, the travel metric."""
+    cycle, and the travel metric (read from the percepts when first needed: at a decision
+    point, not while a step runs)."""
 
     domain: Domain
     pidx: PerceptIndex
     store: FactStore
     cycle: int
-    metric: Metric
+
+    @cached_property
+    def metric(self) -> Metric:
+        return Metric(self.domain.travel, self.pidx)
 
     def holds(self, text: str, extra: tuple[str, ...] = ()) -> bool:
         return Task(self.domain.program, self.pidx, with_facts(self.store, extra)).holds(text)

@@ -30,7 +30,7 @@ from ..state import EngineState
 from ..store import FactStore
 from ..terms import Action, Literal
 from .agenda import decide, sync
-from .domain import Domain, Metric, refresh, with_facts
+from .domain import Domain, refresh, with_facts
 from .monitor import Env, monitor
 from .section import PlannerSection
 from .state import PlannerState
@@ -59,7 +59,7 @@ class RoguePlanner:
     def begin(self, finder: PathFinder, walk: Walk) -> None:
         dom = self.domain(finder.program)
         ps = replace(walk.current("planner"), proposed=None, announce=())
-        env = Env(dom, walk.pidx, walk.store, walk.state.cycle, Metric(dom.travel, walk.pidx))
+        env = Env(dom, walk.pidx, walk.store, walk.state.cycle)
         events: list[str] = []
         failed = dict(walk.current("failed"))
         model = ps.model
