@@ -103,6 +103,21 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
     return replace(ps, tasks=tasks)
 
 
+def abandon(ps: PlannerState, env: Env, events: list[str]) -> PlannerState:
+    """Stop waiting for a step none of whose requests is pending any more (the world did
+    it, or it was withdrawn) and whose own effect has not come about: the next step's
+    commands pre-empt it (seed 003, section 6: "PRODIGY is able to detect when an action
+    is no longer necessary")."""
+    ex, cycle = ps.executing, env.cycle
+    if ex is None or any(ps.task(t) is not None for t in ex.tasks) or \
+            env.holds(ex.step.primary):
+        return ps
+    note = "no longer needed: " + ", ".join(ex.tasks) + " done"
+    events.append(f"cycle {cycle}: {ex.step.text} abandoned: {note}")
+    return replace(ps, executing=None, head=(ps.head + (
+        Applied(ex.step.text, ex.tasks, ex.sent, cycle, "abandoned", note),))[-MAX_HEAD:])
+
+
 def apply_model(ps: PlannerState, dom: Domain, step: PlanStep) -> PlannerState:
     """The step's effects on the planner's own predicates, applied to its facts."""
     mine = tuple(e for e in step.effects if literal(e).pred in dom.model_preds)

@@ -31,7 +31,7 @@ from ..store import FactStore
 from ..terms import Action, Literal
 from .agenda import decide, sync
 from .domain import Domain, refresh, with_facts
-from .monitor import Env, monitor
+from .monitor import Env, abandon, monitor
 from .section import PlannerSection
 from .state import PlannerState
 
@@ -66,6 +66,7 @@ class RoguePlanner:
         ps = monitor(ps, env, walk.outcomes, events)
         env.store = refresh(env.store, model, ps.model)
         ps = sync(ps, env, walk.state.goals, failed, events)
+        ps = abandon(ps, env, events)
         section = PlannerSection(ps)
         if ps.executing is None:
             out = decide(ps, env, events)
