@@ -1,7 +1,10 @@
-"""Monitoring execution (seed 003, section 6). A step's commands are sent once; the planner
-then waits for the world's outcome of each (the office world reports one when an operation
-ends). When they are all in, the step is judged by a second observation: its primary effect
-must hold in what the robot perceives now ("ROGUE always verifies the location with a
+"""Monitoring execution (seed 003, section 6). The planner waits for the world's outcome of
+each of a step's commands (the office world reports one when an operation ends). Until it
+comes, and while the step's primary effect is not perceived, the commands still waiting are
+sent again every cycle, as the world expects of a teleoreactive agent (re-sending a running
+command continues it; a command lost when a realtime executive missed its deadline is
+started). When they are all in, the step is judged by a second observation: its primary
+effect must hold in what the robot perceives now ("ROGUE always verifies the location with a
 secondary test"). A navigation reported done while the robot is elsewhere is a false
 success: the state already holds the actual position (it comes from perception), and the
 request is planned again from there; a step that ended without its effect (the room was
@@ -64,7 +67,10 @@ def monitor(ps: PlannerState, env: Env, outcomes: tuple[Outcome, ...],
             if not o.ok and not failed:
                 failed = o.reason or f"{o.action} failed"
     if waiting and env.cycle - ex.sent < WATCHDOG:
-        return replace(ps, executing=replace(ex, waiting=tuple(waiting), failed=failed))
+        ps = replace(ps, executing=replace(ex, waiting=tuple(waiting), failed=failed))
+        if not env.holds(ex.step.primary):   # sent again: a running operation goes on
+            ps = replace(ps, announce=ps.announce + tuple(waiting))
+        return ps
     if waiting:
         failed = failed or f"no outcome for {len(waiting)} command(s) in {WATCHDOG} cycles"
     return conclude(replace(ps, executing=None), env, ex, failed, events)

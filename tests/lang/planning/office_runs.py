@@ -33,8 +33,14 @@ class Office:
         return [(a.step, a.result) for a in self.planner.head]
 
     def commands(self) -> list[list]:
-        """Every command sent, in order."""
-        return [a for r in self.run.records for a in r["ME"]["actions"]]
+        """Every command sent, in order; one sent again the next cycle (a running operation
+        goes on) counts once."""
+        out, last = [], []
+        for r in self.run.records:
+            now = r["ME"]["actions"]
+            out += [a for a in now if a not in last]
+            last = now
+        return out
 
     def said(self) -> list[str]:
         return [" ".join(str(w) for w in a[1:]) for a in self.commands() if a[0] == "*say"]
