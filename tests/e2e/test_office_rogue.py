@@ -83,8 +83,11 @@ def test_figure_6_with_the_request_posted_by_teleo_goal_post(teleo):
     assert [(g["id"], g["status"]) for g in summary["goals"]] == [("g1", "achieved"),
                                                                   ("g2", "achieved")]
     plan = summary["planner"]["ME"]
-    assert [a["step"] for a in plan["executed"]] == FIGURE_6
-    assert plan["fcfs_m"] > plan["executed_m"]
+    # realtime: a late stage gets the world's safe action (*stop), which interrupts the
+    # running operation; the planner sends it again: the steps done are Figure 6's
+    assert [a["step"] for a in plan["executed"] if a["result"] == "verified"] == FIGURE_6
+    assert {a["result"] for a in plan["executed"]} <= {"verified", "interrupted"}
+    assert (plan["executed_m"], plan["fcfs_m"]) == (84.0, 103.0)
 
 
 def test_twenty_requests_through_kills_of_the_executive_and_the_goal_entry(teleo):

@@ -28,6 +28,9 @@ from .state import Task as Request
 
 WATCHDOG = 1200      # cycles without an outcome before a step counts as failed [cycles]
 RETRY_AFTER = 10     # cycles a request waits after a failed step [cycles]
+NOT_THE_WORLDS = ("stopped", "pre-empted")
+"""Failure codes of an operation cancelled by the agent (or by the world's safe action for a
+late agent), not failed in the world: no retry delay, no failure counted."""
 MAX_HEAD = 400       # head-plan entries kept [entries]
 
 
@@ -81,9 +84,16 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
     """Record the step in the head-plan with what monitoring found, and update the tasks."""
     step, dom = ex.step, env.domain
     verified = False
-    if failed:
-        result, note = "failed", failed
-    elif literal(step.primary).pred in dom.model_preds or env.holds(step.primary):
+    perceived = literal(step.primary).pred not in dom.model_preds and \
+        env.holds(step.primary)
+    if failed and perceived:   # what is observed counts, not what was reported
+        result, note, verified = "verified", f"{step.primary} observed, though the world " \
+            f"reported: {failed}", True
+        failed = ""
+    elif failed:
+        result = "interrupted" if _cancelled(failed) else "failed"
+        note = failed
+    elif perceived or literal(step.primary).pred in dom.model_preds:
         result, note, verified = "verified", _verified(step, env), True
     elif dom.travel is not None and literal(step.primary).pred == dom.travel.location.pred:
         result = "false-success"
@@ -152,10 +162,16 @@ def _after(t: Request, step: PlanStep, where: str, verified: bool, failed: str,
     if verified:
         plan = t.plan[1:] if t.plan and t.plan[0].actions == step.actions else t.plan
         return replace(t, plan=plan, places=places)
+    if failed and _cancelled(failed):
+        return t   # cancelled, not failed: planned again at once
     if failed:
         return replace(t, failures=t.failures + 1, retry_at=cycle + RETRY_AFTER)
     return replace(t, failures=t.failures + 1, replan=f"{step.text} did not achieve "
                    f"{step.primary}")
+
+
+def _cancelled(reason: str) -> bool:
+    return any(f": {code}: " in reason for code in NOT_THE_WORLDS)
 
 
 def _grow(route: tuple[str, ...], place: str) -> tuple[str, ...]:

@@ -123,7 +123,8 @@ class Applied:
     """One entry of the head-plan: the step, the tasks it served, the cycle its commands
     were sent (or it was applied in the model) and ended, and what monitoring found:
     ``result`` verified | applied (no command: the model only) | false-success |
-    not-achieved | failed, with ``note``."""
+    not-achieved | failed | interrupted (cancelled, not failed: by the world's safe action
+    for a late agent) | abandoned (no request needs it any more), with ``note``."""
 
     step: str
     tasks: tuple[str, ...]
