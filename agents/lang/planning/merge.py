@@ -25,7 +25,7 @@ EPS = 1e-6            # [m] distances closer than this are equal
 class Choice:
     """The next step: its task (the first of ``tasks``, in arrival order, names it), every
     task whose first step is the same action, the expected total travel [m] and the whole
-    merged order (task ids, one per visit) it leads to."""
+    merged order it leads to ("task place", one per visit)."""
 
     step: PlanStep
     tasks: tuple[str, ...]
@@ -116,8 +116,12 @@ def choose(metric: Metric, plans: dict[str, tuple[PlanStep, ...]], seq: dict[str
     same = tuple(t for t in ids if plans[t][0].actions == step.actions and
                  (step.actions or t == pick))
     name = same[0]
-    order = tuple(ids[k] for k in search.sequence()) if search.exact else ()
-    return Choice(plans[name][0], same, round(low, 3), order)
+    order: list[str] = []
+    done = [0] * len(ids)
+    for k in search.sequence() if search.exact else ():
+        order.append(f"{ids[k]} {vis[k][done[k]]}")
+        done[k] += 1
+    return Choice(plans[name][0], same, round(low, 3), tuple(order))
 
 
 def detour(metric: Metric, top: list[tuple[str, ...]], other: tuple[str, ...]) -> float:

@@ -19,8 +19,8 @@ class PlannerSection:
     """``state``: the planner's state after this cycle; ``events``: what it did this cycle
     (requests added, tail-plans made or replanned, steps sent, monitoring results);
     ``firings``: control rules that fired; ``order``: the merged order of the selected
-    requests' visits (task ids) and ``expected`` its travel [m] from here; ``sending``: the
-    commands sent this cycle."""
+    requests' visits ("task place" each) and ``expected`` its travel [m] from here;
+    ``sending``: the commands sent this cycle."""
 
     state: PlannerState
     events: tuple[str, ...] = ()
@@ -70,7 +70,12 @@ class PlannerSection:
             out.append(f"merged order ({self.expected:.1f} m from here): "
                        + " ".join(self.order))
         out += [f"rule fired: {f}" for f in self.firings]
-        out += [f"  {e}" for e in self.events]
+        if self.sending:
+            out.append("sending: " + " ".join("(" + " ".join(map(str, a)) + ")"
+                                              for a in self.sending))
+        if self.events:
+            out.append("planner events:")
+            out += [f"  {e}" for e in self.events]
         tr = ps.travel
         if tr.start:
             out.append(f"travel by the map: {tr.executed_m:.1f} m executed from {tr.start}; "

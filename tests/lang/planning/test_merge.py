@@ -29,7 +29,7 @@ def test_the_step_of_least_expected_travel_not_the_nearest():
     plans = {"t1": (step("fetch", "A"),), "t2": (step("fetch", "B"), step("bring", "C"))}
     got = choose(line(10.0), plans, {"t1": 0, "t2": 1}, ())
     assert (got.step.text, got.tasks, got.expected, got.order) == \
-        ("<fetch A>", ("t1",), 110.0, ("t1", "t2", "t2"))
+        ("<fetch A>", ("t1",), 110.0, ("t1 A", "t2 B", "t2 C"))
 
 
 def test_an_action_two_plans_need_is_done_once_named_for_the_older_request():

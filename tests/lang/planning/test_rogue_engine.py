@@ -55,7 +55,7 @@ def test_one_cycle_sends_the_first_step_and_explains_the_plan(program):
         "<goto-deliver-loc mitchell r-5313>", "<deliver-item r-5313 mitchell mail-mitchell>"]
     assert planner["executing"]["waiting"] == [["*goto", "r-5303"]]
     assert planner["sending"] == [["*goto", "r-5303"]]
-    assert planner["order"] == {"visits": ["g1", "g1"], "expected_m": 79.0}  # 40 + 39 m
+    assert planner["order"] == {"visits": ["g1 r-5303", "g1 r-5313"], "expected_m": 79.0}
     text = d.explain()
     assert "planner (ROGUE, seed 003): head-plan 0 step(s)" in text
     assert "  g1 p5 selected (delivered mail-mitchell r-5313) -- top priority" in text
