@@ -27,8 +27,9 @@ from world.run_scenario import Scenario, ScenarioError
 @dataclass
 class SimRun:
     """The outcome of an in-process run: per-cycle records, the kept snapshots and the final
-    one (snapshot dicts of the scenario's domain, world/domain.py), and each agent's learned
-    skills at the end (EngineState.learned: the ones it started from, then the new ones)."""
+    one (snapshot dicts of the scenario's domain, world/domain.py), each agent's learned
+    skills at the end (EngineState.learned: the ones it started from, then the new ones) and
+    its engine state at the end (``states``: the planner's head-plan, for one)."""
 
     records: list[dict[str, Any]] = field(default_factory=list)
     snapshots: list[dict[str, Any]] = field(default_factory=list)

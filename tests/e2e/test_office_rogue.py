@@ -75,6 +75,12 @@ def test_figure_6_with_the_request_posted_by_teleo_goal_post(teleo):
         assert wait_for(sent, 60), teleo.launch_output()
         posted = teleo("goal", "post", "(delivered fax-jhm r-5313)", "--priority", "5")
         assert posted.returncode == 0 and "posted g2 for ME" in posted.stdout, posted.stderr
+        # the intention on the bus carries the planner's section
+        shown = teleo("inspect", "--seconds", "1", "--key", "agent/ME/intention")
+        assert shown.returncode == 0, shown.stderr
+        for key in ('"planner"', '"head"', '"tails"', '"order"', '"firings"',
+                    "SELECT-TOP-PRIORITY-AND-COMPATIBLE-GOALS"):
+            assert key in shown.stdout
         assert launcher.wait(120) == 0, teleo.launch_output()
     finally:
         if launcher.poll() is None:

@@ -31,7 +31,7 @@ BLOCKED_LIMIT = 600     # cycles a request may stay blocked before it is given u
 
 
 @dataclass
-class Outcome:
+class Decided:
     """What ``decide`` found: the state, the requests given up (id -> reason), the merged
     order and its expected travel, the rule firings."""
 
@@ -81,9 +81,9 @@ def sync(ps: PlannerState, env: Env, goals: tuple[GoalEntry, ...], failed: dict[
                    travel=travel)
 
 
-def decide(ps: PlannerState, env: Env, events: list[str]) -> Outcome:
+def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
     """Plan, select and propose the next step (step 2 above)."""
-    out = Outcome(ps)
+    out = Decided(ps)
     control = Control(env.domain.rules, out.firings)
     before = {t.goal_id: (t.status, t.note) for t in ps.tasks}
     tasks = [t for t in (_planned(t, env, control, out, events) for t in ps.tasks) if t]
@@ -120,7 +120,7 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Outcome:
     return out
 
 
-def _planned(t: Task, env: Env, control: Control, out: Outcome, events: list[str]
+def _planned(t: Task, env: Env, control: Control, out: Decided, events: list[str]
              ) -> Task | None:
     """``t`` with a tail-plan that holds in the current state (kept, or made afresh)."""
     goal = literal(t.goal)
@@ -142,7 +142,7 @@ def _planned(t: Task, env: Env, control: Control, out: Outcome, events: list[str
     return replace(t, plan=built.steps, replan="")
 
 
-def _gate(t: Task, env: Env, out: Outcome, events: list[str]) -> Task:
+def _gate(t: Task, env: Env, out: Decided, events: list[str]) -> Task:
     """Blocked (a place of its tail-plan unreachable: it is not started, or not carried on,
     until a route is known; or waiting after a failure), or given up."""
     if t.failures >= MAX_FAILURES:
