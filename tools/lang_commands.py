@@ -17,7 +17,9 @@ from agents.lang import (
     load_program,
     parse_percepts,
 )
+from agents.lang.limits import read_json
 from agents.lang.loader import read_text
+from agents.lang.outcomes import as_outcomes
 from agents.lang.solving.learned import is_learned_text, read_learned
 from agents.lang.terms import sort_key
 
@@ -49,8 +51,36 @@ def _percepts(path: str):
         _fail(exc)
 
 
+def _outcomes(path: str) -> tuple:
+    """The outcomes in ``path`` (a JSON list); exits 1 naming the file and the bad item."""
+    try:
+        data = json.loads(read_text(path))
+        if not isinstance(data, list):
+            raise LangError(f"expected a JSON list of outcomes, got {type(data).__name__}")
+        found = []
+        for i, item in enumerate(data):
+            try:
+                found += as_outcomes([item])
+            except LangError as exc:
+                raise LangError(f"item {i}: {exc}") from None
+        return tuple(found)
+    except json.JSONDecodeError as exc:
+        _fail(LangError(f"{path}:{exc.lineno}:{exc.colno}: bad JSON: {exc.msg}"))
+    except LangError as exc:
+        _fail(LangError(f"{path}: {exc}"))
+
+
 def _sorted_beliefs(beliefs) -> list:
     return sorted(beliefs, key=lambda b: (b.pred, [sort_key(a) for a in b.args]))
+
+
+def _goal_option(option: str) -> tuple[str, int | None]:
+    """'(clear B):1' -> ('(clear B)', 1); without ':P' (P up to 18 digits) no priority."""
+    text, sep, prio = option.rpartition(":")
+    prio = prio.strip()
+    if sep and text and prio.isascii() and prio.isdigit() and len(prio) <= 18:
+        return text, int(prio)
+    return option, None
 
 
 @click.command()
@@ -115,6 +145,9 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 @click.argument("program", type=click.Path())
 @click.option("--percepts", "percepts_file", required=True, type=click.Path(),
               help="Percept file: Table 3 s-expressions or JSON neutral lists.")
+@click.option("--outcomes", "outcomes_file", type=click.Path(),
+              help="The outcomes of the previous cycle's actions: a JSON list of "
+                   '{"action": [...], "status": "done"|"failed", "reason": "..."}.')
 @click.option("--state", "state_file", type=click.Path(), help="Engine state (JSON) to start from.")
 @click.option("--save-state", "save_file", type=click.Path(), help="Write the next state here.")
 @click.option("--goal", "goals", multiple=True,
@@ -124,8 +157,8 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 @click.option("--mechanism", default="means-ends", show_default=True,
               help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
 @_include
-def step(program: str, percepts_file: str, state_file: str | None, save_file: str | None,
-         goals: tuple[str, ...], as_json: bool, mechanism: str,
+def step(program: str, percepts_file: str, outcomes_file: str | None, state_file: str | None,
+         save_file: str | None, goals: tuple[str, ...], as_json: bool, mechanism: str,
          includes: tuple[str, ...]) -> None:
     """Run one cycle: print beliefs, goal statuses, the skill path, actions and why."""
     try:
@@ -133,14 +166,13 @@ def step(program: str, percepts_file: str, state_file: str | None, save_file: st
     except LangError as exc:
         raise click.ClickException(str(exc)) from None
     percepts = _percepts(percepts_file)
+    outcomes = _outcomes(outcomes_file) if outcomes_file else ()
     try:
-        state = (EngineState.from_dict(json.loads(read_text(state_file))) if state_file
-                 else engine.initial_state())
+        state = (EngineState.from_dict(read_json(read_text(state_file), state_file))
+                 if state_file else engine.initial_state())
         for g in goals:
-            text, _, prio = g.rpartition(":") if g.rstrip().endswith(tuple("0123456789")) \
-                and ":" in g else (g, "", "")
-            state = engine.add_goal(state, text or g, int(prio) if prio else None)
-        result = engine.cycle(state, percepts)
+            state = engine.add_goal(state, *_goal_option(g))
+        result = engine.cycle(state, percepts, outcomes)
     except (LangError, json.JSONDecodeError) as exc:
         click.echo(f"{state_file or program}: {exc}", err=True)
         sys.exit(1)

@@ -16,6 +16,7 @@ from .outcomes import as_outcomes
 from .planning.rogue import RoguePlanner
 from .program import Program
 from .reuse import InferStats
+from .scs.state import model_of
 from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, FactStore, PerceptIndex, store_of
@@ -114,9 +115,11 @@ class Engine:
         """Strata evaluated vs reused by the last ``infer``/``cycle`` (for tests and bench)."""
         return self.inference.last_stats
 
-    def infer(self, percepts: Iterable) -> BeliefSet:
-        """Every concept instance that holds for this cycle's percepts."""
-        return self.inference.beliefs(_index(percepts))
+    def infer(self, percepts: Iterable, model: Iterable = ()) -> BeliefSet:
+        """Every concept instance that holds for this cycle's percepts and the agent's world
+        model (``model``: facts as neutral lists or tuples, asserted by SCS bodies; in the
+        processes they come back with the world state, docs/bus.md "Agent memory")."""
+        return self.inference.beliefs(_index(percepts), model_of(model))
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
@@ -126,9 +129,10 @@ class Engine:
 
     def cycle(self, state: EngineState, percepts: Iterable,
               outcomes: Iterable = ()) -> CycleResult:
-        """infer + decide on the same percepts."""
+        """infer + decide on the same percepts; the state's world model (facts asserted by
+        SCS bodies in earlier cycles) joins inference as base facts."""
         index = _index(percepts)
-        beliefs = self.inference.beliefs(index)
+        beliefs = self.inference.beliefs(index, state.scs.model)
         decision, new_state = self._decide(state, index, beliefs.store, outcomes)
         return CycleResult(beliefs, decision, new_state)
 

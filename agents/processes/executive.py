@@ -11,17 +11,21 @@ step: the first unsatisfied goal of the prioritised list gets a skill path, the 
 path preferred (seed 000, Adding Goal Priorities). The intention is Decision.to_dict(): the
 goal list with statuses, the skill path with bindings, the actions and why (and the problem
 solver's goal stacks). The goals live in the goal-entry process; the engine state (paths, goal
-stacks, learned skills) lives here and, with --state, in a file written after every cycle and
-read back at start, so a restart loses none of it (agents/processes/persist.py). --learned
-starts from skills learned in an earlier run; --learned-out writes the skills as they are
-learned; --no-solver runs the executive alone (an impasse stays an impasse); --mechanism
-names what answers an impasse (agents.lang.engine.SOLVERS: means-ends, the default; rogue,
-the planner of seed 003, whose tail-plans, head-plan and monitoring live in the same state).
+stacks, learned skills, SCS threads) lives here and, with --state, in a file written after
+every cycle and read back at start, so a restart loses none of it (agents/processes/persist.py).
+The SCS state (body threads, discount factors, world model) also goes out with the actions as
+the agent's memory and comes back through the world with the next percepts, which is how the
+world model reaches the inference process (docs/bus.md, "Agent memory"). --learned starts
+from skills learned in an earlier run; --learned-out writes the skills as they are learned;
+--no-solver runs the executive alone (an impasse stays an impasse); --mechanism names
+what answers an impasse (agents.lang.engine.SOLVERS: means-ends, the default; rogue, the
+planner of seed 003, whose tail-plans, head-plan and monitoring live in the same state).
 """
 
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 from typing import Any
 
 import click
@@ -68,6 +72,25 @@ class Executive:
                 self.refused.add(goal_id)
                 continue
             self.user[goal_id] = (text, priority)
+
+    def remember(self, memory: dict[str, Any]) -> None:
+        """Take the SCS state from the memory the world handed back (a malformed one is
+        logged and ignored: the executive goes on with its own)."""
+        from agents.lang import LangError
+        from agents.lang.scs.state import from_memory
+
+        if not memory:
+            return
+        try:
+            self.state = replace(self.state, scs=from_memory(memory))
+        except LangError as exc:
+            self.log.warning("agent memory dropped: %s", exc)
+
+    def memory(self) -> dict[str, Any]:
+        """What goes out with the actions, for the world to hand back next cycle."""
+        from agents.lang.scs.state import ScsState, to_memory
+
+        return to_memory(self.state.scs) if self.state.scs != ScsState() else {}
 
     def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
         """One executive step; returns the engine's Decision. A malformed outcome is logged
@@ -119,7 +142,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     def outputs(cycle: int, intention: dict, actions: list) -> list[tuple[str, Message]]:
         env = Envelope.now(run, cycle, process)
         return [(keys.intention(run, agent), Intention(env, agent, intention)),
-                (keys.actions(run, agent), Actions(env, agent, tuple(actions)))]
+                (keys.actions(run, agent), Actions(env, agent, tuple(actions),
+                                                   executive.memory()))]
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         if saved is not None and cycle <= saved.cycle:
@@ -127,6 +151,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
             return outputs(cycle, saved.intention, saved.actions)
         executive.sync_goals(inputs[g_key].goals)
         seen = inputs[p_key]
+        executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
+        executive.remember(seen.memory)                           # after a restart
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         intention, actions = decision.to_dict(), [a.to_list() for a in decision.actions]
         if saver is not None:
