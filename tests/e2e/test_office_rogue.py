@@ -78,8 +78,8 @@ def test_figure_6_with_the_request_posted_by_teleo_goal_post(teleo):
         # the intention on the bus carries the planner's section
         shown = teleo("inspect", "--seconds", "1", "--key", "agent/ME/intention")
         assert shown.returncode == 0, shown.stderr
-        for key in ('"planner"', '"head"', '"tails"', '"order"', '"firings"',
-                    "SELECT-TOP-PRIORITY-AND-COMPATIBLE-GOALS"):
+        for key in ('"planner"', '"head"', '"tails"', '"order"', '"firings"', '"executing"',
+                    "<goto-pickup-loc mitchell r-5303>"):
             assert key in shown.stdout
         assert launcher.wait(120) == 0, teleo.launch_output()
     finally:
