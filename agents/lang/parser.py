@@ -12,7 +12,7 @@ from .arith import OPS
 from .errors import Diagnostic
 from .limits import MAX_DIAGNOSTICS
 from .pieces import PieceParser, items_of, op_name, suggest
-from .planning.syntax import PLANNING_SECTIONS
+from .planning.reader import PLANNING_SECTIONS
 from .program import ConceptClause, GoalSpec, Skill
 from .scs.reader import BodyReader
 from .sexpr import Atom, SList, to_text
