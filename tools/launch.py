@@ -50,7 +50,9 @@ def process_specs(scenario: Scenario, run: str, run_dir: Path, bus_args: list[st
                 extra += ["--state", str(summary.state_file(run_dir, agent.id)),
                           "--learned-out", str(summary.learned_file(run_dir, agent.id)),
                           *(["--learned", learned] if learned else []),
-                          *([] if agent.solver else ["--no-solver"])]
+                          *([] if agent.solver else ["--no-solver"]),
+                          *(["--mechanism", agent.mechanism]
+                            if agent.mechanism != "means-ends" else [])]
             specs.append(ProcSpec(f"{agent.id}.{stage}", module_argv(
                 modules[stage], *common, "--agent", agent.id, *extra),
                 agent.max_restarts(stage)))
