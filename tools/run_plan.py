@@ -133,7 +133,8 @@ def _executive_args(plan: Plan, spec: AgentSpec) -> list[str]:
     return ["--state", str(summary.state_file(plan.run_dir, spec.id)),
             "--learned-out", str(summary.learned_file(plan.run_dir, spec.id)),
             *(["--learned", plan.learned] if plan.learned else []),
-            *([] if spec.solver else ["--no-solver"])]
+            *([] if spec.solver else ["--no-solver"]),
+            *(["--mechanism", spec.mechanism] if spec.mechanism != "means-ends" else [])]
 
 
 def check_secrets(plan: Plan) -> None:

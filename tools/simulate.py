@@ -28,13 +28,15 @@ from world.run_scenario import Scenario, ScenarioError
 @dataclass
 class SimRun:
     """The outcome of an in-process run: per-cycle records, the kept snapshots and the final
-    one (snapshot dicts of the scenario's domain, world/domain.py), and each agent's learned
-    skills at the end (EngineState.learned: the ones it started from, then the new ones)."""
+    one (snapshot dicts of the scenario's domain, world/domain.py), each agent's learned
+    skills at the end (EngineState.learned: the ones it started from, then the new ones) and
+    its engine state at the end (``states``: the planner's head-plan, for one)."""
 
     records: list[dict[str, Any]] = field(default_factory=list)
     snapshots: list[dict[str, Any]] = field(default_factory=list)
     final: dict[str, Any] = field(default_factory=dict)
     learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    states: dict[str, EngineState] = field(default_factory=dict)
 
 
 def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
@@ -89,8 +91,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
     programs = {a.id: load_program(a.program) for a in scenario.agents}
-    engines = {a.id: Engine(programs[a.id], solver="means-ends" if a.solver else None)
-               for a in scenario.agents}
+    engines = {a.id: Engine(programs[a.id], solver=a.impasse_handler) for a in scenario.agents}
     text = read_text(learned) if learned else ""
     states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
                                           if learned else ()) for a in agents}
@@ -117,9 +118,10 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             world_ms += (time.perf_counter() - w0) * 1e3
             record[a] = {"actions": actions,
                          "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
-            solver = seen.decision.section("solver")
-            if solver is not None:
-                record[a]["solver"] = solver.to_dict()
+            for name in ("solver", "planner"):
+                section = seen.decision.section(name)
+                if section is not None:
+                    record[a][name] = section.to_dict()
             if recorder is not None:
                 recorder.agent(cycle, a, seen)
         run.records.append(record)
@@ -129,6 +131,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
+    run.states = states
     return run
 
 

@@ -3,8 +3,8 @@ run folder (world/recorder.py): the trace (cycles run, last counters), the world
 record (agents left uncontrolled, late, dead and stalled stages, world restarts), the world's
 final totals when it wrote them, the goal store, and the launcher's own record (restarts per
 process, processes left down, why the run ended). The files are read as they are, so the
-figures stay true when the world was killed. Also each agent's learned skills
-(`learned-AGENT.tlp`) and what its SCS bodies did (its last memory, from the trace).
+figures stay true when the world was killed. What each agent's mechanisms did (learned
+skills, SCS bodies, the ROGUE planner) is told by tools/summary_agents.py.
 
 The run's status (docs/faults.md, "What counts as a failed run"):
 - failed (exit 1): an agent was uncontrolled for at least one cycle (its actions did not
@@ -28,6 +28,7 @@ from typing import Any
 import click
 
 from tools import records
+from tools.summary_agents import agent_sections, echo_agents, read_json_file
 from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, read_jsonl
 
 GOALS_FILE = "goals.json"
@@ -58,7 +59,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     spec = get_domain(domain)
     trace = read_jsonl(run_dir / TRACE)
     health = read_jsonl(run_dir / HEALTH)
-    final = _read_json(run_dir / WORLD_FINAL)
+    final = read_json_file(run_dir / WORLD_FINAL)
     final = final if isinstance(final, dict) else {}
     cycles = len(trace)
     counters: dict[str, dict[str, int]] = trace[-1].get("counters", {}) if trace else {}
@@ -92,8 +93,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
-        "learned": _learned(run_dir),
-        "bodies": {a: b for a, m in sorted(memory.items()) if (b := bodies(m))},
+        **agent_sections(run_dir, counters, memory),
         "trace": str(run_dir / TRACE),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
     }
@@ -192,51 +192,7 @@ def echo(summary: dict[str, Any]) -> None:
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
-    for agent, learned in summary.get("learned", {}).items():
-        heads = learned["skills"]
-        click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
-                   + "".join(f"\n    {h}" for h in heads))
-    for agent, b in summary.get("bodies", {}).items():
-        _echo_bodies(agent, b)
-
-
-def bodies(memory: dict[str, Any]) -> dict[str, Any]:
-    """What an agent's SCS bodies did, from its memory (docs/bus.md, "Agent memory"): the
-    tally, each do-best alternative's record and discount factor, the threads still running
-    and the world model; {} for an agent without bodies."""
-    scs = memory.get("scs") if isinstance(memory, dict) else None
-    if not isinstance(scs, dict) or not (scs.get("tally") or scs.get("threads")):
-        return {}
-    return {"tally": scs.get("tally", {}),
-            "choices": scs.get("choices", []),
-            "threads": [{k: t.get(k) for k in ("goal_id", "goal", "skill_name", "status", "note")}
-                        for t in scs.get("threads", [])],
-            "model": memory.get("model", [])}
-
-
-def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
-    """Per agent: its learned-skills file and the head of each skill in it."""
-    from agents.lang.solving.learned import clause_heads
-
-    out = {}
-    for path in sorted(run_dir.glob("learned-*.tlp")):
-        agent = path.stem.removeprefix("learned-")
-        out[agent] = {"file": str(path), "skills": clause_heads(path.read_text())}
-    return out
-
-
-def _echo_bodies(agent: str, b: dict[str, Any]) -> None:
-    tally = ", ".join(f"{k} {v}" for k, v in sorted(b["tally"].items()))
-    click.echo(f"  {agent} SCS bodies: {tally or 'nothing done'}")
-    for c in b["choices"]:
-        click.echo(f"    do-best {c['label']}: chosen {c['chosen']}, succeeded "
-                   f"{c['succeeded']}, failed {c['failed']}, discount factor {c['factor']:.3f}")
-    for t in b["threads"]:
-        click.echo(f"    thread {t['goal_id']} {t['goal']} <- {t['skill_name']}: "
-                   f"{t['status']} ({t['note']})")
-    if b["model"]:
-        click.echo("    world model: " + " ".join("(" + " ".join(map(str, f)) + ")"
-                                             for f in b["model"]))
+    echo_agents(summary)
 
 
 def _pairs(d: dict[str, Any]) -> str:
@@ -260,7 +216,7 @@ def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
     """The goal records and recovery incidents of the goal store, whatever shape the file has:
     only records that are objects are kept; a file that is not a goal store adds an incident
     saying so (drill F2: a goal that was an integer crashed the summary)."""
-    doc = _read_json(path)
+    doc = read_json_file(path)
     if doc is None:
         return [], ([f"{path}: not readable as JSON"] if path.exists() else [])
     goals = doc.get("goals", []) if isinstance(doc, dict) else None
@@ -272,15 +228,3 @@ def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
     if len(keep) != len(goals):
         incidents.append(f"{path}: {len(goals) - len(keep)} goal record(s) are not objects")
     return keep, incidents
-
-
-def _read_json(path: Path) -> Any:
-    """The JSON in `path`, or None when it is absent or not bounded JSON (any bytes)."""
-    from agents.lang import LangError
-    from agents.lang.limits import read_json
-
-    try:
-        text = path.read_bytes().decode("utf-8", errors="replace")
-        return read_json(text, str(path), max_chars=64 << 20, max_string=1 << 20)
-    except (OSError, LangError):
-        return None

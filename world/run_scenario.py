@@ -44,13 +44,20 @@ class RunSettings:
 @dataclass(frozen=True)
 class AgentSpec:
     """One [[agents]] entry: its id, program, how often each of its processes may restart,
-    and whether it has the means-ends problem solver (default true; false: the executive
-    alone, an impasse stays an impasse)."""
+    and the mechanism that answers an impasse: ``mechanism`` names it (default
+    "means-ends", the problem solver of seed 000; "rogue", the planner of seed 003;
+    agents.lang.engine.SOLVERS); ``solver = false``: none, the executive alone."""
 
     id: str
     program: Path
     respawn: dict[str, int] = field(default_factory=dict)
     solver: bool = True
+    mechanism: str = "means-ends"
+
+    @property
+    def impasse_handler(self) -> str | None:
+        """The SOLVERS name to give the Engine, or None for the executive alone."""
+        return self.mechanism if self.solver else None
 
     def max_restarts(self, stage: str) -> int:
         """Restarts allowed for `stage` (perception, inference, executive)."""
@@ -193,7 +200,8 @@ def _flag(table: dict[str, Any], key: str, where: str) -> bool:
 
 def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
     where = f"{path}: [[agents]] #{index + 1}"
-    _only(table, {"id", "program", "respawn", "solver"}, path, f"[[agents]] #{index + 1}")
+    _only(table, {"id", "program", "respawn", "solver", "mechanism"}, path,
+          f"[[agents]] #{index + 1}")
     agent_id = _typed(table, "id", str, None, where)
     program = _resolve(_typed(table, "program", str, None, where), path)
     respawn = _typed(table, "respawn", dict, {}, where)
@@ -205,7 +213,8 @@ def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
     solver = table.get("solver", True)
     if not isinstance(solver, bool):
         raise ScenarioError(f"{where}.solver: expected true or false, got {solver!r}")
-    return AgentSpec(agent_id, program, dict(respawn), solver)
+    mechanism = _typed(table, "mechanism", str, "means-ends", where)
+    return AgentSpec(agent_id, program, dict(respawn), solver, mechanism)
 
 
 def _resolve(program: str, scenario_path: Path) -> Path:
