@@ -63,21 +63,34 @@ def _json_line(key: str, t_ns: int, payload: bytes) -> str:
 def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | None,
          bus_config: BusConfig) -> None:
     """Print messages on KEYEXPR (e.g. 'teleo/demo/**') decoded, as JSON lines."""
+    try:
+        keys.check_keyexpr(keyexpr)
+    except BusError as exc:
+        raise click.BadParameter(str(exc), param_hint="KEYEXPR") from None
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
+    try:
+        with open_node(bus_config, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
+            _print_messages(node.subscribe(keyexpr, raw=True), text, count, end, stop)
+    except BusError as exc:
+        raise click.ClickException(str(exc)) from exc
+
+
+def _print_messages(inbox, text: str | None, count: int | None, end: float | None,
+                    stop) -> None:
+    """Print what arrives in `inbox` as JSON lines until `end` [monotonic s], `count`
+    lines, or `stop`."""
     printed = 0
-    with open_node(bus_config, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
-        inbox = node.subscribe(keyexpr, raw=True)
-        while not stop.is_set() and (end is None or time.monotonic() < end):
-            item = inbox.receive(0.1)
-            if item is None:
-                continue
-            line = _json_line(item.key, item.t_ns, item.payload)
-            if text is None or text in line:
-                click.echo(line)
-                printed += 1
-                if count is not None and printed >= count:
-                    break
+    while not stop.is_set() and (end is None or time.monotonic() < end):
+        item = inbox.receive(0.1)
+        if item is None:
+            continue
+        line = _json_line(item.key, item.t_ns, item.payload)
+        if text is None or text in line:
+            click.echo(line)
+            printed += 1
+            if count is not None and printed >= count:
+                break
 
 
 @click.command()
@@ -89,6 +102,11 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
 def record(file: str, run_id: str, seconds: float | None, count: int | None,
            bus_config: BusConfig) -> None:
     """Record all traffic of a run (key, time, raw payload) to FILE until Ctrl-C."""
+    try:
+        keys.check_chunk(run_id, "run")
+    except BusError as exc:
+        raise click.BadParameter(f"{exc} (a run id, e.g. driving-demo-3f2a1c, as `teleo "
+                                 "launch` prints it)", param_hint="--run") from None
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
     with open_node(bus_config, run_id, "record") as node, open(file, "wb") as out:

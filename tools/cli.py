@@ -9,7 +9,8 @@ import click
 
 # (module, attribute holding a list of click commands). Each module owns its subcommands.
 _COMMAND_MODULES = (
-    "tools.lang_commands",   # check, infer, step        (language engine)
+    "tools.check_commands",  # check                     (programs, learned files, scenarios)
+    "tools.lang_commands",   # infer, step               (language engine)
     "tools.bus_commands",    # router, echo, record, replay (bus)
     "tools.world_commands",  # render                    (world)
     "tools.launch",          # launch                    (processes)

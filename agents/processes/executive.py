@@ -28,6 +28,7 @@ from typing import Any
 import click
 
 from agents.processes.common import agent_options, run_stage, setup_logging
+from agents.processes.hints import with_hints
 from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
@@ -149,7 +150,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
         executive.remember(seen.memory)                           # after a restart
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
-        intention, actions = decision.to_dict(), [a.to_list() for a in decision.actions]
+        intention = with_hints(decision.to_dict(), seen.percepts)
+        actions = [a.to_list() for a in decision.actions]
         if saver is not None:
             saver.save(Saved(cycle, executive.state, intention, actions))
         if out is not None:
