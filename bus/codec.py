@@ -194,6 +194,7 @@ _FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
     "op": _str, "goal": _str, "priority": _int, "goal_id": _str, "force": _bool,
     "ok": _bool, "reason": _str, "goals": _dict_rows,
     "process": _str, "compute_ms": _float, "late": _int, "event": _dict, "memory": _dict,
+    "outcome": _dict,
 }
 
 _KIND_FIELD_CHECKS: dict[tuple[str, str], Callable[[Any], Any]] = {

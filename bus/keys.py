@@ -4,7 +4,7 @@ Layout (keys are static; the cycle number travels in the payload envelope, so de
 publishers and matching status keep working across cycles):
 
     teleo/<run>/world/state                  WorldState
-    teleo/<run>/world/events                 WorldEvent
+    teleo/<run>/world/events                 WorldEvent; queryable: WorldEvent -> EventReply
     teleo/<run>/agent/<agent>/percepts       Percepts
     teleo/<run>/agent/<agent>/beliefs        Beliefs
     teleo/<run>/agent/<agent>/actions        Actions
@@ -93,6 +93,8 @@ def world_state(run: str) -> str:
 
 
 def world_events(run: str) -> str:
+    """Events into the world: published (applied at the next cycle), or asked as a query
+    (applied at the next cycle and answered with the world's EventReply)."""
     return f"{run_root(run)}/world/events"
 
 
@@ -168,7 +170,7 @@ def kind_of_key(key: str) -> frozenset[str]:
     if tail == ("world", "state"):
         return frozenset({"WorldState"})
     if tail == ("world", "events"):
-        return frozenset({"WorldEvent"})
+        return frozenset({"WorldEvent", "EventReply"})
     if len(tail) == 2 and tail[0] == "stats":
         return frozenset({"ProcessStats"})
     if len(tail) == 3 and tail[0] == "agent":

@@ -3,7 +3,8 @@
     python -m world.process --run RUN --scenario FILE --cycles N --seed S
                             --run-mode lockstep|realtime --out DIR [bus flags]
 
-For cycle t: inject the events due (scripted at t, or received on world/events), publish the
+For cycle t: inject the events due (scripted at t, or received on world/events, where a
+query, as `teleo event` sends, is answered with the world's verdict), publish the
 world state of t with each agent's action outcomes of t-1, collect every agent's actions of
 t through bus.clock.Clock, apply them and step the physics by dt. It writes in DIR:
 trace.jsonl (one line per cycle: cycle, actions per agent, counters, a digest of the state,
@@ -13,7 +14,8 @@ snapshots.jsonl (every render_every cycles and the last, for world.driving.rende
 world-final.json (counters, late and dead stages, timing, each agent's last memory) for the
 launcher's summary. Each agent's memory (what its executive sends with its actions: world-model
 facts, SCS threads and discount factors) is kept and handed back in the next world state, so
-a restarted agent process loses none of it (docs/bus.md, "Agent memory").
+a restarted agent process loses none of it (docs/bus.md, "Agent memory"). After each cycle it
+publishes its own ProcessStats (compute time of the cycle's world work) for the inspector.
 """
 
 from __future__ import annotations
@@ -35,8 +37,9 @@ from bus import keys
 from bus.clock import Clock
 from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode, CycleReport
-from bus.messages import WorldEvent, WorldState
+from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
+from bus.pending import PendingQueries, serve_later
 from world.domain import get_domain
 from world.run_scenario import Scenario, load_scenario
 
@@ -125,6 +128,25 @@ def _drain(inbox: Inbox) -> list[dict[str, Any]]:
     return events
 
 
+def _inject(sim, due: list[dict[str, Any]], events_in: Inbox, asked: PendingQueries,
+            node, t: int) -> list[dict[str, Any]]:
+    """Apply the events of cycle `t` in order: scripted, published on world/events, then
+    asked there as queries (`teleo event`), each of which is answered with the world's
+    verdict now, before the state of `t` goes out. Returns every outcome, for the state and
+    the trace (so a run with events stays deterministic and its trace says what happened)."""
+    injected = [sim.inject(e) for e in due + _drain(events_in)]
+    for pending in asked.take():
+        event = pending.request.event if isinstance(pending.request, WorldEvent) else None
+        if event is None:
+            pending.fail(f"expected a WorldEvent, got a {pending.request.KIND}")
+            continue
+        outcome = sim.inject(dict(event))
+        injected.append(outcome)
+        pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
+                                  str(outcome.get("reason", "")), outcome))
+    return injected
+
+
 def _actions_of(sim, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
     """The agent's actions of this cycle, or the world's safe action when they did not arrive
     (a dead or late stage): an uncontrolled agent is stopped, never left on its last controls."""
@@ -144,6 +166,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     rec = Recorder(out, scenario.run.render_every)
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
+        asked = serve_later(node, keys.world_events(run))
+        node.declare([keys.stats(run, "world")])
         clock = Clock(node, pipelines(agents), mode=CycleMode(mode),
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
                       restart_timeout_s=RESTART_TIMEOUT)
@@ -159,7 +183,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
             if stop.is_set():
                 break
             w0 = time.perf_counter()
-            injected = [sim.inject(e) for e in scripted.get(t, []) + _drain(events_in)]
+            injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
             snap = sim.snapshot_dict()
             world_ms = (time.perf_counter() - w0) * 1e3
             report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes, injected,
@@ -169,7 +193,10 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
             outcomes = {a: sim.apply_actions(a, _actions_of(sim, a, acts, report.noop))
                         for a, acts in report.actions.items()}
             sim.step()
-            rec.cycle(t, snap, injected, report, world_ms + (time.perf_counter() - w0) * 1e3)
+            world_ms += (time.perf_counter() - w0) * 1e3
+            rec.cycle(t, snap, injected, report, world_ms)
+            node.publish_stats(t, world_ms)   # after the report: not a stage of the cycle
+        asked.close("the run ended before the event could be applied")
         completed = rec.cycles == cycles if cycles else True  # a forever run ends by a stop
         rec.finish(completed, time.monotonic() - start, memory)
     log.info("stopped after %d cycles (%s)", rec.cycles, "complete" if completed else "early")
