@@ -124,10 +124,11 @@ def _echo(result: dict[str, Any]) -> None:
 @click.option("--json", "as_json", is_flag=True,
               help="Print one JSON object (ok, and each file's errors and warnings).")
 def check(files: tuple[str, ...], includes: tuple[str, ...], as_json: bool) -> None:
-    """Check programs and scenarios without running them; exit 0 when all are valid, 1 with
-    every error otherwise. A scenario (.toml) is checked fully: world table, programs,
-    scripted goals and events. A file of learned skills is checked against the program
-    named before it (PROGRAM LEARNED)."""
+    """Check programs, learned skills and scenarios without running them.
+
+    Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
+    fully: world table, programs, scripted goals and events. A file of learned skills is
+    checked against the program named before it (PROGRAM LEARNED)."""
     results, program = [], None
     for path in files:
         if _is_learned(path):

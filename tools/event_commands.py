@@ -26,8 +26,9 @@ VERDICT_TIMEOUT = 10.0  # [s] for the world to apply the event at a cycle bounda
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=VERDICT_TIMEOUT,
               show_default=True, help="Seconds to wait for the world's verdict.")
 def event(event_json: str, timeout: float) -> None:
-    """Inject JSON, a world event, into the running launch and print the world's verdict:
-    '{"kind": "block", "segment": "S17"}' or
+    """Inject a world event into the running launch; print its verdict.
+
+    JSON is the event, e.g. '{"kind": "block", "segment": "S17"}' or
     '{"kind": "pedestrian", "ahead_of": "ME", "dist": 20}', for instance."""
     from bus import keys
     from bus.errors import BusError, NobodyServing, QueryFailed

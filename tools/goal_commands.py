@@ -69,7 +69,7 @@ def _table(goals) -> None:
 
 @click.group()
 def goal() -> None:
-    """Post, list, cancel and reprioritise goals of a running `teleo launch`.
+    """Post, list, cancel and reprioritise goals of a running launch.
 
     Priorities: the program's own goals have priorities 1..n (p1..pn, in file order; in the
     driving program the laws); a goal ranks after every goal of priority <= its own. A

@@ -87,7 +87,9 @@ def _goal_option(option: str) -> tuple[str, int | None]:
               help="Percept file: Table 3 s-expressions or JSON neutral lists.")
 @include_option
 def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
-    """Print every belief PROGRAM infers from the percepts, one s-expression a line, sorted."""
+    """Print every belief PROGRAM infers from the percepts, sorted.
+
+    One s-expression a line."""
     engine = Engine(_load(program, includes))
     for b in _sorted_beliefs(engine.infer(_percepts(percepts_file))):
         click.echo(str(b))
@@ -110,7 +112,7 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 def step(program: str, percepts_file: str, outcomes_file: str | None, state_file: str | None,
          save_file: str | None, goals: tuple[str, ...], as_json: bool,
          includes: tuple[str, ...]) -> None:
-    """Run one cycle: print beliefs, goal statuses, the skill path, actions and why."""
+    """Run one cycle of PROGRAM: beliefs, goals, skill path, actions, why."""
     engine = Engine(_load(program, includes))
     percepts = _percepts(percepts_file)
     outcomes = _outcomes(outcomes_file) if outcomes_file else ()

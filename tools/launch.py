@@ -15,15 +15,20 @@ import logging
 import os
 import secrets
 import signal
+import sys
 import time
+from contextlib import nullcontext, redirect_stdout
 from dataclasses import replace
 from pathlib import Path
 
 import click
 
 from tools import runfile, summary
+from tools.progress import WorldProgress
 from tools.scenario_check import load_checked
 from tools.supervisor import ProcSpec, Supervisor, module_argv
+from world.errors import WorldError
+from world.pictures import picture_format
 from world.run_scenario import AGENT_STAGES, Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
@@ -99,12 +104,17 @@ def _raise_interrupt(signum: int, frame: object) -> None:
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
               help="Start every agent from the skills learned in an earlier run (its "
                    "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
-           summary_file: str | None, render_file: str | None, learned: str | None) -> None:
+           summary_file: str | None, render_file: str | None, learned: str | None,
+           as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     try:
+        if render_file:
+            picture_format(render_file)
         scenario, _ = load_checked(scenario_file)
-    except ScenarioError as exc:
+    except (ScenarioError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     if learned:
         check_learned(scenario, learned)
@@ -116,9 +126,21 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     base = {"run": run, "scenario": str(scenario.path), "mode": mode, "seed": seed,
             "cycles_requested": cycles}
     signal.signal(signal.SIGTERM, _raise_interrupt)
-    restarts = _run(scenario, run, run_dir, cycles, seed, mode, learned)
-    result = summary.build(run_dir, base, restarts, scenario.domain)
-    summary.echo(result)
+    with redirect_stdout(sys.stderr) if as_json else nullcontext():
+        restarts = _run(scenario, run, run_dir, cycles, seed, mode, learned)
+        result = summary.build(run_dir, base, restarts, scenario.domain)
+        _finish(result, scenario, run_dir, summary_file, render_file, as_json)
+    if as_json:
+        click.echo(json.dumps(result, indent=1))
+    if not result["completed"]:
+        raise SystemExit(1)
+
+
+def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
+            render_file: str | None, as_json: bool) -> None:
+    """The summary for a person (unless --json), its file, the picture."""
+    if not as_json:
+        summary.echo(result)
     if summary_file:
         Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
         Path(summary_file).write_text(json.dumps(result, indent=1))
@@ -127,8 +149,6 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
-    if not result["completed"]:
-        raise SystemExit(1)
 
 
 def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
@@ -149,7 +169,7 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
             sup.start(spec)
         click.echo(f"run {run}: {len(sup.names())} processes, router {router.endpoint}, "
                    f"logs in {run_dir / 'logs'}")
-        _supervise(sup, cfg, info)
+        _supervise(sup, cfg, info, cycles)
     except KeyboardInterrupt:
         click.echo("interrupted: stopping the run")
     finally:
@@ -159,27 +179,34 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
     return sup.restarts()
 
 
-def _supervise(sup: Supervisor, cfg, info: runfile.RunInfo) -> None:
+def _supervise(sup: Supervisor, cfg, info: runfile.RunInfo, cycles: int = 0) -> None:
     """Wait for every announcement, publish the run file, then restart crashed processes
-    until the world ends."""
+    until the world ends (with a progress bar of the `cycles` on a terminal)."""
     from bus.node import open_node
 
     with open_node(cfg, info.run, "launch") as node:
         _wait_ready(sup, node, Path(info.run_dir) / "logs")
         _show_status(sup, node.alive())
         _publish_run_file(sup, info)
-        while True:
-            exits = sup.poll(exempt=("world",))
-            if any(ex.restarted for ex in exits):
-                _publish_run_file(sup, info)
-            for ex in exits:
-                if ex.name == "world":
-                    if ex.returncode != 0:
-                        click.echo(f"world exited with code {ex.returncode}", err=True)
-                    return
-                verb = f"restarted ({ex.restarts})" if ex.restarted else "left down"
-                click.echo(f"{ex.name} exited with code {ex.returncode}: {verb}", err=True)
-            node.presence.wait_change(0.2)
+        with WorldProgress(node, info.run, cycles) as bar:
+            _watch(sup, node, info, bar)
+
+
+def _watch(sup: Supervisor, node, info: runfile.RunInfo, bar: WorldProgress) -> None:
+    """Restart crashed processes until the world ends."""
+    while True:
+        bar.poll()
+        exits = sup.poll(exempt=("world",))
+        if any(ex.restarted for ex in exits):
+            _publish_run_file(sup, info)
+        for ex in exits:
+            if ex.name == "world":
+                if ex.returncode != 0:
+                    click.echo(f"world exited with code {ex.returncode}", err=True)
+                return
+            verb = f"restarted ({ex.restarts})" if ex.restarted else "left down"
+            click.echo(f"{ex.name} exited with code {ex.returncode}: {verb}", err=True)
+        node.presence.wait_change(0.2)
 
 
 def _wait_ready(sup: Supervisor, node, log_dir: Path) -> None:
@@ -207,7 +234,8 @@ def _log_tail(path: Path, lines: int = 12) -> str:
 
 
 def _publish_run_file(sup: Supervisor, info: runfile.RunInfo) -> None:
-    runfile.write(replace(info, pids={name: sup.pid(name) for name in sup.names()}))
+    runfile.write(replace(info, pids={name: sup.pid(name) for name in sup.names()},
+                          restarts={n: k for n, k in sup.restarts().items() if k}))
 
 
 def _show_status(sup: Supervisor, alive: set[str]) -> None:

@@ -2,7 +2,8 @@
 `teleo inspect` connect to it with no flags.
 
 The file is `$TELEO_RUN_DIR/teleo-run.json`, or `./out/teleo-run.json` without that variable.
-It holds the run id, the router endpoint, the launcher's pid, the agents and the run folder.
+It holds the run id, the router endpoint, the launcher's pid, the agents, the run folder, each
+process's pid and how many times the launcher restarted it (for `teleo inspect`).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ class RunInfo:
     run_dir: str
     scenario: str
     pids: dict[str, int] = field(default_factory=dict)  # process name -> current pid
+    restarts: dict[str, int] = field(default_factory=dict)  # process name -> times restarted
 
 
 def base_dir() -> Path:
@@ -66,7 +68,8 @@ def find() -> RunInfo:
     try:
         doc = json.loads(path.read_text())
         info = RunInfo(doc["run"], doc["endpoint"], int(doc["pid"]), tuple(doc["agents"]),
-                       doc["run_dir"], doc.get("scenario", ""), dict(doc.get("pids", {})))
+                       doc["run_dir"], doc.get("scenario", ""), dict(doc.get("pids", {})),
+                       dict(doc.get("restarts", {})))
     except FileNotFoundError as exc:
         raise NoRunningLaunch(f"no running teleo launch found (no {path})") from exc
     except (ValueError, KeyError, TypeError) as exc:

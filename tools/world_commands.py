@@ -116,7 +116,10 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
               help="Scenario source: seed (default: the scenario's).")
 def render(source: Path, out: Path, agent: str | None, cycle: int | None, every: int,
            scale: float | None, follow: float | None, steps: int, seed: int | None) -> None:
-    """Draw SOURCE (snapshots .jsonl/.json, a bus recording, or a scenario .toml) to --out."""
+    """Draw a run or a scenario to a PNG, JPEG or GIF.
+
+    SOURCE: a run's snapshots (.jsonl/.json), a bus recording, or a scenario .toml (simulated
+    for --steps cycles with its own seed)."""
     try:
         rows = load_snapshots(source, steps, seed)
         if not rows:

@@ -20,7 +20,6 @@ publishes its own ProcessStats (compute time of the cycle's world work) for the 
 
 from __future__ import annotations
 
-import hashlib
 import json
 import logging
 import signal
@@ -42,6 +41,7 @@ from bus.node import Inbox, open_node
 from bus.pending import PendingQueries, serve_later
 from world.domain import get_domain
 from world.run_scenario import Scenario, load_scenario
+from world.trace import trace_line
 
 log = logging.getLogger("teleo.world")
 READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
@@ -52,12 +52,6 @@ STALL_TIMEOUT = 30.0      # [s] lockstep waits this long for a live but silent s
 def pipelines(agents: list[str]) -> dict[str, list[str]]:
     """Each agent's stages in pipeline order; the goal-entry process feeds every executive."""
     return {a: ["goals", f"{a}.perception", f"{a}.inference", f"{a}.executive"] for a in agents}
-
-
-def digest(snapshot: dict[str, Any]) -> str:
-    """A short hash of the whole world state (canonical JSON)."""
-    text = json.dumps(snapshot, sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
 class Recorder:
@@ -81,12 +75,7 @@ class Recorder:
 
     def cycle(self, t: int, snap: dict[str, Any], injected: list[dict[str, Any]],
               report: CycleReport, world_ms: float) -> None:
-        line = {"cycle": t, "actions": {a: [list(x) for x in acts]
-                                        for a, acts in sorted(report.actions.items())},
-                "counters": snap["counters"], "digest": digest(snap)}
-        if injected:
-            line["events"] = injected
-        self.trace.write(json.dumps(line, sort_keys=True) + "\n")
+        self.trace.write(trace_line(t, snap, report.actions, injected))
         self.late.update(report.late)
         self.dead.update(report.dead)
         self.noop.update(report.noop)

@@ -31,6 +31,7 @@ from agents.lang.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
 from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError, rank_problem
+from agents.processes.goal_sync import validator
 from agents.processes.request_limits import RequestLimiter
 from bus import keys
 from bus.config import BusConfig, bus_options
@@ -44,19 +45,9 @@ SAVE_PERIOD = 1.0  # [s] between saves of statuses mirrored from the executives'
 
 def engine_validator(scenario: Scenario):
     """validate(agent, goal, priority) -> "" or the engine's reason, one Engine per agent."""
-    from agents.lang import Engine, GoalError, load_program
+    from agents.lang import Engine, load_program
 
-    engines = {a.id: Engine(load_program(str(a.program))) for a in scenario.agents}
-
-    def validate(agent: str, goal: str, priority: int) -> str:
-        engine = engines[agent]
-        try:
-            engine.add_goal(engine.initial_state(), goal, priority=priority, goal_id="check")
-        except GoalError as exc:
-            return str(exc)
-        return ""
-
-    return validate
+    return validator({a.id: Engine(load_program(str(a.program))) for a in scenario.agents})
 
 
 def standing_goals(scenario: Scenario) -> dict[str, tuple[str, ...]]:

@@ -19,6 +19,7 @@ from typing import Any
 
 from world.domain import Domain
 from world.errors import ConfigError
+from world.pictures import is_animation
 
 VIOLATIONS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
               "speeding_cycles")
@@ -62,7 +63,7 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
     from world.driving.snapshot import WorldSnapshot
 
     snaps = [WorldSnapshot.from_dict(s) for s in snapshots]
-    if path.suffix.lower() == ".gif":
+    if is_animation(path):
         render_gif(snaps, path, agent=agent)
         return len(snaps)
     render_png(snaps[-1], path, agent=agent, trail=agent_trail(snaps, agent))
