@@ -17,6 +17,7 @@ from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
 from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
 from world.errors import WorldError
+from world.pictures import is_animation, picture_format
 from world.toml_text import read_toml
 
 MAX_SNAPSHOT_CHARS = 256 << 20
@@ -101,7 +102,7 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
 @click.command()
 @click.argument("source", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("--out", "out", required=True, type=click.Path(dir_okay=False, path_type=Path),
-              help="FILE.png (one cycle) or FILE.gif (the whole run).")
+              help="FILE.png or FILE.jpg (one cycle) or FILE.gif (the whole run).")
 @click.option("--agent", default=None, help="Whose car, range and counters to show.")
 @click.option("--cycle", "cycle", type=int, default=None,
               help="PNG: the cycle to draw (default: the last).")
@@ -121,6 +122,7 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
     SOURCE: a run's snapshots (.jsonl/.json), a bus recording, or a scenario .toml (simulated
     for --steps cycles with its own seed)."""
     try:
+        picture_format(out)
         rows = load_snapshots(source, steps, seed)
         if not rows:
             raise click.ClickException(f"{source}: no world snapshots in it")
@@ -132,7 +134,7 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
             click.echo(f"{out}: {frames} frame(s)")
             return
         snaps = [WorldSnapshot.from_dict(r) for r in rows]
-        if out.suffix.lower() == ".gif":
+        if is_animation(out):
             render_gif(snaps, out, agent=agent, every=max(1, every),
                        px_per_m=scale or (4.0 if follow else 1.5), follow=follow)
             click.echo(f"{out}: {len(snaps[::max(1, every)])} frame(s), cycles "

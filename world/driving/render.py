@@ -61,9 +61,10 @@ class _View:
 
 
 class _Labels:
-    """Places text so that no two labels overlap: each label tries a few spots around its
-    anchor (below, above, right, left, then further out) and takes the first free one
-    inside the picture; one with no free spot is drawn at its first choice."""
+    """Places text so that no two labels overlap: each label tries spots around its anchor
+    (below, above, right, left and the diagonals, on rings further and further out) and takes
+    the first free one inside the picture; one with no free spot at all (a crowd) is drawn at
+    its first choice."""
 
     def __init__(self, draw: ImageDraw.ImageDraw, width: int, height: int) -> None:
         self.draw, self.width, self.height = draw, width, height
@@ -80,10 +81,8 @@ class _Labels:
 
     def place(self, x: float, y: float, text: str, gap: float, **style) -> None:
         """Draw ``text`` near pixel (x, y), ``gap`` [px] away, where it overlaps nothing."""
-        spots = [(0, 1, "mt"), (0, -1, "mb"), (1, 0, "lm"), (-1, 0, "rm"),
-                 (0, 2.5, "mt"), (0, -2.5, "mb"), (1, 1.5, "lt"), (-1, 1.5, "rt")]
         boxes = []
-        for dx, dy, anchor in spots:
+        for dx, dy, anchor in _SPOTS:
             at = (x + dx * gap, y + dy * gap)
             box = self.draw.textbbox(at, text, anchor=anchor, font=style["font"],
                                      stroke_width=style.get("stroke_width", 0))
@@ -94,6 +93,12 @@ class _Labels:
             at, anchor, box = boxes[0]
         self.reserve(box)
         self.draw.text(at, text, anchor=anchor, **style)
+
+
+_DIRECTIONS = ((0, 1, "mt"), (0, -1, "mb"), (1, 0, "lm"), (-1, 0, "rm"),
+               (1, 1, "lt"), (-1, 1, "rt"), (1, -1, "lb"), (-1, -1, "rb"))
+_SPOTS = tuple((dx * r, dy * r, anchor) for r in (1.0, 2.5, 4.5, 7.0, 10.0)
+               for dx, dy, anchor in _DIRECTIONS)
 
 
 def scene_bounds(snaps: list[WorldSnapshot]) -> Bounds:
