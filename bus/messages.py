@@ -101,7 +101,7 @@ class GoalRequest:
     goal: str = ""
     priority: int = 0
     goal_id: str = ""
-    force: bool = False  # place the goal above the program's standing goals all the same
+    force: bool = False  # rank above the program's goals or cancel an achieved goal all the same
 
 
 @dataclass(frozen=True)

@@ -117,9 +117,12 @@ def list_(agent: str | None, as_json: bool) -> None:
 @goal.command()
 @click.argument("goal_id", metavar="ID")
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def cancel(goal_id: str, agent: str | None) -> None:
+@click.option("--force", is_flag=True,
+              help="Withdraw an achieved goal too (refused otherwise: the agent keeps an "
+                   "achieved goal, acting again should it stop holding).")
+def cancel(goal_id: str, agent: str | None, force: bool) -> None:
     """Cancel goal ID."""
-    reply = _request("cancel", agent, goal_id=goal_id)[0]
+    reply = _request("cancel", agent, goal_id=goal_id, force=force)[0]
     _check(reply)
     click.echo(reply.reason or f"cancelled {goal_id}")
 

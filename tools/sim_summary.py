@@ -39,7 +39,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         "counters": counters,
         "learned": {a: {"file": str(learned_files.get(a, "")),
                         "skills": clause_heads("\n".join(run.learned[a]))}
-                    for a in scenario.agent_ids if run.learned.get(a)},
+                    for a in scenario.agent_ids if run.learned.get(a) or a in learned_files},
         "bodies": {a: b for a, m in sorted(run.memory.items()) if (b := bodies(m))},
         "trace": str(trace) if trace else "",
     }

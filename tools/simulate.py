@@ -86,7 +86,7 @@ def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalSto
         if g.op == "post":
             return store.post(g.agent, g.goal, g.priority, cycle, validate)[0]
         if g.op == "cancel":
-            return store.cancel(g.goal_id, cycle)
+            return store.cancel(g.goal_id, cycle, g.force)
         return store.set_priority(g.goal_id, g.priority, cycle)
     except GoalStoreError as exc:
         log.warning("scripted request refused: %s", exc)

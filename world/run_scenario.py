@@ -65,7 +65,7 @@ class ScriptedGoal:
     at_cycle: int = 0
     op: str = "post"
     goal_id: str = ""
-    force: bool = False  # rank above the program's standing goals all the same
+    force: bool = False  # rank above the program's goals, or cancel an achieved goal
 
 
 @dataclass(frozen=True)

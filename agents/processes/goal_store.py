@@ -148,15 +148,23 @@ class GoalStore:
                             cycle, cycle)
         return replace(self, goals=self.goals + (record,), next_id=self.next_id + 1), record
 
-    def cancel(self, goal_id: str, cycle: int) -> GoalStore:
-        """Withdraw a goal; the executive drops it from the next goal list it receives."""
+    def cancel(self, goal_id: str, cycle: int, force: bool = False) -> GoalStore:
+        """Withdraw a goal; the executive drops it from the next goal list it receives. An
+        achieved goal is refused like a cancelled one (its record says what happened), unless
+        `force`: the agent keeps an achieved goal and acts again should it stop holding, so
+        withdrawing one is a real change (then its note says it had been achieved)."""
         record = self.get(goal_id)
         if record.status is GoalState.CANCELLED:
             raise GoalStoreError(f"{goal_id}: already cancelled")
+        note = ""
         if record.status is GoalState.ACHIEVED:
-            raise GoalStoreError(f"{goal_id}: already achieved (cycle {record.updated_cycle}); "
-                                 "an achieved goal stays achieved")
-        return self._put(replace(record, status=GoalState.CANCELLED, updated_cycle=cycle))
+            if not force:
+                raise GoalStoreError(
+                    f"{goal_id}: already achieved (cycle {record.updated_cycle}); an achieved "
+                    "goal stays achieved (force the cancel to stop the agent keeping it)")
+            note = f"achieved at cycle {record.updated_cycle}, then withdrawn"
+        return self._put(replace(record, status=GoalState.CANCELLED, updated_cycle=cycle,
+                                 note=note))
 
     def set_priority(self, goal_id: str, priority: int, cycle: int) -> GoalStore:
         """Move a goal in the agent's goal list (lower number = more important)."""

@@ -147,7 +147,7 @@ class GoalEntry:
             self._commit(store)
             return f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){forced}"
         if op == "cancel":
-            self._commit(self.store.cancel(goal_id, at))
+            self._commit(self.store.cancel(goal_id, at, force))
             return f"cancelled {goal_id} (from cycle {at})"
         if op == "priority":
             forced = self._rank(self.store.get(goal_id).agent, priority, force)

@@ -73,8 +73,11 @@ def test_cancelling_an_achieved_goal_is_refused_like_a_cancelled_one(entry):
     assert entry.store.get("g1").status is GoalState.ACHIEVED
     ok, reason = ask(entry, "cancel", goal_id="g1")
     assert not ok and reason == ("g1: already achieved (cycle 213); an achieved goal stays "
-                                 "achieved")
+                                 "achieved (force the cancel to stop the agent keeping it)")
     assert entry.store.get("g1").status is GoalState.ACHIEVED
+    assert ask(entry, "cancel", goal_id="g1", force=True)[0]      # withdrawn all the same
+    assert entry.store.get("g1").status is GoalState.CANCELLED
+    assert entry.store.get("g1").note == "achieved at cycle 213, then withdrawn"
     assert ask(entry, "post", "(package-delivered PACKET2)", 5)[0]
     assert ask(entry, "cancel", goal_id="g2")[0]
     assert ask(entry, "cancel", goal_id="g2") == (False, "g2: already cancelled")

@@ -18,9 +18,9 @@ from world.driving.render import (
     render_png,
     scene_bounds,
 )
-from world.pictures import FRAME_MS
 from world.driving.simulation import Simulation
 from world.errors import WorldError
+from world.pictures import FRAME_MS
 
 
 def short_run(steps: int) -> list:

@@ -94,7 +94,7 @@ def test_simulate_refuses_a_learned_file_for_another_program(learned_file):
 def test_simulate_writes_the_learned_file(tmp_path):
     out = tmp_path / "out.tlp"
     result = invoke("simulate", ROOT / "scenarios" / "driving_demo.toml", "--cycles", "2",
-                    "--learned-out", out)
+                    "--learned-out", out, "--json")
     assert result.exit_code == 0, result.output
-    assert json.loads(result.output)["learned"] == {"ME": []}
+    assert json.loads(result.output)["learned"] == {"ME": {"file": str(out), "skills": []}}
     assert out.read_text().startswith("; teleo learned skills for programs/driving.tlp")
