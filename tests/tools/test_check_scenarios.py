@@ -38,6 +38,9 @@ def invoke(*args):
      r"\[\[goals\]\] #1: priority 2 ranks the goal above the program's standing goals p3"),
     (("priority = 5\nat_cycle = 0", "priority = 0\nat_cycle = 0"),
      r"\[\[goals\]\] #1: priority: expected an integer in 1..1000000, got 0"),
+    (('id = "PACKET2"', 'id = "PACKET 2"'), r"\[world\] package 'PACKET 2': expected an id"),
+    (('owner = "ME" },  #', 'owner = "YOU" },  #'),
+     r"package PACKET2: owner 'YOU' is not an agent of this run"),
 ])
 def test_every_part_of_a_scenario_is_checked_before_it_runs(tmp_path, change, message):
     path = scenario(tmp_path, DEMO.replace(*change))

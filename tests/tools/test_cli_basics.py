@@ -81,3 +81,9 @@ def test_a_router_on_a_busy_port_says_so_in_one_line():
     assert done.stderr.startswith(f"Error: cannot start a router listening on tcp/127.0.0.1:"
                                   f"{port}; the port is in use")
     assert "Traceback" not in done.stderr and len(done.stderr.splitlines()) == 1
+
+
+def test_an_event_nested_too_deeply_is_one_line_naming_where():
+    result = CliRunner().invoke(cli, ["event", '{"kind": ' + "[" * 5000 + "]" * 5000 + "}"])
+    assert result.exit_code == 1
+    assert result.output == "Error: JSON:1:73: nested deeper than 64 levels\n"

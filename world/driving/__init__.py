@@ -40,9 +40,14 @@ def check_config(table: dict[str, Any], agents: list[str]) -> None:
     from world.driving.city import build_city
     from world.driving.config import load_world_config
 
+    from world.driving.injection import ID
+
     config = load_world_config(table)
     build_city(config)
     for p in config.packages:
+        if not ID.fullmatch(p.id):
+            raise ConfigError(f"[world] package {p.id!r:.40}: expected an id of letters, digits, "
+                              "'_' or '-' (a letter first, at most 32), as programs name it")
         if p.owner not in agents:
             raise ConfigError(f"[world] package {p.id}: owner {p.owner!r} is not an agent of "
                               f"this run (agents: {', '.join(agents)})")
