@@ -108,12 +108,17 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
               help="Add a user goal, e.g. '(package-delivered PACKET2)'; append :P for priority "
                    "P, e.g. '(clear B):1'. Repeatable.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
+@click.option("--mechanism", default="means-ends", show_default=True,
+              help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
 @include_option
 def step(program: str, percepts_file: str, outcomes_file: str | None, state_file: str | None,
-         save_file: str | None, goals: tuple[str, ...], as_json: bool,
+         save_file: str | None, goals: tuple[str, ...], as_json: bool, mechanism: str,
          includes: tuple[str, ...]) -> None:
     """Run one cycle of PROGRAM: beliefs, goals, skill path, actions, why."""
-    engine = Engine(_load(program, includes))
+    try:
+        engine = Engine(_load(program, includes), solver=mechanism)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from None
     percepts = _percepts(percepts_file)
     outcomes = _outcomes(outcomes_file) if outcomes_file else ()
     try:

@@ -55,7 +55,9 @@ def process_specs(scenario: Scenario, run: str, run_dir: Path, bus_args: list[st
                 extra += ["--state", str(summary.state_file(run_dir, agent.id)),
                           "--learned-out", str(summary.learned_file(run_dir, agent.id)),
                           *(["--learned", learned] if learned else []),
-                          *([] if agent.solver else ["--no-solver"])]
+                          *([] if agent.solver else ["--no-solver"]),
+                          *(["--mechanism", agent.mechanism]
+                            if agent.mechanism != "means-ends" else [])]
             specs.append(ProcSpec(f"{agent.id}.{stage}", module_argv(
                 modules[stage], *common, "--agent", agent.id, *extra),
                 agent.max_restarts(stage)))
@@ -104,11 +106,14 @@ def _raise_interrupt(signum: int, frame: object) -> None:
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
               help="Start every agent from the skills learned in an earlier run (its "
                    "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
+@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
+              help="Plot the run record (PNG): speed, goal timeline, stage times.")
+@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
            summary_file: str | None, render_file: str | None, learned: str | None,
-           as_json: bool) -> None:
+           plot_file: str | None, no_record: bool, as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     try:
         if render_file:
@@ -127,9 +132,10 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             "cycles_requested": cycles}
     signal.signal(signal.SIGTERM, _raise_interrupt)
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
-        restarts = _run(scenario, run, run_dir, cycles, seed, mode, learned)
+        restarts = _run(scenario, run, run_dir, cycles, seed, mode, learned,
+                        record=not no_record or bool(plot_file))
         result = summary.build(run_dir, base, restarts, scenario.domain)
-        _finish(result, scenario, run_dir, summary_file, render_file, as_json)
+        _finish(result, scenario, run_dir, summary_file, render_file, plot_file, as_json)
     if as_json:
         click.echo(json.dumps(result, indent=1))
     if not result["completed"]:
@@ -137,8 +143,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
 
 
 def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
-            render_file: str | None, as_json: bool) -> None:
-    """The summary for a person (unless --json), its file, the picture."""
+            render_file: str | None, plot_file: str | None, as_json: bool) -> None:
+    """The summary for a person (unless --json), its file, the picture, the plot."""
     if not as_json:
         summary.echo(result)
     if summary_file:
@@ -149,17 +155,23 @@ def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str |
         frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
+    if plot_file:
+        from tools.plot import plot_command_output
+
+        click.echo(plot_command_output(run_dir, Path(plot_file)))
 
 
 def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
-         mode: str, learned: str | None) -> dict[str, int]:
+         mode: str, learned: str | None, record: bool = True) -> dict[str, int]:
     """Start, supervise and stop the processes; returns restarts per process."""
     from bus.config import BusConfig
     from bus.router import spawn_router
+    from tools.recorder import start_run_recorder
 
     run_dir.mkdir(parents=True, exist_ok=True)
     router = spawn_router()
     cfg = BusConfig(connect=(router.endpoint,))
+    recorder = start_run_recorder(cfg, run, run_dir, scenario) if record else None
     sup = Supervisor(run_dir / "logs")
     info = runfile.RunInfo(run, router.endpoint, os.getpid(), tuple(scenario.agent_ids),
                            str(run_dir), str(scenario.path))
@@ -174,6 +186,8 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
         click.echo("interrupted: stopping the run")
     finally:
         sup.stop_all(stop_order(scenario))
+        if recorder is not None:
+            recorder.stop()
         router.stop()
         runfile.remove(info)
     return sup.restarts()

@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from agents.lang import Engine, GoalError, ProgramError, load_program
+from agents.lang.engine import SOLVERS
 from agents.lang.program import Program
 from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
 from world.domain import get_domain
@@ -26,6 +27,9 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
         raise ScenarioError(f"{where}: {exc}") from None
     programs: dict[str, Program] = {}
     for agent in scenario.agents:
+        if agent.mechanism not in SOLVERS:
+            raise ScenarioError(f"{where}: agent {agent.id}: mechanism: expected one of "
+                                f"{list(SOLVERS)}, got {agent.mechanism!r}")
         if not Path(agent.program).is_file():
             raise ScenarioError(f"{where}: agent {agent.id}: program {agent.program} not found")
         try:

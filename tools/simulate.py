@@ -39,13 +39,15 @@ log = logging.getLogger(__name__)
 @dataclass
 class SimRun:
     """The outcome of an in-process run: per-cycle records, the kept snapshots and the final
-    one (snapshot dicts of the scenario's domain, world/domain.py), and each agent's learned
-    skills at the end (EngineState.learned: the ones it started from, then the new ones)."""
+    one (snapshot dicts of the scenario's domain, world/domain.py), each agent's learned
+    skills at the end (EngineState.learned: the ones it started from, then the new ones) and
+    its engine state at the end (``states``: the planner's head-plan, for one)."""
 
     records: list[dict[str, Any]] = field(default_factory=list)
     snapshots: list[dict[str, Any]] = field(default_factory=list)
     final: dict[str, Any] = field(default_factory=dict)
     learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    states: dict[str, EngineState] = field(default_factory=dict)
     trace: list[str] = field(default_factory=list)   # trace.jsonl lines (world/trace.py)
     goals: GoalStore = field(default_factory=GoalStore)  # user goals, as a launch keeps them
     memory: dict[str, dict[str, Any]] = field(default_factory=dict)  # each agent's, at the end
@@ -93,19 +95,46 @@ def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalSto
         return store
 
 
+@dataclass(frozen=True)
+class AgentCycle:
+    """What one agent saw and did in one cycle, for a recorder (tools/recorder.SimRecorder);
+    ms: compute time per stage [ms]."""
+
+    percepts: list
+    outcomes: list
+    beliefs: Any
+    decision: Any
+    ms: dict[str, float]
+
+
+def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str, Any],
+                 agent: str, outcomes: list) -> tuple[AgentCycle, EngineState]:
+    """Perception, inference and the executive step of one agent, each timed."""
+    t0 = time.perf_counter()
+    percepts = domain.perceive(snap, agent)
+    t1 = time.perf_counter()
+    beliefs = engine.infer(percepts, state.scs.model)  # as Engine.cycle does
+    t2 = time.perf_counter()
+    decision, state = engine.decide(state, percepts, beliefs, outcomes)
+    t3 = time.perf_counter()
+    ms = {"perception": (t1 - t0) * 1e3, "inference": (t2 - t1) * 1e3,
+          "executive": (t3 - t2) * 1e3}
+    return AgentCycle(percepts, list(outcomes), beliefs, decision, ms), state
+
+
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
-             keep_every: int = 0, learned: Path | None = None,
+             keep_every: int = 0, learned: Path | None = None, recorder: Any = None,
              show_progress: bool = False) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
-    file:line:col if it does not fit an agent's program); `show_progress`: a progress bar
-    on a terminal (tools/progress.py)."""
+    file:line:col if it does not fit an agent's program); `recorder` (a
+    tools.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
+    bar on a terminal (tools/progress.py)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
     programs = {a.id: load_program(a.program) for a in scenario.agents}
-    engines = {a.id: Engine(programs[a.id], solver="means-ends" if a.solver else None)
-               for a in scenario.agents}
+    engines = {a.id: Engine(programs[a.id], solver=a.impasse_handler) for a in scenario.agents}
     text = read_text(learned) if learned else ""
     states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
                                           if learned else ()) for a in agents}
@@ -115,31 +144,42 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     total = scenario.run.cycles if cycles is None else cycles
     start = time.monotonic()
     for cycle in progress_cycles(total, show_progress):
+        w0 = time.perf_counter()
         injected = [sim.inject(ev.event) for ev in scenario.events if ev.at_cycle == cycle]
         goals.before(cycle, states)
         snap = sim.snapshot_dict()
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
+        if recorder is not None:
+            recorder.world(cycle, snap, {a: outcomes.get(a, []) for a in agents}, injected)
+        world_ms = (time.perf_counter() - w0) * 1e3
         record: dict[str, Any] = {"cycle": cycle}
         for a in agents:
-            percepts = domain.perceive(snap, a)
-            result = engines[a].cycle(states[a], percepts, outcomes.get(a, ()))
-            states[a] = result.state
-            actions = [act.to_list() for act in result.decision.actions]
+            seen, states[a] = _agent_cycle(engines[a], states[a], domain, snap, a,
+                                           outcomes.get(a, []))
+            actions = [act.to_list() for act in seen.decision.actions]
+            w0 = time.perf_counter()
             outcomes[a] = sim.apply_actions(a, actions)
-            decided = result.decision.to_dict()
-            goals.after(a, with_hints(decided, percepts), cycle)
+            world_ms += (time.perf_counter() - w0) * 1e3
+            goals.after(a, with_hints(seen.decision.to_dict(), seen.percepts), cycle)
             record[a] = {"actions": actions,
-                         "goals": [(g["id"], g["status"]) for g in decided["goals"]]}
-            solver = result.decision.section("solver")
-            if solver is not None:
-                record[a]["solver"] = solver.to_dict()
+                         "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
+            for name in ("solver", "planner"):
+                section = seen.decision.section(name)
+                if section is not None:
+                    record[a][name] = section.to_dict()
+            if recorder is not None:
+                recorder.agent(cycle, a, seen)
         run.records.append(record)
         run.trace.append(trace_line(cycle, snap, {a: record[a]["actions"] for a in agents},
                                     injected))
+        w0 = time.perf_counter()
         sim.step()
+        if recorder is not None:
+            recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
+    run.states = states
     run.goals, run.elapsed_s = goals.store, time.monotonic() - start
     run.memory = {a: _memory(states[a]) for a in agents}
     return run
@@ -179,31 +219,48 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
               default=None, help="Start every agent from the skills in this learned file.")
 @click.option("--learned-out", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Write the learned skills (those started from, then the new ones) here.")
+@click.option("--plot", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Write plots of the run record (PNG): speed, goal timeline, stage times.")
+@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object (a launch's --json form) instead.")
 def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
                      render: Path | None, learned: Path | None, learned_out: Path | None,
-                     as_json: bool) -> None:
+                     plot: Path | None, no_record: bool, as_json: bool) -> None:
     """Run SCENARIO in one process without the bus (to write programs).
 
     The same cycle as a lockstep launch, with the same goal ids (g1, g2, ...), trace lines
     and summary; a progress bar on a terminal."""
+    from tools.recorder import SimRecorder
+
+    recorder = None
     try:
         if render:
             picture_format(render)
         sc, _ = load_checked(scenario)
+        recorder = None if no_record and not plot else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
-                       learned=learned, show_progress=True)
+                       learned=learned, recorder=recorder, show_progress=True)
     except (ScenarioError, LangError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
-    _write_outputs(run, sc, trace, render, learned_out, seed, cycles, as_json)
+    finally:
+        if recorder is not None:
+            recorder.writer.close()
+    notes = []
+    if recorder is not None:
+        notes.append(f"run record written to {recorder.writer.path}")
+    if plot:
+        from tools.plot import plot_record
+
+        notes.append(f"plot written to {plot_record(recorder.writer.path, plot)}")
+    _write_outputs(run, sc, trace, render, learned_out, seed, cycles, as_json, notes,
+                   str(recorder.writer.path) if recorder else None)
 
 
 def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path | None,
                    learned_out: Path | None, seed: int | None, cycles: int | None,
-                   as_json: bool) -> None:
+                   as_json: bool, notes: list[str], record: str | None) -> None:
     """The files asked for, then the summary (text, or JSON on stdout)."""
-    notes = []
     files = dict(zip(sc.agent_ids, write_learned(run, sc, learned_out), strict=False)) \
         if learned_out else {}
     if trace:
@@ -217,6 +274,7 @@ def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path |
         notes.append(f"picture written to {render} ({frames} frame(s))")
     result = sim_summary.build(run, sc, sc.run.seed if seed is None else seed,
                                sc.run.cycles if cycles is None else cycles, trace, files)
+    result["record"] = record
     if as_json:
         click.echo(json.dumps(result, indent=1))
         for note in notes:

@@ -1,7 +1,8 @@
 """The end-of-run summary of `teleo launch`, built from the files the processes leave in the
 run folder: the world's final counters and each agent's last memory (`world-final.json`), the
 goal store (`goals.json`), the snapshots for rendering (`snapshots.jsonl`), each agent's
-learned skills (`learned-AGENT.tlp`) and the launcher's restart counts.
+learned skills (`learned-AGENT.tlp`), the planner's head-plan and travel figures in each
+executive's state file (`state-AGENT.json`) and the launcher's restart counts.
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ from pathlib import Path
 from typing import Any
 
 import click
+
+from tools import records
 
 WORLD_FINAL = "world-final.json"
 GOALS_FILE = "goals.json"
@@ -39,6 +42,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     final = _read_json(run_dir / WORLD_FINAL)
     final = final if isinstance(final, dict) else {}
     goals, incidents = _goals(run_dir / GOALS_FILE)
+    goals = records.with_history(goals, run_dir)  # when each became active, achieved, ...
     counters: dict[str, dict[str, int]] = final.get("counters", {})
     elapsed = float(final.get("elapsed_s", 0.0))
     cycles = int(final.get("cycles", 0))
@@ -62,6 +66,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
                            for a, c in counters.items()},
         "counters": counters,
         "learned": _learned(run_dir),
+        "planner": _planner(run_dir, counters),
         "bodies": {a: b for a, m in sorted(final.get("memory", {}).items())
                    if (b := bodies(m))},
         "trace": str(run_dir / TRACE),
@@ -96,17 +101,56 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"  GOAL STORE: {incident}")
     for goal in summary["goals"]:
         fields = [str(goal.get(k, "?")) for k in ("id", "agent", "goal", "priority", "status")]
-        click.echo("    {} {} {} p{}: {}".format(*fields))
+        click.echo("    {} {} {} p{}: {}".format(*fields)
+                   + records.history_text(goal.get("history", [])))
     for agent, laws in summary["law_violations"].items():
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+    _echo_planner(summary)
     for agent, learned in summary.get("learned", {}).items():
         heads = learned["skills"]
         click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
                    + "".join(f"\n    {h}" for h in heads))
     for agent, b in summary.get("bodies", {}).items():
         _echo_bodies(agent, b)
+
+
+def _planner(run_dir: Path, counters: dict[str, dict[str, int]]) -> dict[str, Any]:
+    """Per agent run by the ROGUE planner (seed 003): the operators it executed (its
+    head-plan) with what monitoring found, each request's end, the distance travelled
+    (odometer) and, by the map, that of the executed order and of first-come-first-served."""
+    out = {}
+    for path in sorted(run_dir.glob("state-*.json")):
+        agent = path.stem.removeprefix("state-")
+        doc = _read_json(path) or {}
+        planner = doc.get("state", {}).get("planner") or {}
+        if not planner:
+            continue
+        travel = planner.get("travel", {})
+        out[agent] = {
+            "executed": [{"step": a["step"], "tasks": a["tasks"], "result": a["result"],
+                          "note": a.get("note", ""), "ended": a["ended"]}
+                         for a in planner.get("head", ())],
+            "requests": [{"id": f["goal_id"], "goal": f["goal"], "status": f["status"],
+                          "reason": f.get("reason", ""), "arrived": f["arrived"],
+                          "ended": f["ended"]} for f in planner.get("finished", ())],
+            "pending": [t["goal_id"] for t in planner.get("tasks", ())],
+            "travelled_m": round(counters.get(agent, {}).get("travel_cm", 0) / 100, 2),
+            "executed_m": travel.get("executed_m", 0.0), "fcfs_m": travel.get("fcfs_m", 0.0),
+            "log": planner.get("log", [])}
+    return out
+
+
+def _echo_planner(summary: dict[str, Any]) -> None:
+    for agent, plan in summary.get("planner", {}).items():
+        click.echo(f"  {agent}: operators executed (ROGUE head-plan): {len(plan['executed'])}")
+        for a in plan["executed"]:
+            extra = "" if a["result"] in ("verified", "applied") else f" ({a['note']})"
+            click.echo(f"    {a['step']} for {' '.join(a['tasks'])}: {a['result']}{extra}")
+        click.echo(f"  {agent}: travelled {plan['travelled_m']:.1f} m (odometer); by the map "
+                   f"{plan['executed_m']:.1f} m in the executed order, "
+                   f"{plan['fcfs_m']:.1f} m first-come-first-served")
 
 
 def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:

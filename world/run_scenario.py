@@ -42,13 +42,20 @@ class RunSettings:
 @dataclass(frozen=True)
 class AgentSpec:
     """One [[agents]] entry: its id, program, how often each of its processes may restart,
-    and whether it has the means-ends problem solver (default true; false: the executive
-    alone, an impasse stays an impasse)."""
+    and the mechanism that answers an impasse: ``mechanism`` names it (default
+    "means-ends", the problem solver of seed 000; "rogue", the planner of seed 003;
+    agents.lang.engine.SOLVERS); ``solver = false``: none, the executive alone."""
 
     id: str
     program: Path
     respawn: dict[str, int] = field(default_factory=dict)
     solver: bool = True
+    mechanism: str = "means-ends"
+
+    @property
+    def impasse_handler(self) -> str | None:
+        """The SOLVERS name to give the Engine, or None for the executive alone."""
+        return self.mechanism if self.solver else None
 
     def max_restarts(self, stage: str) -> int:
         """Restarts allowed for `stage` (perception, inference, executive)."""
@@ -184,7 +191,8 @@ def _run(table: dict[str, Any], path: Path) -> RunSettings:
 
 def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
     where = f"{path}: [[agents]] #{index + 1}"
-    _only(table, {"id", "program", "respawn", "solver"}, path, f"[[agents]] #{index + 1}")
+    _only(table, {"id", "program", "respawn", "solver", "mechanism"}, path,
+          f"[[agents]] #{index + 1}")
     agent_id = _typed(table, "id", str, None, where)
     program = _resolve(_typed(table, "program", str, None, where), path)
     respawn = _typed(table, "respawn", dict, {}, where)
@@ -193,7 +201,9 @@ def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
             raise ScenarioError(
                 f"{where}.respawn: expected {{stage = max restarts}} with stage in "
                 f"{list(AGENT_STAGES)}, got {stage} = {count!r}")
-    return AgentSpec(agent_id, program, dict(respawn), _bool(table, "solver", where, True))
+    mechanism = _typed(table, "mechanism", str, "means-ends", where)
+    return AgentSpec(agent_id, program, dict(respawn), _bool(table, "solver", where, True),
+                     mechanism)
 
 
 def _bool(table: dict[str, Any], key: str, where: str, default: bool = False) -> bool:

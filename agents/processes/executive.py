@@ -2,7 +2,8 @@
 intention of t out.
 
     python -m agents.processes.executive --run RUN --agent ME --program FILE
-        [--state FILE] [--learned FILE] [--learned-out FILE] [--no-solver] [bus flags]
+        [--state FILE] [--learned FILE] [--learned-out FILE] [--no-solver]
+        [--mechanism NAME] [bus flags]
 
 Each cycle it brings the engine's user goals in line with the goal list the goal-entry
 process published for t (posted, cancelled, reprioritised goals), then takes one executive
@@ -16,7 +17,9 @@ The SCS state (body threads, discount factors, world model) also goes out with t
 the agent's memory and comes back through the world with the next percepts, which is how the
 world model reaches the inference process (docs/bus.md, "Agent memory"). --learned starts
 from skills learned in an earlier run; --learned-out writes the skills as they are learned;
---no-solver runs the executive alone (an impasse stays an impasse).
+--no-solver runs the executive alone (an impasse stays an impasse); --mechanism names
+what answers an impasse (agents.lang.engine.SOLVERS: means-ends, the default; rogue, the
+planner of seed 003, whose tail-plans, head-plan and monitoring live in the same state).
 """
 
 from __future__ import annotations
@@ -86,7 +89,8 @@ class Executive:
 
 
 def make_executive(program_path: str, log: logging.Logger, state: Any = None,
-                   learned: str | None = None, solver: bool = True) -> Executive:
+                   learned: str | None = None, solver: bool = True,
+                   mechanism: str = "means-ends") -> Executive:
     """The executive of ``program_path``: from ``state`` (read back after a restart) if
     given, else fresh, starting from the skills in the learned file ``learned``. Raises
     LangError (a ProgramError naming file:line:col) for a bad program or learned file."""
@@ -95,7 +99,7 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
     from agents.lang.solving.learned import read_learned
 
     program = load_program(program_path)
-    engine = Engine(program, solver="means-ends" if solver else None)
+    engine = Engine(program, solver=mechanism if solver else None)
     if state is None and learned:
         state = engine.initial_state(learned=read_learned(program, read_text(learned), learned))
     return Executive(engine, log, state)
@@ -103,12 +107,13 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
 
 def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger,
               state_path: str | None = None, learned: str | None = None,
-              learned_out: str | None = None, solver: bool = True):
+              learned_out: str | None = None, solver: bool = True,
+              mechanism: str = "means-ends"):
     """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)]."""
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
     executive = make_executive(program_path, log, saved.state if saved else None, learned,
-                               solver)
+                               solver, mechanism)
     out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
@@ -139,6 +144,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     return step
 
 
+@click.option("--mechanism", default="means-ends", show_default=True,
+              help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
 @click.option("--no-solver", "no_solver", is_flag=True,
               help="No means-ends problem solver: an impasse stays an impasse.")
 @click.option("--learned-out", type=click.Path(dir_okay=False),
@@ -150,7 +157,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
                    "cycle (so a restart keeps paths, goal stacks and learned skills).")
 @agent_options(with_program=True)
 def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: str | None,
-         learned: str | None, learned_out: str | None, no_solver: bool) -> None:
+         learned: str | None, learned_out: str | None, no_solver: bool,
+         mechanism: str) -> None:
     """Prioritised executive of one agent."""
     from agents.lang import LangError
 
@@ -159,7 +167,7 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: 
     inputs = [keys.percepts(run, agent), keys.beliefs(run, agent), keys.goal_list(run, agent)]
     try:
         step = make_step(run, agent, process, program, log, state_path, learned, learned_out,
-                         not no_solver)
+                         not no_solver, mechanism)
     except LangError as exc:
         raise click.ClickException(str(exc)) from exc
     run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)], step, log)

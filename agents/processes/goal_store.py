@@ -21,9 +21,11 @@ STORE_VERSION = 1
 MAX_PRIORITY = 1_000_000
 """Priorities are 1..MAX_PRIORITY (lower is more important); program goals have 1..n."""
 MAX_LIVE_GOALS = 16
-"""User goals per agent that are not withdrawn (pending, active, suspended or achieved: the
-executive is given all of them every cycle, and looks for a path for each one it has not
-achieved, at a cost of about 1-2 ms per goal per cycle); a post beyond it is refused."""
+"""User goals per agent still to be achieved (pending, active, suspended, impasse: the
+executive looks for a path for each every cycle, at a cost of about 1-2 ms per goal per
+cycle); a post beyond it is refused. Achieved goals do not count: checking that one still
+holds is cheap, and an agent that has done 16 errands takes a 17th (seed 003's office
+robot serves requests all day)."""
 MAX_KEPT_WITHDRAWN = 100
 """Cancelled and failed goals kept per agent (for `teleo goal list`); older ones are dropped."""
 MAX_ID_CHARS = 32
@@ -135,8 +137,8 @@ class GoalStore:
         text = " ".join(goal.split())
         _check_priority(text, priority)
         live = [g for g in self.for_agent(agent) if g.status not in _WITHDRAWN]
-        if len(live) >= MAX_LIVE_GOALS:
-            raise GoalStoreError(f"{text}: {agent} has {len(live)} live goals, the limit; "
+        if sum(g.status is not GoalState.ACHIEVED for g in live) >= MAX_LIVE_GOALS:
+            raise GoalStoreError(f"{text}: {agent} has {MAX_LIVE_GOALS} live goals, the limit; "
                                  "cancel one first (teleo goal cancel ID)")
         for other in live:
             if other.goal == text and other.status is not GoalState.ACHIEVED:

@@ -39,7 +39,6 @@ def check_config(table: dict[str, Any], agents: list[str]) -> None:
     package addresses (a building must exist), car starts."""
     from world.driving.city import build_city
     from world.driving.config import load_world_config
-
     from world.driving.injection import ID
 
     config = load_world_config(table)
