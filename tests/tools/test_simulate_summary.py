@@ -39,7 +39,7 @@ at_cycle = 4
 """)
     result = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "6", "--json"])
     assert result.exit_code == 0, result.output
-    summary = json.loads(result.output)
+    summary = json.loads(result.stdout)
     got = {g["id"]: g for g in summary["goals"]}
     assert [(g["id"], g["goal"], g["posted_cycle"]) for g in summary["goals"]] == [
         ("g1", "(package-delivered PACKET9)", 0), ("g2", "(package-delivered PACKET1)", 2)]
