@@ -53,12 +53,25 @@ def serve(cfg: BusConfig, stop: threading.Event, ready_out: object = None) -> No
     """Run a router session from `cfg` until `stop` is set; writes the ready line to
     `ready_out` (a text stream, default stdout)."""
     out = sys.stdout if ready_out is None else ready_out
-    with zenoh.open(cfg.to_zenoh()) as session:
+    with _open_router(cfg) as session:
         eps = locators(session) or list(cfg.listen)
         out.write(f"{READY_PREFIX} {' '.join(eps)}\n")
         out.flush()
         log.info("router %s listening on %s", session.zid(), eps)
         stop.wait()
+
+
+def _open_router(cfg: BusConfig) -> zenoh.Session:
+    """The router's session; raises RouterError naming the endpoints when it cannot listen
+    (a port already in use: another router, or zenohd, whose default port is 7447 too)."""
+    try:
+        return zenoh.open(cfg.to_zenoh())
+    except zenoh.ZError as exc:
+        busy = "Address already in use" in str(exc)
+        hint = ("; the port is in use (another `teleo router` or zenohd?): pick another, or "
+                "tcp/127.0.0.1:0 for a free one") if busy else ""
+        raise RouterError(f"cannot start a router listening on {', '.join(cfg.listen)}"
+                          f"{hint} ({str(exc).split(' at /')[0]})") from None
 
 
 def main(argv: Sequence[str] | None = None) -> None:

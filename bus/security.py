@@ -126,6 +126,7 @@ def _grants(run: str, user: str) -> dict[str, list[str]]:
     if user == "world":
         own["put"] += [keys.world_state(run)]
         own["sub"] += [keys.all_actions(run), keys.all_stats(run), keys.world_events(run)]
+        own["serve"] += [keys.world_events(run)]   # `teleo event` asks for a verdict
     elif user == "goals":
         own["put"] += [f"{root}/agent/*/goal-list"]
         own["sub"] += [keys.world_state(run), f"{root}/agent/*/intention"]
@@ -133,7 +134,7 @@ def _grants(run: str, user: str) -> dict[str, list[str]]:
     elif user == OPERATOR:
         own["put"] = [keys.world_events(run)]
         own["sub"] += [keys.run_all(run)]
-        own["ask"] += [f"{root}/agent/*/goals"]
+        own["ask"] += [f"{root}/agent/*/goals", keys.world_events(run)]
         own["token"] = [keys.proc(run, "record")]
     elif user == LAUNCH:
         own["put"] = []

@@ -81,24 +81,37 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
     'world/state' or 'agent/ME/**' (default: everything), or a full 'teleo/RUN/...'."""
     from tools.target import find_target
 
+    try:
+        keys.check_keyexpr(keyexpr)
+    except BusError as exc:
+        raise click.BadParameter(str(exc), param_hint="KEYEXPR") from None
     target = find_target(bus_config, run=run_id)
     keyexpr = _full_key(keyexpr, target.run)
     click.echo(f"listening on {keyexpr} of {target.who}", err=True)
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
+    try:
+        with open_node(target.cfg, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
+            _print_messages(node.subscribe(keyexpr, raw=True), text, count, end, stop)
+    except BusError as exc:
+        raise click.ClickException(str(exc)) from exc
+
+
+def _print_messages(inbox, text: str | None, count: int | None, end: float | None,
+                    stop) -> None:
+    """Print what arrives in `inbox` as JSON lines until `end` [monotonic s], `count`
+    lines, or `stop`."""
     printed = 0
-    with open_node(target.cfg, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
-        inbox = node.subscribe(keyexpr, raw=True)
-        while not stop.is_set() and (end is None or time.monotonic() < end):
-            item = inbox.receive(0.1)
-            if item is None:
-                continue
-            line = _json_line(item.key, item.t_ns, item.payload)
-            if text is None or text in line:
-                click.echo(line)
-                printed += 1
-                if count is not None and printed >= count:
-                    break
+    while not stop.is_set() and (end is None or time.monotonic() < end):
+        item = inbox.receive(0.1)
+        if item is None:
+            continue
+        line = _json_line(item.key, item.t_ns, item.payload)
+        if text is None or text in line:
+            click.echo(line)
+            printed += 1
+            if count is not None and printed >= count:
+                break
 
 
 @click.command()
@@ -117,6 +130,12 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
     from tools.recorder import BusRecorder
     from tools.target import find_target
 
+    if run_id is not None:
+        try:
+            keys.check_chunk(run_id, "run")
+        except BusError as exc:
+            raise click.BadParameter(f"{exc} (a run id, e.g. driving-demo-3f2a1c, as `teleo "
+                                     "launch` prints it)", param_hint="--run") from None
     target = find_target(bus_config, run=run_id)
     run_id = run_id or target.run
     if run_id is None:

@@ -22,7 +22,9 @@ import logging
 import os
 import secrets
 import signal
+import sys
 import time
+from contextlib import nullcontext, redirect_stdout
 from dataclasses import replace
 from pathlib import Path
 
@@ -33,6 +35,8 @@ from tools.run_plan import Plan, PlanError, check_secrets, select, uses_clients
 from tools.run_secrets import RunSecrets, host_of, make_secrets
 from tools.scenario_check import load_checked
 from tools.supervision import Outcome, supervise
+from world.errors import WorldError
+from world.pictures import picture_format
 from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
@@ -80,45 +84,59 @@ def _catch_signals() -> None:
 @click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
               help="Plot the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
            summary_file: str | None, render_file: str | None, secure: bool,
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
            run_id: str | None, secrets_dir: str | None, learned: str | None,
-           plot_file: str | None, no_record: bool) -> None:
+           plot_file: str | None, no_record: bool, as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     _catch_signals()
     try:
+        if render_file:
+            picture_format(render_file)
         scenario, _ = load_checked(scenario_file)
         if learned:
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
         plan = replace(plan, learned=learned, record=not no_record or bool(plot_file))
-    except (ScenarioError, PlanError) as exc:
+    except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
             "secured": plan.secrets is not None}
-    outcome = supervise(plan)
-    if not plan.runs_world:
-        _echo_joined(plan, outcome)
-        raise SystemExit(1 if outcome.left_down else 0)
-    result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
-                           outcome.left_down, outcome.ended, outcome.requested_stop)
-    summary.echo(result)
+    with redirect_stdout(sys.stderr) if as_json else nullcontext():
+        outcome = supervise(plan)
+        if not plan.runs_world:
+            _echo_joined(plan, outcome)
+            raise SystemExit(1 if outcome.left_down else 0)
+        result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
+                               outcome.left_down, outcome.ended, outcome.requested_stop)
+        _finish(result, scenario, plan.run_dir, summary_file, render_file, plot_file, as_json)
+    if as_json:
+        click.echo(json.dumps(result, indent=1))
+    raise SystemExit(summary.exit_code(result))
+
+
+def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
+            render_file: str | None, plot_file: str | None, as_json: bool) -> None:
+    """The summary for a person (unless --json), its file, the picture, the plot."""
+    if not as_json:
+        summary.echo(result)
     if summary_file:
         Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
         Path(summary_file).write_text(json.dumps(result, indent=1))
         click.echo(f"summary written to {summary_file}")
     if render_file:
-        frames = summary.render(plan.run_dir, Path(render_file), scenario.agent_ids[0])
+        frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
     if plot_file:
         from tools.plot import plot_command_output
 
-        click.echo(plot_command_output(plan.run_dir, Path(plot_file)))
-    raise SystemExit(summary.exit_code(result))
+        click.echo(plot_command_output(run_dir, Path(plot_file)))
 
 
 def check_learned(scenario: Scenario, learned: str) -> None:

@@ -40,6 +40,7 @@ class RunInfo:
     credentials: str = ""   # the operator's credentials file of a secured run
     joined: bool = False    # a launch that joined another host's run (no router, no world)
     started: float = 0.0    # [s since the epoch]
+    restarts: dict[str, int] = field(default_factory=dict)  # process name -> times restarted
 
     @property
     def secured(self) -> bool:
@@ -100,7 +101,7 @@ def _load(path: Path) -> RunInfo | None:
         return RunInfo(doc["run"], doc["endpoint"], int(doc["pid"]), tuple(doc["agents"]),
                        doc["run_dir"], doc.get("scenario", ""), dict(doc.get("pids", {})),
                        doc.get("credentials", ""), bool(doc.get("joined", False)),
-                       float(doc.get("started", 0.0)))
+                       float(doc.get("started", 0.0)), dict(doc.get("restarts", {})))
     except (OSError, ValueError, KeyError, TypeError):
         return None
 

@@ -97,6 +97,14 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "trace": str(run_dir / TRACE),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
     }
+    return finish_status(summary, ended, requested_stop)
+
+
+def finish_status(summary: dict[str, Any], ended: str = "",
+                  requested_stop: bool = False) -> dict[str, Any]:
+    """Add `failures`, `status` and `completed` to a summary (launch's or simulate's): a run
+    is failed when an agent went uncontrolled, a process gave up, a goal could not be kept,
+    goals were lost or the world stopped early."""
     summary["failures"] = _failures(summary, ended)
     summary["status"] = _status(summary, requested_stop)
     summary["completed"] = summary["status"] == "completed"

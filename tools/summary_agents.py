@@ -15,9 +15,12 @@ import click
 def agent_sections(run_dir: Path, counters: dict[str, dict[str, int]],
                    memory: dict[str, Any]) -> dict[str, Any]:
     """The summary's "learned", "bodies" and "planner" entries."""
+    planners = {path.stem.removeprefix("state-"):
+                (read_json_file(path) or {}).get("state", {}).get("planner") or {}
+                for path in sorted(run_dir.glob("state-*.json"))}
     return {"learned": _learned(run_dir),
             "bodies": {a: b for a, m in sorted(memory.items()) if (b := bodies(m))},
-            "planner": _planner(run_dir, counters)}
+            "planner": planner_section(planners, counters)}
 
 
 def echo_agents(summary: dict[str, Any]) -> None:
@@ -70,15 +73,14 @@ def _echo_bodies(agent: str, b: dict[str, Any]) -> None:
                                              for f in b["model"]))
 
 
-def _planner(run_dir: Path, counters: dict[str, dict[str, int]]) -> dict[str, Any]:
-    """Per agent run by the ROGUE planner (seed 003): the operators it executed (its
-    head-plan) with what monitoring found, each request's end, the distance travelled
-    (odometer) and, by the map, that of the executed order and of first-come-first-served."""
+def planner_section(planners: dict[str, dict[str, Any]],
+                    counters: dict[str, dict[str, int]]) -> dict[str, Any]:
+    """Per agent run by the ROGUE planner (seed 003), from its saved planner state: the
+    operators it executed (its head-plan) with what monitoring found, each request's end, the
+    distance travelled (odometer) and, by the map, that of the executed order and of
+    first-come-first-served."""
     out = {}
-    for path in sorted(run_dir.glob("state-*.json")):
-        agent = path.stem.removeprefix("state-")
-        doc = read_json_file(path) or {}
-        planner = doc.get("state", {}).get("planner") or {}
+    for agent, planner in sorted(planners.items()):
         if not planner:
             continue
         travel = planner.get("travel", {})

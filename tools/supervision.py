@@ -29,6 +29,7 @@ from typing import Any
 import click
 
 from tools import runfile
+from tools.progress import WorldProgress
 from tools.run_plan import Plan, bus_config, process_specs
 from tools.supervisor import Exit, ProcSpec, Supervisor
 
@@ -135,21 +136,24 @@ def _loop(plan: Plan, sup: Supervisor, journal: _Journal, outcome: Outcome) -> r
         if not plan.joined:
             node.announce()  # joined launches end when this token goes
         journal.write("ready", processes=sup.names())
-        _watch(plan, sup, node, journal, outcome, info)
+        with WorldProgress(node, plan.run, plan.cycles if plan.runs_world else 0) as bar:
+            _watch(plan, sup, node, journal, outcome, info, bar)
     return info
 
 
 def _watch(plan: Plan, sup: Supervisor, node, journal: _Journal, outcome: Outcome,
-           info: runfile.RunInfo) -> None:
+           info: runfile.RunInfo, bar: WorldProgress) -> None:
     seen = dict(node.presence.incarnations())
     main_gone_since: float | None = None
     while True:
+        bar.poll()
         exits = sup.poll(restartable=_restartable)
         for ex in exits:
             journal.write("exit", name=ex.name, rc=ex.returncode, restarted=ex.restarted)
             _tell(plan, ex)
         if exits:
-            runfile.write(replace(info, pids=sup.pids()))
+            runfile.write(replace(info, pids=sup.pids(),
+                                  restarts={n: k for n, k in sup.restarts().items() if k}))
         ended = _ended(plan, sup, exits)
         if ended is not None:
             outcome.ended = ended

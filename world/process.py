@@ -3,10 +3,11 @@
     python -m world.process --run RUN --scenario FILE --cycles N --seed S
                             --run-mode lockstep|realtime --out DIR [--resume] [bus flags]
 
-For cycle t: inject the events due (scripted at t, or received on world/events), publish the
-world state of t with each agent's action outcomes of t-1, collect every agent's actions of
-t through bus.clock.Clock, apply them (the world's safe action for an agent whose actions did
-not arrive) and step the physics by dt. The files it keeps in DIR are described in
+For cycle t: inject the events due (scripted at t, or received on world/events, where a
+query, as `teleo event` sends, is answered with the world's verdict), publish the world state
+of t with each agent's action outcomes of t-1, collect every agent's actions of t through
+bus.clock.Clock, apply them (the world's safe action for an agent whose actions did not
+arrive) and step the physics by dt. The files it keeps in DIR are described in
 world/recorder.py. `--resume` (the launcher restarting a world that died) first brings the
 simulation back to the cycle the run had reached (world/resume.py), then goes on from there.
 Each agent's memory (what its executive sends with its actions: world-model facts, SCS
@@ -36,8 +37,9 @@ from bus.clock import Clock, CycleInterrupted
 from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode
 from bus.errors import BusError, NotReady
-from bus.messages import WorldEvent, WorldState
+from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
+from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
 from world.domain import Domain, World, get_domain
 from world.recorder import CHECKPOINT_EVERY, Recorder
@@ -65,6 +67,25 @@ def _drain(inbox: Inbox) -> list[dict[str, Any]]:
         if isinstance(msg, WorldEvent):
             events.append(dict(msg.event))
     return events
+
+
+def _inject(sim: World, due: list[dict[str, Any]], events_in: Inbox, asked: PendingQueries,
+            node, t: int) -> list[dict[str, Any]]:
+    """Apply the events of cycle `t` in order: scripted, published on world/events, then
+    asked there as queries (`teleo event`), each of which is answered with the world's
+    verdict now, before the state of `t` goes out. Returns every outcome, for the state and
+    the trace (so a run with events stays deterministic and its trace says what happened)."""
+    injected = [sim.inject(e) for e in due + _drain(events_in)]
+    for pending in asked.take():
+        event = pending.request.event if isinstance(pending.request, WorldEvent) else None
+        if event is None:
+            pending.fail(f"expected a WorldEvent, got a {pending.request.KIND}")
+            continue
+        outcome = sim.inject(dict(event))
+        injected.append(outcome)
+        pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
+                                  str(outcome.get("reason", "")), outcome))
+    return injected
 
 
 def _actions_of(sim: World, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
@@ -107,6 +128,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     start, reason = time.monotonic(), "done"
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
+        asked = serve_later(node, keys.world_events(run))
+        node.declare([keys.stats(run, "world")])
         clock = Clock(node, pipelines(agents), mode=CycleMode(mode),
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
@@ -123,7 +146,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     reason = "stopped by a signal"
                     break
                 w0 = time.perf_counter()
-                injected = [sim.inject(e) for e in scripted.get(t, []) + _drain(events_in)]
+                injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
                 snap = sim.snapshot_dict()
                 world_ms = (time.perf_counter() - w0) * 1e3
                 report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes,
@@ -135,12 +158,14 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                            for a, acts in report.actions.items()}
                 outcomes = {a: sim.apply_actions(a, acts) for a, acts in applied.items()}
                 sim.step()
-                rec.cycle(t, snap, applied, injected, report,
-                          world_ms + (time.perf_counter() - w0) * 1e3, changed)
+                world_ms += (time.perf_counter() - w0) * 1e3
+                rec.cycle(t, snap, applied, injected, report, world_ms, changed)
+                node.publish_stats(t, world_ms)   # after the report: not a stage of the cycle
                 if saving and (t + 1) % CHECKPOINT_EVERY == 0:
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
+        asked.close("the run ended before the event could be applied")
         completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
         rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,

@@ -21,7 +21,6 @@ line, which `complete_lines` ignores and `truncate_partial` removes before appen
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import pickle
@@ -30,6 +29,8 @@ from collections import Counter
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, TextIO
+
+from world.trace import trace_line
 
 TRACE, HEALTH, SNAPSHOTS = "trace.jsonl", "health.jsonl", "snapshots.jsonl"
 CHECKPOINT, WORLD_FINAL = "checkpoint.pkl", "world-final.json"
@@ -49,12 +50,6 @@ class CycleReport(Protocol):
     elapsed_ms: float
     stage_ms: Mapping[str, float]
     clean: bool
-
-
-def digest(snapshot: dict[str, Any]) -> str:
-    """A short hash of the whole world state (canonical JSON)."""
-    text = json.dumps(snapshot, sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
 def complete_lines(path: Path) -> list[str]:
@@ -132,14 +127,7 @@ class Recorder:
               memory: dict[str, Any] | None = None) -> None:
         """Record cycle `t`: its trace line, a health line if it was not clean, totals.
         `memory`: the agents whose memory changed this cycle, with the new one."""
-        line: dict[str, Any] = {"cycle": t, "actions": {a: [list(x) for x in acts]
-                                                        for a, acts in sorted(applied.items())},
-                                "counters": snap["counters"], "digest": digest(snap)}
-        if injected:
-            line["events"] = injected
-        if memory:
-            line["memory"] = memory
-        self.trace.write(json.dumps(line, sort_keys=True) + "\n")
+        self.trace.write(trace_line(t, snap, applied, injected, memory))
         if not report.clean or report.stalled or report.republished:
             self.event("cycle", cycle=t, noop=list(report.noop), late=list(report.late),
                        dead=list(report.dead), stalled=list(report.stalled),

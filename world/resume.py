@@ -23,7 +23,8 @@ from typing import Any
 
 from world.domain import Domain, Restartable, World
 from world.errors import WorldError
-from world.recorder import CHECKPOINT, TRACE, complete_lines, digest
+from world.recorder import CHECKPOINT, TRACE, complete_lines
+from world.trace import digest
 
 log = logging.getLogger(__name__)
 

@@ -9,7 +9,6 @@ names its domain (`domain = "driving"`, the default); the rest of it is the doma
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -17,6 +16,7 @@ from typing import Any
 from bus.cycle import CycleMode as Mode
 from world.domain import DEFAULT_DOMAIN, DOMAINS
 from world.errors import WorldError
+from world.toml_text import TomlTextError, read_toml
 
 AGENT_STAGES = ("perception", "inference", "executive")
 GOAL_OPS = ("post", "cancel", "priority")
@@ -74,6 +74,7 @@ class ScriptedGoal:
     at_cycle: int = 0
     op: str = "post"
     goal_id: str = ""
+    force: bool = False  # rank above the program's goals, or cancel an achieved goal
 
 
 @dataclass(frozen=True)
@@ -117,14 +118,14 @@ class Scenario:
 
 
 def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario file; raises ScenarioError naming the file and field."""
+    """Read and check a scenario file; raises ScenarioError naming the file and field (or
+    file:line:col for text that is not UTF-8 or nested too deeply: world/toml_text.py)."""
     path = Path(path)
     try:
-        doc = tomllib.loads(path.read_text())
-    except FileNotFoundError as exc:
-        raise ScenarioError(f"{path}: scenario file not found") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{path}: not valid TOML: {exc}") from exc
+        doc = read_toml(path)
+    except TomlTextError as exc:
+        raise ScenarioError(str(exc).replace(": file not found", ": scenario file not found"))\
+            from None
     return scenario_from_dict(doc, path)
 
 
@@ -210,11 +211,16 @@ def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
             raise ScenarioError(
                 f"{where}.respawn: expected {{stage = max restarts}} with stage in "
                 f"{list(AGENT_STAGES)}, got {stage} = {count!r}")
-    solver = table.get("solver", True)
-    if not isinstance(solver, bool):
-        raise ScenarioError(f"{where}.solver: expected true or false, got {solver!r}")
     mechanism = _typed(table, "mechanism", str, "means-ends", where)
-    return AgentSpec(agent_id, program, dict(respawn), solver, mechanism)
+    return AgentSpec(agent_id, program, dict(respawn), _bool(table, "solver", where, True),
+                     mechanism)
+
+
+def _bool(table: dict[str, Any], key: str, where: str, default: bool = False) -> bool:
+    value = table.get(key, default)
+    if not isinstance(value, bool):
+        raise ScenarioError(f"{where}.{key}: expected true or false, got {value!r}")
+    return value
 
 
 def _resolve(program: str, scenario_path: Path) -> Path:
@@ -232,7 +238,7 @@ def _resolve(program: str, scenario_path: Path) -> Path:
 
 def _goal(table: dict[str, Any], index: int, path: Path, agents: list[str]) -> ScriptedGoal:
     where = f"{path}: [[goals]] #{index + 1}"
-    _only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id"},
+    _only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id", "force"},
           path, f"[[goals]] #{index + 1}")
     goal = ScriptedGoal(
         agent=_typed(table, "agent", str, agents[0] if len(agents) == 1 else None, where),
@@ -241,6 +247,7 @@ def _goal(table: dict[str, Any], index: int, path: Path, agents: list[str]) -> S
         at_cycle=_typed(table, "at_cycle", int, 0, where),
         op=_typed(table, "op", str, "post", where),
         goal_id=_typed(table, "goal_id", str, "", where),
+        force=_bool(table, "force", where),
     )
     if goal.agent not in agents:
         raise ScenarioError(f"{where}.agent: expected one of {agents}, got {goal.agent!r}")

@@ -8,8 +8,9 @@ import pytest
 
 from bus.cycle import CycleReport
 from world.domain import DOMAINS, Restartable, get_domain
-from world.recorder import Recorder, digest
+from world.recorder import Recorder
 from world.resume import resume
+from world.trace import digest
 
 
 @pytest.mark.parametrize("name", DOMAINS)

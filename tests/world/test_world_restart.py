@@ -14,8 +14,9 @@ from world.domain import Restartable, get_domain
 from world.driving.config import CarStart, WorldConfig
 from world.driving.simulation import Simulation
 from world.errors import WorldError
-from world.recorder import CHECKPOINT, TRACE, Recorder, digest
+from world.recorder import CHECKPOINT, TRACE, Recorder
 from world.resume import CannotResume, resume
+from world.trace import digest
 
 DRIVING = get_domain("driving")
 # ME drives into YOU, standing 30 m ahead: the cars touch at about cycle 20 and stay
