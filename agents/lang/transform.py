@@ -167,7 +167,8 @@ def _variables(s: Skill) -> set[Var]:
 def _fresh(name: str, taken: set[str]) -> str:
     k, cand = 1, name
     while cand in taken:
-        k, cand = k + 1, f"{name}{k}"
+        k += 1
+        cand = f"{name}{k}"
     return cand
 
 
