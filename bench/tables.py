@@ -30,8 +30,8 @@ sys.path.insert(0, str(ROOT))
 from agents.lang import Program, load_program  # noqa: E402
 from agents.lang.printer import clause_text  # noqa: E402
 from tools import law_programs as lp  # noqa: E402
-from tools.scenario import load_scenario  # noqa: E402
 from tools.simulate import simulate  # noqa: E402
+from world.run_scenario import load_scenario  # noqa: E402
 
 SCENARIOS = ("scenarios/driving_demo.toml", "scenarios/busy_streets.toml")
 SEED_T7 = {0: (54, 54), 1: (111, 57), 2: (166, 58)}      # (original, prioritized)
@@ -93,24 +93,28 @@ def _law_skills_changed(key: str) -> int:
     return sum(((a - b) + (b - a)).values())
 
 
-def trace(scenario: str, program: Path, seed: int) -> tuple[list, dict]:
-    """Per-cycle actions of one run, and the final counters."""
+def trace(scenario: str, program: Path, seed: int) -> tuple[list, int, dict]:
+    """Per-cycle actions of one run, the cycles in which a law acted, the final counters."""
     sc = load_scenario(ROOT / scenario)
     sc = dataclasses.replace(sc, agents=tuple(dataclasses.replace(a, program=program)
                                               for a in sc.agents))
     run = simulate(sc, None, seed)
-    return [[r[a]["actions"] for a in sc.agent_ids] for r in run.records], run.final.counters
+    laws = sum(1 for r in run.records for a in sc.agent_ids
+               if any(gid.startswith("p") and status == "active" for gid, status in r[a]["goals"]))
+    return ([[r[a]["actions"] for a in sc.agent_ids] for r in run.records], laws,
+            run.final["counters"])
 
 
 def compare(job: tuple[str, str, str, int]) -> tuple:
-    """Run one pair on one scenario and seed; (job, cycles, first differing cycle or -1)."""
+    """Run one pair on one scenario and seed: (job, cycles, first differing cycle or -1, cycles
+    in which a law acted in the prioritized run, its final counters)."""
     prio, orig, scenario, seed = job
-    a, counters = trace(scenario, lp.TABLES / f"{prio}.tlp", seed)
+    a, laws, counters = trace(scenario, lp.TABLES / f"{prio}.tlp", seed)
     if orig == prio:
-        return job, len(a), -1, counters
-    b, _ = trace(scenario, lp.TABLES / f"{orig}.tlp", seed)
+        return job, len(a), -1, laws, counters
+    b, _, _ = trace(scenario, lp.TABLES / f"{orig}.tlp", seed)
     diff = next((i for i, (x, y) in enumerate(zip(a, b, strict=True)) if x != y), -1)
-    return job, len(a), diff, counters
+    return job, len(a), diff, laws, counters
 
 
 def markdown(head: tuple[str, ...], rows: list[tuple]) -> str:
@@ -148,23 +152,30 @@ def main(seeds: str, jobs: int, write: bool, skip_runs: bool) -> None:
     rows, failed = _behaviour_rows(results)
     click.echo(f"\nSame behaviour: per-cycle actions of both notations, seeds {seeds} "
                f"({time.perf_counter() - t0:.0f} s)")
-    click.echo(markdown(("prioritized", "original", "scenario", "runs", "cycles compared",
-                         "identical", "first difference (seed: cycle)"), rows))
+    click.echo(markdown(("laws", "scenario", "runs", "cycles compared", "cycles a law acted",
+                         "deliveries", "law violations", "identical runs",
+                         "first difference (seed: cycle)"), rows))
     sys.exit(1 if failed else 0)
 
 
 def _behaviour_rows(results: list[tuple]) -> tuple[list[tuple], bool]:
     groups: dict[tuple, list] = {}
-    for (prio, orig, scenario, seed), cycles, diff, _ in results:
-        groups.setdefault((prio, orig, Path(scenario).stem), []).append((seed, cycles, diff))
+    for (prio, _, scenario, seed), cycles, diff, laws, counters in results:
+        groups.setdefault((prio, Path(scenario).stem), []).append(
+            (seed, cycles, diff, laws, counters))
     rows, failed = [], False
-    for (prio, orig, scenario), runs in groups.items():
-        same = sum(1 for _, _, d in runs if d < 0)
-        diffs = ", ".join(f"{s}: {d}" for s, _, d in runs if d >= 0) or "-"
+    for (prio, scenario), runs in groups.items():
+        same = sum(1 for r in runs if r[2] < 0)
+        diffs = ", ".join(f"{r[0]}: {r[2]}" for r in runs if r[2] >= 0) or "-"
         failed |= same < len(runs)
-        orig_txt = orig if orig != prio else "(the same program)"
-        rows.append((prio, orig_txt, scenario, len(runs), sum(c for _, c, _ in runs),
-                     f"{same}/{len(runs)}", diffs))
+        totals = Counter()
+        for r in runs:
+            for agent in r[4].values():
+                totals.update(agent)
+        broken = sum(v for k, v in totals.items() if k != "deliveries")
+        rows.append((prio.removeprefix("prioritized_"), scenario, len(runs),
+                     sum(r[1] for r in runs), sum(r[3] for r in runs), totals["deliveries"],
+                     broken, f"{same}/{len(runs)}", diffs))
     return rows, failed
 
 

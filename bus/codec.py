@@ -187,10 +187,15 @@ _FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
     "process": _str, "compute_ms": _float, "late": _int, "event": _dict,
 }
 
+_KIND_FIELD_CHECKS: dict[tuple[str, str], Callable[[Any], Any]] = {
+    ("Percepts", "outcomes"): _dict_rows,   # a list of outcome maps (WorldState's is a map)
+}
+
 _Spec = tuple[tuple[str, Callable[[Any], Any], Any], ...]
 
 _SPECS: dict[type, _Spec] = {
-    cls: tuple((f.name, _FIELD_CHECKS.get(f.name, _any), f.default)
+    cls: tuple((f.name, _KIND_FIELD_CHECKS.get((cls.KIND, f.name),
+                                               _FIELD_CHECKS.get(f.name, _any)), f.default)
                for f in fields(cls) if f.name != "env")
     for cls in MESSAGE_TYPES.values()
 }

@@ -50,10 +50,14 @@ class WorldState:
 
 @dataclass(frozen=True)
 class Percepts:
+    """An agent's percepts of a cycle, with the outcomes of its actions of the previous
+    cycle as the world reported them (SCS failure semantics and ROGUE's monitoring use them)."""
+
     KIND: ClassVar[str] = "Percepts"
     env: Envelope
     agent: str
     percepts: tuple  # tuple of percept lists, e.g. ["self", "ME", "speed", 20.0]
+    outcomes: tuple = ()  # tuple of {"action": [...], "status": "done"|"failed", "reason": str}
 
 
 @dataclass(frozen=True)

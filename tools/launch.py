@@ -22,8 +22,9 @@ from pathlib import Path
 import click
 
 from tools import runfile, summary
-from tools.scenario import AGENT_STAGES, Scenario, ScenarioError, load_scenario
+from tools.scenario_check import load_checked
 from tools.supervisor import ProcSpec, Supervisor, module_argv
+from world.run_scenario import AGENT_STAGES, Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
 READY_TIMEOUT = 60.0  # [s] for every process to announce itself (imports + zenoh open)
@@ -76,10 +77,9 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
            summary_file: str | None, render_file: str | None) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     try:
-        scenario = load_scenario(scenario_file)
+        scenario, _ = load_checked(scenario_file)
     except ScenarioError as exc:
         raise click.ClickException(str(exc)) from exc
-    _check_programs(scenario)
     cycles = scenario.run.cycles if cycles is None else cycles
     seed = scenario.run.seed if seed is None else seed
     mode = mode or scenario.run.mode.value
@@ -89,7 +89,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             "cycles_requested": cycles}
     signal.signal(signal.SIGTERM, _raise_interrupt)
     restarts = _run(scenario, run, run_dir, cycles, seed, mode)
-    result = summary.build(run_dir, base, restarts)
+    result = summary.build(run_dir, base, restarts, scenario.domain)
     summary.echo(result)
     if summary_file:
         Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
@@ -101,28 +101,6 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
                    else "no snapshots saved: nothing rendered")
     if not result["completed"]:
         raise SystemExit(1)
-
-
-def _check_programs(scenario: Scenario) -> None:
-    """Load the world settings and every agent's program before starting anything: a
-    mistake is reported here, with its diagnostics, not as a crash loop."""
-    from agents.lang import ProgramError, load_program
-    from world.errors import WorldError
-    from world.scenario import load_world_config
-
-    try:
-        load_world_config(scenario.world)
-    except WorldError as exc:
-        raise click.ClickException(f"{scenario.path}: {exc}") from exc
-    for agent in scenario.agents:
-        if not agent.program.is_file():
-            raise click.ClickException(f"{scenario.path}: agent {agent.id}: program "
-                                       f"{agent.program} not found")
-        try:
-            load_program(str(agent.program))
-        except ProgramError as exc:
-            raise click.ClickException(
-                f"agent {agent.id}: program {agent.program}:\n{exc}") from exc
 
 
 def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,

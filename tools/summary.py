@@ -11,19 +11,20 @@ from typing import Any
 
 import click
 
-# The world's counters that are breaches of the driving laws (world/percepts.md, counters).
-LAW_COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
-                "speeding_cycles")
-
 WORLD_FINAL = "world-final.json"
 GOALS_FILE = "goals.json"
 SNAPSHOTS = "snapshots.jsonl"
 TRACE = "trace.jsonl"
 
 
-def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int]) -> dict[str, Any]:
+def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
+          domain: str = "driving") -> dict[str, Any]:
     """The summary as a JSON-able dict. `base` holds run, scenario, mode, seed, requested
-    cycles; missing files (a crashed world) give zeros and `completed: false`."""
+    cycles; missing files (a crashed world) give zeros and `completed: false`. The domain
+    says which counters are violations and which are work done (world/domain.py)."""
+    from world.domain import get_domain
+
+    spec = get_domain(domain)
     final = _read_json(run_dir / WORLD_FINAL) or {}
     goals = (_read_json(run_dir / GOALS_FILE) or {}).get("goals", [])
     counters: dict[str, dict[str, int]] = final.get("counters", {})
@@ -40,8 +41,10 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int]) -> dict
         "restarts": {name: n for name, n in restarts.items() if n},
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g.get("status") == "achieved"),
-        "deliveries": {a: int(c.get("deliveries", 0)) for a, c in counters.items()},
-        "law_violations": {a: {k: int(c.get(k, 0)) for k in LAW_COUNTERS}
+        "domain": domain,
+        "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
+                         for a, c in counters.items()},
+        "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
         "trace": str(run_dir / TRACE),
@@ -62,8 +65,9 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"    {goal['id']} {goal['agent']} {goal['goal']} p{goal['priority']}: "
                    f"{goal['status']}")
     for agent, laws in summary["law_violations"].items():
-        click.echo(f"  {agent}: deliveries {summary['deliveries'].get(agent, 0)}, "
-                   f"law violations {sum(laws.values())}{_pairs(laws)}")
+        done = summary["achievements"].get(agent, {})
+        work = "".join(f"{k} {v}, " for k, v in done.items())
+        click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
 
 
 def _pairs(d: dict[str, Any]) -> str:
@@ -74,22 +78,16 @@ def _pairs(d: dict[str, Any]) -> str:
 def render(run_dir: Path, out: Path, agent: str) -> int:
     """Draw the run to `out`: a GIF of the saved snapshots, or a PNG of the last one with the
     agent's path over the whole run. Returns the number of frames used (0 when none saved)."""
-    from world.render import agent_trail, render_gif, render_png
-    from world.snapshot import WorldSnapshot
+    from world.domain import domain_of
 
     path = run_dir / SNAPSHOTS
     if not path.exists():
         return 0
-    lines = [line for line in path.read_text().splitlines() if line.strip()]
-    snaps = [WorldSnapshot.from_dict(json.loads(line)) for line in lines]
+    snaps = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
     if not snaps:
         return 0
     out.parent.mkdir(parents=True, exist_ok=True)
-    if out.suffix.lower() == ".gif":
-        render_gif(snaps, out, agent=agent)
-        return len(snaps)
-    render_png(snaps[-1], out, agent=agent, trail=agent_trail(snaps, agent))
-    return 1
+    return domain_of(snaps[0]).render(snaps, out, agent)
 
 
 def _read_json(path: Path) -> dict[str, Any] | None:

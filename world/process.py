@@ -9,7 +9,7 @@ t through bus.clock.Clock, apply them and step the physics by dt. It writes in D
 trace.jsonl (one line per cycle: cycle, actions per agent, counters, a digest of the state,
 the outcomes of injected events; nothing that depends on timing, so two lockstep runs with
 one seed give the same file),
-snapshots.jsonl (every render_every cycles and the last, for world.render) and
+snapshots.jsonl (every render_every cycles and the last, for world.driving.render) and
 world-final.json (counters, late and dead stages, timing) for the launcher's summary.
 """
 
@@ -34,9 +34,8 @@ from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode, CycleReport
 from bus.messages import WorldEvent, WorldState
 from bus.node import Inbox, open_node
-from tools.scenario import Scenario, load_scenario
-from world.scenario import load_world_config
-from world.simulation import Simulation
+from world.domain import get_domain
+from world.run_scenario import Scenario, load_scenario
 
 log = logging.getLogger("teleo.world")
 READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
@@ -122,11 +121,19 @@ def _drain(inbox: Inbox) -> list[dict[str, Any]]:
     return events
 
 
+def _actions_of(sim, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
+    """The agent's actions of this cycle, or the world's safe action when they did not arrive
+    (a dead or late stage): an uncontrolled agent is stopped, never left on its last controls."""
+    if agent in noop:
+        return sim.safe_actions(agent)
+    return [list(x) for x in actions]
+
+
 def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
               mode: str, out: Path, stop: threading.Event) -> bool:
     """Run `cycles` cycles (0: until stopped); returns whether all were run."""
     agents = scenario.agent_ids
-    sim = Simulation(load_world_config(scenario.world), seed, agents)
+    sim = get_domain(scenario.domain).create(scenario.world_table, seed, agents)
     scripted: dict[int, list[dict[str, Any]]] = {}
     for e in scenario.events:
         scripted.setdefault(e.at_cycle, []).append(e.event)
@@ -148,11 +155,11 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 break
             w0 = time.perf_counter()
             injected = [sim.inject(e) for e in scripted.get(t, []) + _drain(events_in)]
-            snap = sim.snapshot().to_dict()
+            snap = sim.snapshot_dict()
             world_ms = (time.perf_counter() - w0) * 1e3
             report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes, injected))
             w0 = time.perf_counter()
-            outcomes = {a: sim.apply_actions(a, [list(x) for x in acts])
+            outcomes = {a: sim.apply_actions(a, _actions_of(sim, a, acts, report.noop))
                         for a, acts in report.actions.items()}
             sim.step()
             rec.cycle(t, snap, injected, report, world_ms + (time.perf_counter() - w0) * 1e3)

@@ -45,6 +45,7 @@ class Checker:
             self.check_skill(s)
         for g in self.parts.goals:
             self.use(g.literal, "goal")
+        self.check_goal_variables(concepts)
         self.check_resources(skills)
         strata = self.stratify(concepts)
         errors = [d for d in self.diags if d.severity == "error"]
@@ -127,6 +128,18 @@ class Checker:
             close = difflib.get_close_matches(v.name, names, n=1, cutoff=0.6)
             typo = f" (did you mean ?{close[0]}?)" if close else ""
             self.err(loc, f"variable ?{v.name} in {where} is bound nowhere{typo}; {hint}")
+
+    def check_goal_variables(self, concepts: dict[str, list[ConceptClause]]) -> None:
+        """A goal variable must mean "every instance", so its concept must take it from
+        percepts in every clause (agents/lang/goals.py, ``enumerable``)."""
+        from .goals import enumerable
+
+        view = Program({k: tuple(v) for k, v in concepts.items()}, {}, (), ())
+        for g in self.parts.goals:
+            if g.literal.pred in concepts:
+                why = enumerable(g.literal, view)
+                if why:
+                    self.err(g.literal.loc, f"goal {g.literal}: {why}")
 
     def check_resources(self, skills: list[Skill]) -> None:
         table = self.parts.resources

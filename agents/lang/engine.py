@@ -1,4 +1,5 @@
-"""The Engine: inference + executive for one program, as pure functions of explicit state."""
+"""The Engine: inference + executive for one program, as pure functions of explicit state
+(program, state, percepts, and the outcomes of the previous cycle's actions)."""
 
 from __future__ import annotations
 
@@ -6,10 +7,12 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
 from .errors import GoalError
-from .executive import Executive
+from .executive import Executive, ImpasseHandler
 from .explanation import Decision
-from .goals import GoalEntry, parse_goal
+from .extend import extend_program
+from .goals import GoalEntry, enumerable, parse_goal
 from .inference import Inference
+from .outcomes import as_outcomes
 from .program import Program
 from .reuse import InferStats
 from .state import EngineState
@@ -36,23 +39,39 @@ class Engine:
     (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
     every result is exactly what a fresh Engine would give (docs/language.md, Performance)."""
 
-    def __init__(self, program: Program):
+    def __init__(self, program: Program, solver: ImpasseHandler | None = None):
         self.program = program
+        self.solver = solver
         self.inference = Inference(program)
-        self.executive = Executive(program)
+        self.executive = Executive(program, solver)
+        self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------
-    def initial_state(self) -> EngineState:
-        """Program goals with priorities 1..n in file order, ids p1..pn."""
+    def initial_state(self, seed: int = 0, learned: tuple[str, ...] = ()) -> EngineState:
+        """Program goals with priorities 1..n in file order, ids p1..pn; ``seed`` for the
+        agent's nondeterministic choices; ``learned``: skill clauses (text) to start from."""
         goals = tuple(GoalEntry(f"p{i + 1}", g.literal, i + 1, i, "program")
                       for i, g in enumerate(self.program.goals))
-        return EngineState(goals, (), len(goals), 0)
+        state = EngineState(goals, (), len(goals), 0, seed=seed, learned=tuple(learned))
+        self.executive_for(state)   # a bad learned clause is refused now, not mid-run
+        return state
+
+    def executive_for(self, state: EngineState) -> Executive:
+        """The executive of the program extended by the state's learned skills (cached)."""
+        ex = self._extended.get(state.learned)
+        if ex is None:
+            ex = Executive(extend_program(self.program, state.learned), self.solver)
+            self._extended[state.learned] = ex
+        return ex
 
     def add_goal(self, state: EngineState, goal: str, priority: int | None = None,
                  goal_id: str | None = None) -> EngineState:
         """Add ``goal`` (text such as ``(package-delivered PACKET2)``); it ranks after every goal
         with priority <= ``priority`` (default: last). Raises GoalError."""
         lit = parse_goal(goal, self.program)
+        why = enumerable(lit, self.program)
+        if why:
+            raise GoalError(f"goal {lit}: {why}")
         if priority is None:
             priority = max((e.priority for e in state.goals), default=0) + 1
         if not isinstance(priority, int) or isinstance(priority, bool):
@@ -86,15 +105,20 @@ class Engine:
         """Every concept instance that holds for this cycle's percepts."""
         return self.inference.beliefs(_index(percepts))
 
-    def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable):
-        """The executive step: (Decision, next EngineState)."""
-        return self.executive.decide(state, _index(percepts), store_of(beliefs))
+    def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
+               outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
+        """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
+        on the previous cycle's actions (Outcome values or neutral dicts)."""
+        return self.executive_for(state).decide(state, _index(percepts), store_of(beliefs),
+                                                as_outcomes(outcomes))
 
-    def cycle(self, state: EngineState, percepts: Iterable) -> CycleResult:
+    def cycle(self, state: EngineState, percepts: Iterable,
+              outcomes: Iterable = ()) -> CycleResult:
         """infer + decide on the same percepts."""
         index = _index(percepts)
         beliefs = self.inference.beliefs(index)
-        decision, new_state = self.executive.decide(state, index, beliefs.store)
+        decision, new_state = self.executive_for(state).decide(state, index, beliefs.store,
+                                                               as_outcomes(outcomes))
         return CycleResult(beliefs, decision, new_state)
 
 

@@ -12,53 +12,10 @@ much as evaluating the strata above it).
 
 from __future__ import annotations
 
-import marshal
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from .store import BeliefSet, FactStore, PerceptIndex
-    from .terms import Percept
-
-
-class TypeSig:
-    """The percepts of one type in one cycle, comparable with another cycle's (``same``).
-
-    Two cycles' percepts are the same when they are equal as sets (order and duplicates do not
-    matter to inference) *and* each value has the same type and bits: 3 == 3.0 and 0.0 == -0.0
-    in Python, but a belief taking the value prints differently. The cheap set comparison comes
-    first (it settles most changed cycles); only equal sets are compared strictly, encoding each
-    percept with ``marshal`` format 2 (exact str, int, float, bool only; floats in binary; no
-    shared references, so the encoding does not depend on how strings were built)."""
-
-    __slots__ = ("tuples", "lax", "_strict")
-
-    def __init__(self, percepts: Iterable[Percept]):
-        self.tuples = [(p.type, p.id, p.attrs) for p in percepts]
-        try:
-            self.lax: frozenset | None = frozenset(self.tuples)
-        except TypeError:  # an unhashable value: never the same
-            self.lax = None
-        self._strict: frozenset | None | bool = False  # False: not computed yet
-
-    def strict(self) -> frozenset | None:
-        """The exact encodings of the percepts (cached), or None if one cannot be encoded."""
-        if self._strict is False:
-            try:
-                self._strict = frozenset([marshal.dumps(t, 2) for t in self.tuples])
-            except ValueError:
-                self._strict = None
-        return self._strict  # type: ignore[return-value]
-
-    def same(self, old: TypeSig) -> bool:
-        """True when these percepts are exactly ``old``'s, up to order and duplicates."""
-        if self is old:
-            return True
-        if self.lax is None or self.lax != old.lax:
-            return False
-        mine = self.strict()
-        return mine is not None and mine == old.strict()
+from .store import BeliefSet, FactStore, PerceptIndex, TypeSig
 
 
 @dataclass(frozen=True, slots=True)

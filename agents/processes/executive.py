@@ -56,12 +56,20 @@ class Executive:
                 continue
             self.user[goal_id] = (text, priority)
 
-    def decide(self, percepts: tuple, belief_lists: tuple) -> Any:
-        """One executive step; returns the engine's Decision."""
-        from agents.lang import Belief
+    def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
+        """One executive step; returns the engine's Decision. A malformed outcome is logged
+        and left out, never a crash (the world's outcomes are checked by the engine)."""
+        from agents.lang import Belief, LangError
+        from agents.lang.outcomes import as_outcomes
 
         beliefs = frozenset(Belief.from_list(b) for b in belief_lists)
-        decision, self.state = self.engine.decide(self.state, percepts, beliefs)
+        good = []
+        for o in outcomes:
+            try:
+                good += as_outcomes([o])
+            except LangError as exc:
+                self.log.warning("outcome dropped: %s", exc)
+        decision, self.state = self.engine.decide(self.state, percepts, beliefs, good)
         return decision
 
 
@@ -75,7 +83,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         executive.sync_goals(inputs[g_key].goals)
-        decision = executive.decide(inputs[p_key].percepts, inputs[b_key].beliefs)
+        seen = inputs[p_key]
+        decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         actions = tuple(a.to_list() for a in decision.actions)
         env = Envelope.now(run, cycle, process)
         return [(keys.intention(run, agent), Intention(env, agent, decision.to_dict())),

@@ -26,18 +26,20 @@ class GoalState(StrEnum):
     PENDING = "pending"
     ACTIVE = "active"
     SUSPENDED = "suspended"
+    IMPASSE = "impasse"
     ACHIEVED = "achieved"
     FAILED = "failed"
     CANCELLED = "cancelled"
 
 
-# The engine's GoalStatus (docs/architecture.md) -> the user's status. An impasse is still
-# being worked on by the problem solver (seed 000, means-ends analysis), so it stays active.
+# The engine's GoalStatus (docs/architecture.md) -> the user's status, told as it is: an
+# impasse (no executable skill path; the problem solver may be working on it) is reported as
+# such, with the engine's note, and a failed goal as failed, with the reason.
 _FROM_ENGINE = {
     "satisfied": GoalState.ACHIEVED,
     "active": GoalState.ACTIVE,
     "suspended": GoalState.SUSPENDED,
-    "impasse": GoalState.ACTIVE,
+    "impasse": GoalState.IMPASSE,
     "pending": GoalState.PENDING,
     "failed": GoalState.FAILED,
 }
@@ -138,15 +140,16 @@ class GoalStore:
     def update_from_intention(self, agent: str, decision: dict[str, Any],
                               cycle: int) -> GoalStore:
         """Mirror the statuses the executive reported in `decision` (Decision.to_dict())."""
-        reported = {g.get("id"): g.get("status") for g in decision.get("goals", ())}
+        reported = {g.get("id"): g for g in decision.get("goals", ())}
         store = self
         for record in self.for_agent(agent):
             if record.status in _WITHDRAWN or record.id not in reported:
                 continue
-            status = _FROM_ENGINE.get(str(reported[record.id]))
+            status = _FROM_ENGINE.get(str(reported[record.id].get("status")))
             if status is None or status is record.status:
                 continue
-            note = "impasse" if reported[record.id] == "impasse" else ""
+            note = str(reported[record.id].get("note", "")) \
+                if status in (GoalState.IMPASSE, GoalState.FAILED) else ""
             store = store._put(replace(record, status=status, updated_cycle=cycle, note=note))
         return store
 

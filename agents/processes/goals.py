@@ -28,7 +28,7 @@ from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
 from bus.node import Node, open_node
-from tools.scenario import Scenario, ScriptedGoal, load_scenario
+from world.run_scenario import Scenario, ScriptedGoal, load_scenario
 
 PROCESS = "goals"
 

@@ -6,7 +6,9 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
-from tools.scenario import Scenario, load_scenario, scenario_from_dict
+from tools.simulate import SimRun
+from world.driving.snapshot import WorldSnapshot
+from world.run_scenario import Scenario, load_scenario, scenario_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = str(ROOT / "programs" / "driving.tlp")
@@ -42,3 +44,8 @@ def shipped(name: str) -> Scenario:
     sc = load_scenario(ROOT / "scenarios" / name)
     agents = tuple(dataclasses.replace(a, program=ROOT / a.program) for a in sc.agents)
     return dataclasses.replace(sc, agents=agents)
+
+
+def final(run: SimRun) -> WorldSnapshot:
+    """The last state of a simulated run (its snapshot dict read back)."""
+    return WorldSnapshot.from_dict(run.final)

@@ -5,11 +5,11 @@ hierarchy (seed 000): an errand reaches the pedals through several levels of ski
 from __future__ import annotations
 
 from agents.lang import Engine, load_program
-from tests.driving.scenarios import PROGRAM, goal, scenario
+from tests.driving.scenarios import PROGRAM, final, goal, scenario
 from tools.simulate import simulate
-from world.perception import perceive
-from world.scenario import load_world_config
-from world.simulation import Simulation
+from world.driving.config import load_world_config
+from world.driving.perception import perceive
+from world.driving.simulation import Simulation
 
 
 def drive(sc, cycles: int, agent: str = "ME", events: dict | None = None):
@@ -39,7 +39,7 @@ def test_moves_off_with_the_seed_table_1_skill_and_keeps_its_lane():
     run = simulate(scenario(packages=[{"id": "P1", "address": 10, "street": "B"}],
                             goals=[goal("(package-delivered P1)")]), cycles=150)
     assert run.records[0]["ME"]["actions"] == [["*gas", 6.25]]   # seed 000, Table 1
-    car = run.final.car("ME")
+    car = final(run).car("ME")
     assert 7.0 < car.speed <= 10.0                      # within the Table 2 law, cruising
     assert abs(car.x - 102.0) < 0.5 and car.y > 100.0   # straight up street B, right lane
 
@@ -86,10 +86,10 @@ def test_with_no_errand_left_the_car_waits_and_does_nothing():
     sc = scenario(packages=[{"id": "P1", "address": 4, "street": "B"}],
                   goals=[goal("(package-delivered P1)")], pedestrians=8)
     run = simulate(sc, cycles=320)
-    assert [p.delivered for p in run.final.packages] == [True]
+    assert [p.delivered for p in final(run).packages] == [True]
     done = next(r["cycle"] for r in run.records if r["ME"]["goals"][-1][1] == "satisfied")
     assert all(r["ME"]["actions"] == [] for r in run.records[done:])
-    assert run.final.car("ME").speed < 0.5
+    assert final(run).car("ME").speed < 0.5
 
 
 def test_two_cars_run_one_program_file_each_on_its_own_errand():
@@ -103,9 +103,9 @@ def test_two_cars_run_one_program_file_each_on_its_own_errand():
                   cars=cars, pedestrians=6, cycles=450)
     assert {str(a.program) for a in sc.agents} == {PROGRAM}
     run = simulate(sc)
-    assert {p.id: p.delivered for p in run.final.packages} == {"P1": True, "P2": True}
+    assert {p.id: p.delivered for p in final(run).packages} == {"P1": True, "P2": True}
     for agent in ("ME", "YOU"):
         assert run.records[0][agent]["actions"] == [["*gas", 6.25]]      # each acts itself
-        assert run.final.counters[agent]["deliveries"] == 1
-        laws = {k: v for k, v in run.final.counters[agent].items() if k != "deliveries"}
+        assert final(run).counters[agent]["deliveries"] == 1
+        laws = {k: v for k, v in final(run).counters[agent].items() if k != "deliveries"}
         assert sum(laws.values()) == 0, (agent, laws)

@@ -10,11 +10,11 @@ import pytest
 
 from agents.lang import Engine, load_program
 from tests.driving.scenarios import PROGRAM
-from world.city import build_city
-from world.navigation import exits, target_edge
-from world.perception import perceive
-from world.scenario import WorldConfig
-from world.snapshot import CarState, PackageState, WorldSnapshot
+from world.driving.city import build_city
+from world.driving.config import WorldConfig
+from world.driving.navigation import exits, target_edge
+from world.driving.perception import perceive
+from world.driving.snapshot import CarState, PackageState, WorldSnapshot
 
 CONFIG = WorldConfig(pedestrians=0, traffic=0)
 CITY = build_city(CONFIG)

@@ -4,9 +4,11 @@ in the language's syntax."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
-from agents.lang import Engine, load_program, load_program_text
+from agents.lang import Engine, GoalSpec, Literal, Var, load_program, load_program_text
 from agents.lang.loader import read_text
 from agents.lang.printer import clause_text, program_text
 from agents.lang.transform import TransformError, compile_laws, drop_laws, replace_law
@@ -98,15 +100,17 @@ def test_a_skill_without_the_laws_percept_gets_it_under_a_fresh_name():
 
 
 def test_a_law_whose_instances_no_percept_fixes_is_refused():
+    """The checker refuses such a goal in a file; a goal list built in code is checked here."""
     text = """
     (concepts
       ((quiet ?x) :percepts ((self ?x)))
       ((calm ?x) :relations ((quiet ?x))))
-    (skills ((quiet ?s) :percepts ((self ?s)) :actions ((*brake 10))))
-    (goals (calm ?self))"""
+    (skills ((quiet ?s) :percepts ((self ?s)) :actions ((*brake 10))))"""
+    program = load_program_text(text)
+    law = GoalSpec(Literal("calm", (Var("self"),)))
     with pytest.raises(TransformError, match=r"law \(calm \?self\): argument 1 is not fixed "
                                              r"by a percept's id in concept clause calm#1"):
-        compile_laws(load_program_text(text))
+        compile_laws(dataclasses.replace(program, goals=(law,)))
 
 
 def test_a_subgoal_shared_by_a_law_and_an_errand_is_refused():

@@ -109,3 +109,16 @@ def test_any_history_survives_a_restart(history):
         assert load(path) == store
     ids = [g.id for g in store.goals]
     assert len(ids) == len(set(ids))
+
+
+def test_impasse_and_failure_are_reported_as_they_are_with_the_engines_note():
+    store, _ = GoalStore().post("ME", "(clear A)", 3, 0, accept_all)
+    store = store.update_from_intention("ME", {"goals": [
+        {"id": "g1", "status": "impasse", "note": "no executable skill path"}]}, 4)
+    assert (store.get("g1").status, store.get("g1").note) == (GoalState.IMPASSE,
+                                                               "no executable skill path")
+    store = store.update_from_intention("ME", {"goals": [
+        {"id": "g1", "status": "failed", "note": "every alternative failed"}]}, 9)
+    assert (store.get("g1").status, store.get("g1").note) == (GoalState.FAILED,
+                                                               "every alternative failed")
+    assert store.goal_list("ME") == ()     # a failed goal is no longer pursued

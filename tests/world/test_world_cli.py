@@ -9,8 +9,8 @@ from click.testing import CliRunner
 from PIL import Image
 
 from tools.world_commands import render
-from world.scenario import WorldConfig
-from world.simulation import Simulation
+from world.driving.config import WorldConfig
+from world.driving.simulation import Simulation
 
 SCENARIO = """
 [world]

@@ -4,7 +4,7 @@ the seed's Table 3 form (seed 000), flattened to neutral lists `[type, id, attr,
 Agent-centred polar coordinates: `dist` [m] from the car's centre, `angle` [deg] relative to the
 car's heading, in (-180, 180], positive = to the car's left. Only objects within the
 configured perception range appear, except the car itself and the packages it carries (its
-navigation system). Every attribute and unit is documented in world/percepts.md.
+navigation system). Every attribute and unit is documented in world/driving/percepts.md.
 """
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ import math
 from typing import Any
 
 from world.angles import wrap
-from world.city import LINES, Building, City, Segment, build_city
-from world.navigation import aligned_segment, current_edge, edge_end, guide, target_edge
-from world.snapshot import CarState, WorldSnapshot
+from world.driving.city import LINES, Building, City, Segment, build_city
+from world.driving.navigation import aligned_segment, current_edge, edge_end, guide, target_edge
+from world.driving.snapshot import CarState, WorldSnapshot
 
 Percept = list[Any]
 

@@ -12,7 +12,7 @@ import heapq
 import math
 from dataclasses import dataclass
 
-from world.city import Building, City, Segment
+from world.driving.city import Building, City, Segment
 
 ARRIVE_BEHIND = 10.0   # [m] an address this far behind the car still counts as ARRIVING
 

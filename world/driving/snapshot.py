@@ -11,8 +11,8 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
+from world.driving.config import WorldConfig, load_world_config
 from world.errors import WorldError
-from world.scenario import WorldConfig, load_world_config
 
 COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
             "speeding_cycles", "deliveries")
@@ -76,7 +76,8 @@ class WorldSnapshot:
 
     def to_dict(self) -> dict[str, Any]:
         return {
-            "cycle": self.cycle, "time": self.time, "config": self.config.to_dict(),
+            "domain": "driving", "cycle": self.cycle, "time": self.time,
+            "config": self.config.to_dict(),
             "cars": [asdict(c) for c in self.cars],
             "pedestrians": [asdict(p) for p in self.pedestrians],
             "packages": [asdict(p) for p in self.packages],

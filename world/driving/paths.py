@@ -8,8 +8,8 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
-from world.city import LANE_CENTRE, ROAD_HALF, City, Segment
-from world.navigation import edge_end, exits
+from world.driving.city import LANE_CENTRE, ROAD_HALF, City, Segment
+from world.driving.navigation import edge_end, exits
 
 Edge = tuple[str, int]
 Key = tuple  # ("lane", seg, d) or ("turn", seg_in, d_in, seg_out, d_out)

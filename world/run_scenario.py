@@ -1,31 +1,29 @@
-"""Scenario files: what `teleo launch` starts (docs/scenarios.md).
+"""Scenario files: what `teleo launch` and `teleo simulate` run (docs/scenarios.md).
 
 A scenario is a TOML file with the tables [run], [world], [[agents]], [[goals]] and [[events]].
-This module is pure: it reads the text into frozen dataclasses and checks it, so that a typo
-is reported with the file and the field before any process is started.
+This module reads the text into frozen dataclasses and checks it, so that a typo is reported
+with the file and the field before any process is started. It lives in world/ (below tools/)
+because the world process and the goal-entry process read scenarios too. The `[world]` table
+names its domain (`domain = "driving"`, the default); the rest of it is the domain's own.
 """
 
 from __future__ import annotations
 
 import tomllib
 from dataclasses import dataclass, field
-from enum import StrEnum
 from pathlib import Path
 from typing import Any
+
+from bus.cycle import CycleMode as Mode
+from world.domain import DEFAULT_DOMAIN, DOMAINS
+from world.errors import WorldError
 
 AGENT_STAGES = ("perception", "inference", "executive")
 GOAL_OPS = ("post", "cancel", "priority")
 
 
-class ScenarioError(Exception):
+class ScenarioError(WorldError):
     """A scenario file that cannot be run; the message names the file and the field."""
-
-
-class Mode(StrEnum):
-    """How the world clock advances (DESIGN.md, One cognitive cycle)."""
-
-    LOCKSTEP = "lockstep"
-    REALTIME = "realtime"
 
 
 @dataclass(frozen=True)
@@ -86,6 +84,16 @@ class Scenario:
     events: tuple[ScriptedEvent, ...]
 
     @property
+    def domain(self) -> str:
+        """The `[world] domain` name (world/domain.py registry)."""
+        return str(self.world.get("domain", DEFAULT_DOMAIN))
+
+    @property
+    def world_table(self) -> dict[str, Any]:
+        """The `[world]` table without its `domain` key: the domain's own configuration."""
+        return {k: v for k, v in self.world.items() if k != "domain"}
+
+    @property
     def agent_ids(self) -> list[str]:
         return [a.id for a in self.agents]
 
@@ -123,6 +131,10 @@ def scenario_from_dict(doc: dict[str, Any], path: Path) -> Scenario:
     world = doc.get("world", {})
     if not isinstance(world, dict):
         raise ScenarioError(f"{path}: [world]: expected a table, got {type(world).__name__}")
+    domain = world.get("domain", DEFAULT_DOMAIN)
+    if domain not in DOMAINS:
+        raise ScenarioError(f"{path}: [world].domain: expected one of {list(DOMAINS)}, "
+                            f"got {domain!r}")
     return Scenario(path, run, world, agents, goals, events)
 
 

@@ -14,14 +14,24 @@ Kinds:
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
-from world.actors import Pedestrian
+from world.driving.actors import Pedestrian
+from world.driving.city import City
+from world.driving.snapshot import PackageState
 from world.errors import WorldError
-from world.snapshot import PackageState
 
-if TYPE_CHECKING:
-    from world.simulation import Simulation
+
+class Simulation(Protocol):
+    """The part of world.driving.simulation.Simulation that events change."""
+
+    city: City
+    cars: dict[str, Any]
+    walkers: list[Pedestrian]
+    packages: dict[str, PackageState]
+    blocked: set[str]
+
+    def add_pedestrian(self, p: Pedestrian) -> None: ...
 
 
 def _num(event: dict, key: str, default: float | None = None) -> float:

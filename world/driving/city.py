@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
+from world.driving.config import WorldConfig
 from world.errors import ConfigError, WorldError
-from world.scenario import WorldConfig
 
 LANE_WIDTH = 4.0        # [m] yellow line to white line
 ROAD_HALF = 6.0         # [m] yellow line to curb (sidewalk line); road = |lateral| <= ROAD_HALF

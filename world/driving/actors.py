@@ -24,9 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from world.angles import wrap
-from world.city import ROAD_HALF, WALK_OFFSET, City
-from world.navigation import exits
-from world.paths import Key, Polyline, node_of
+from world.driving.city import ROAD_HALF, WALK_OFFSET, City
+from world.driving.navigation import exits
+from world.driving.paths import Key, Polyline, node_of
 
 Vehicle = tuple[str, float, float, float]   # id, x [m], y [m], heading [deg]
 WALK_SPEED = 1.4          # [m/s]

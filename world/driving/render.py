@@ -15,7 +15,7 @@ from pathlib import Path
 
 from PIL import Image, ImageDraw, ImageFont
 
-from world.city import (
+from world.driving.city import (
     BUILDING_FAR,
     LANE_WIDTH,
     ROAD_HALF,
@@ -24,9 +24,9 @@ from world.city import (
     Segment,
     build_city,
 )
+from world.driving.snapshot import CarState, WorldSnapshot
+from world.driving.vehicle import CAR_LENGTH, CAR_WIDTH
 from world.errors import WorldError
-from world.snapshot import CarState, WorldSnapshot
-from world.vehicle import CAR_LENGTH, CAR_WIDTH
 
 MARGIN = BUILDING_FAR + 8.0     # [m] drawn around the street grid
 LEGEND_W = 270                  # [px]

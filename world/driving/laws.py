@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from world.city import Building, City
+from world.driving.city import Building, City
 
 DELIVERY_SPEED = 0.5    # [m/s]
 DELIVERY_RADIUS = 10.0  # [m]

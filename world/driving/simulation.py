@@ -1,9 +1,9 @@
 """The urban driving simulation (seed 000, "An Illustrative Domain") on a pymunk space.
 
 Every vehicle and pedestrian is a pymunk body with a sensor shape: pymunk integrates the agent
-cars' motion (velocity and yaw rate from the bicycle model in world/vehicle.py) and reports every
+cars' motion (velocity and yaw rate from the bicycle model in vehicle.py) and reports every
 contact, which is how hits and collisions are detected. Traffic and pedestrians are moved by their
-behaviour rules (world/actors.py). One seeded random.Random owned by the simulation drives all
+behaviour rules (actors.py). One seeded random.Random owned by the simulation drives all
 chance, so one config and seed give the same run, step for step.
 """
 
@@ -17,7 +17,7 @@ from typing import Any
 
 import pymunk
 
-from world.actors import (
+from world.driving.actors import (
     Pedestrian,
     Traffic,
     choose_exit,
@@ -27,14 +27,21 @@ from world.actors import (
     step_pedestrian,
     step_traffic,
 )
-from world.city import LANE_CENTRE, build_city
+from world.driving.city import LANE_CENTRE, build_city
+from world.driving.config import CarStart, WorldConfig
+from world.driving.injection import apply_injection
+from world.driving.laws import LawState, delivers, road_events
+from world.driving.paths import lane_paths, node_of
+from world.driving.snapshot import COUNTERS, CarState, PackageState, PedState, WorldSnapshot
+from world.driving.vehicle import (
+    CAR_LENGTH,
+    CAR_WIDTH,
+    Controls,
+    accelerate,
+    apply_action,
+    yaw_rate,
+)
 from world.errors import WorldError
-from world.injection import apply_injection
-from world.laws import LawState, delivers, road_events
-from world.paths import lane_paths, node_of
-from world.scenario import CarStart, WorldConfig
-from world.snapshot import COUNTERS, CarState, PackageState, PedState, WorldSnapshot
-from world.vehicle import CAR_LENGTH, CAR_WIDTH, Controls, accelerate, apply_action, yaw_rate
 
 log = logging.getLogger(__name__)
 
@@ -176,6 +183,11 @@ class Simulation:
                      "status": "failed", "reason": reason} for a in actions]
         return [apply_action(car.controls, a) for a in actions]
 
+    def safe_actions(self, agent: str) -> list[list[Any]]:
+        """What a car gets when its agent's actions did not arrive: full brake, wheel held
+        (the car stops on its current arc instead of swerving) until the agent is back."""
+        return [["*brake", 100]]
+
     def inject(self, event: dict[str, Any]) -> dict[str, Any]:
         """Apply a scenario event (see world/injection.py); returns {"event", "status", "reason"}.
         Never raises on a bad event."""
@@ -279,6 +291,10 @@ class Simulation:
                              {a: dict(c.counters) for a, c in self.cars.items()},
                              tuple(self._events), tuple(sorted(self.blocked)))
         return snap
+
+    def snapshot_dict(self) -> dict[str, Any]:
+        """``snapshot()`` as plain data (the World protocol, world/domain.py)."""
+        return self.snapshot().to_dict()
 
 
 def _deg(rad: float) -> float:
