@@ -1,9 +1,9 @@
 """`teleo render`: draw a run of the driving world to a PNG (one cycle) or an animated GIF.
 
 Sources: a run's `snapshots.jsonl` (one snapshot dict a line, as the world process saves them),
-a `.json` file (one snapshot dict or a list of them), a bus recording made by `teleo record`
-(its world/state samples), or a scenario `.toml` (simulated here for --steps cycles with idle
-agent cars, to look at a city).
+a `.json` file (one snapshot dict or a list of them), a run record (the record.mcap of a
+launch, a simulate or `teleo record`: its world states), or a scenario `.toml` (simulated here
+for --steps cycles with idle agent cars, to look at a city).
 """
 
 from __future__ import annotations
@@ -32,15 +32,12 @@ def _from_json(path: Path) -> list[dict[str, Any]]:
 
 
 def _from_recording(path: Path) -> list[dict[str, Any]]:
-    from bus.codec import decode
-    from bus.errors import BusError
-    from bus.record import read_recording
+    """The world snapshots of a run record (tools/records.py: an .mcap file)."""
+    from tools.records import RecordError, RunRecord
 
     try:
-        _, samples = read_recording(str(path))
-        return [decode(s.key, s.payload).snapshot for s in samples
-                if s.key.endswith("/world/state")]
-    except BusError as exc:
+        return [r["snapshot"] for _, r in RunRecord(path).kinds("state")]
+    except RecordError as exc:
         raise click.ClickException(str(exc)) from exc
 
 
@@ -90,7 +87,7 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
               help="Scenario source: seed (default: the scenario's).")
 def render(source: Path, out: Path, agent: str | None, cycle: int | None, every: int,
            scale: float | None, follow: float | None, steps: int, seed: int | None) -> None:
-    """Draw SOURCE (snapshots .jsonl/.json, a bus recording, or a scenario .toml) to --out."""
+    """Draw SOURCE (snapshots .jsonl/.json, a run record .mcap, or a scenario .toml) to --out."""
     try:
         rows = load_snapshots(source, steps, seed)
         if not rows:

@@ -73,6 +73,8 @@ class Domain:
 # that runs one domain never imports the others' physics).
 _MODULES = {
     "driving": "world.driving",
+    "blocks": "world.blocks",
+    "office": "world.office",
 }
 DOMAINS: tuple[str, ...] = tuple(_MODULES)
 DEFAULT_DOMAIN = "driving"

@@ -41,11 +41,14 @@ class RunSettings:
 
 @dataclass(frozen=True)
 class AgentSpec:
-    """One [[agents]] entry: its id, program and how often each of its processes may restart."""
+    """One [[agents]] entry: its id, program, how often each of its processes may restart,
+    and whether it has the means-ends problem solver (default true; false: the executive
+    alone, an impasse stays an impasse)."""
 
     id: str
     program: Path
     respawn: dict[str, int] = field(default_factory=dict)
+    solver: bool = True
 
     def max_restarts(self, stage: str) -> int:
         """Restarts allowed for `stage` (perception, inference, executive)."""
@@ -180,7 +183,7 @@ def _run(table: dict[str, Any], path: Path) -> RunSettings:
 
 def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
     where = f"{path}: [[agents]] #{index + 1}"
-    _only(table, {"id", "program", "respawn"}, path, f"[[agents]] #{index + 1}")
+    _only(table, {"id", "program", "respawn", "solver"}, path, f"[[agents]] #{index + 1}")
     agent_id = _typed(table, "id", str, None, where)
     program = _resolve(_typed(table, "program", str, None, where), path)
     respawn = _typed(table, "respawn", dict, {}, where)
@@ -189,7 +192,10 @@ def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
             raise ScenarioError(
                 f"{where}.respawn: expected {{stage = max restarts}} with stage in "
                 f"{list(AGENT_STAGES)}, got {stage} = {count!r}")
-    return AgentSpec(agent_id, program, dict(respawn))
+    solver = table.get("solver", True)
+    if not isinstance(solver, bool):
+        raise ScenarioError(f"{where}.solver: expected true or false, got {solver!r}")
+    return AgentSpec(agent_id, program, dict(respawn), solver)
 
 
 def _resolve(program: str, scenario_path: Path) -> Path:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
-from .errors import GoalError
+from .errors import GoalError, LangError
 from .executive import Executive, ImpasseHandler
 from .explanation import Decision
 from .extend import extend_program
@@ -15,6 +15,8 @@ from .inference import Inference
 from .outcomes import as_outcomes
 from .program import Program
 from .reuse import InferStats
+from .scs.state import model_of
+from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, PerceptIndex, store_of
 from .terms import Percept
@@ -34,16 +36,24 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
+SOLVERS: dict[str, type] = {"means-ends": MeansEndsSolver}
+"""Impasse handlers by name (seed 000's means-ends problem solver and learner)."""
+
+
 class Engine:
     """Runs a Program cycle by cycle. Holds compiled program data and the inference memo
     (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
-    every result is exactly what a fresh Engine would give (docs/language.md, Performance)."""
+    every result is exactly what a fresh Engine would give (docs/language.md, Performance).
+    ``solver``: what answers an impasse, a name in SOLVERS (default: the means-ends problem
+    solver), an ImpasseHandler, or None (an impasse stays an impasse)."""
 
-    def __init__(self, program: Program, solver: ImpasseHandler | None = None):
+    def __init__(self, program: Program, solver: ImpasseHandler | str | None = "means-ends"):
         self.program = program
-        self.solver = solver
+        if isinstance(solver, str) and solver not in SOLVERS:
+            raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(SOLVERS)}")
+        self.solver = SOLVERS[solver]() if isinstance(solver, str) else solver
         self.inference = Inference(program)
-        self.executive = Executive(program, solver)
+        self.executive = Executive(program, self.solver)
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------
@@ -101,9 +111,11 @@ class Engine:
         """Strata evaluated vs reused by the last ``infer``/``cycle`` (for tests and bench)."""
         return self.inference.last_stats
 
-    def infer(self, percepts: Iterable) -> BeliefSet:
-        """Every concept instance that holds for this cycle's percepts."""
-        return self.inference.beliefs(_index(percepts))
+    def infer(self, percepts: Iterable, model: Iterable = ()) -> BeliefSet:
+        """Every concept instance that holds for this cycle's percepts and the agent's world
+        model (``model``: facts as neutral lists or tuples, asserted by SCS bodies; in the
+        processes they come back with the world state, docs/bus.md "Agent memory")."""
+        return self.inference.beliefs(_index(percepts), model_of(model))
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
@@ -114,9 +126,10 @@ class Engine:
 
     def cycle(self, state: EngineState, percepts: Iterable,
               outcomes: Iterable = ()) -> CycleResult:
-        """infer + decide on the same percepts."""
+        """infer + decide on the same percepts; the state's world model (facts asserted by
+        SCS bodies in earlier cycles) joins inference as base facts."""
         index = _index(percepts)
-        beliefs = self.inference.beliefs(index)
+        beliefs = self.inference.beliefs(index, state.scs.model)
         decision, new_state = self.executive_for(state).decide(state, index, beliefs.store,
                                                                as_outcomes(outcomes))
         return CycleResult(beliefs, decision, new_state)

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Protocol
 
-from .bodies import body_runners
+from .bodies import body_runners, cycle_hooks
 from .explanation import Decision, GoalPath, GoalReport, GoalStatus
 from .goals import GoalEntry, instances, ordered, satisfied
 from .outcomes import Outcome
@@ -53,15 +53,18 @@ class Executive:
     def __init__(self, program: Program, solver: ImpasseHandler | None = None):
         self.program = program
         self.finder = PathFinder(program, body_runners())
+        self.hooks = cycle_hooks(self.finder.bodies, {s.kind for s in program.skills})
         self.solver = solver
 
     def decide(self, state: EngineState, pidx: PerceptIndex, store: FactStore,
                outcomes: tuple[Outcome, ...] = ()) -> tuple[Decision, EngineState]:
         """(Decision, next EngineState) for one cycle."""
         walk = Walk(self.program, pidx, store, state, outcomes)
+        for hook in self.hooks:
+            hook.begin(self.finder, walk)
         if self.solver is not None:
             self.solver.begin(self.finder, walk)
-        reports, paths = [], []
+        reports, paths, idle = [], [], []
         remembered = dict(state.paths)
         failed = dict(walk.current("failed"))
         stop = ""  # id of the goal in impasse that blocks the rest
@@ -102,16 +105,26 @@ class Executive:
                     continue
                 found = answer.found
             steps, actions, stored = found
+            if not actions and steps and steps[-1].mode == "waiting":
+                # an SCS body thread waits (seed 002, section 3): lower goals go on
+                remembered[e.id] = tuple(stored)
+                idle.append(e.id)
+                reports.append(_report(e, GoalStatus.SUSPENDED, inst,
+                                       "its body thread waits (see scs)"))
+                continue
             used = self.finder.take(walk, e.id, actions)
             paths.append(GoalPath(e.id, tuple(steps), tuple(actions), used, bool(paths)))
             remembered[e.id] = tuple(stored)
             note = "acts in parallel through free resources" if len(paths) > 1 else ""
             reports.append(_report(e, GoalStatus.ACTIVE, inst, note))
+        for hook in self.hooks:
+            hook.end(self.finder, walk, reports)
         live = {e.id for e in state.goals}
         walk.updates["failed"] = tuple(sorted((g, why) for g, why in failed.items() if g in live))
         new_state = replace(
             state, paths=tuple(sorted((k, v) for k, v in remembered.items() if k in live)),
-            cycle=state.cycle + 1, active=tuple(p.goal_id for p in paths), **walk.updates)
+            cycle=state.cycle + 1, active=tuple(p.goal_id for p in paths) + tuple(idle),
+            **walk.updates)
         return Decision(state.cycle, tuple(reports), tuple(paths), tuple(walk.why),
                         tuple(walk.sections)), new_state
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .errors import GoalError
+from .limits import MAX_GOAL_CHARS, shorten
 from .matcher import binding_key, holds, solve, unify_head
 from .program import Program
 from .sexpr import Atom, SList, read
@@ -46,11 +47,14 @@ def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
 
 def parse_goal(text: str, program: Program | None = None) -> Literal:
     """Read a goal such as ``(package-delivered PACKET2)``; check concept and arity if given a
-    program. Raises GoalError with the reason."""
+    program. Raises GoalError with the reason (and line:col for a reading error); a text over
+    MAX_GOAL_CHARS is refused before it is read."""
+    if len(text) > MAX_GOAL_CHARS:
+        raise GoalError(f"goal {shorten(text)!r}: longer than {MAX_GOAL_CHARS} characters")
     forms, diags = read(text, "<goal>")
     errors = [d for d in diags if d.severity == "error"]
     if errors:
-        raise GoalError(f"goal {text!r}: {errors[0].message}")
+        raise GoalError(f"goal {text!r}: {errors[0].line}:{errors[0].col}: {errors[0].message}")
     if len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:
         raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)")
     items = forms[0].items
@@ -97,6 +101,8 @@ def enumerable(goal: Literal, program: Program) -> str:
         if not isinstance(arg, Var):
             continue
         for clause in program.concepts.get(goal.pred, ()):
+            if len(clause.head.args) != len(goal.args):
+                continue  # an arity mismatch, reported by the checker
             head = clause.head.args[i]
             if isinstance(head, Var) and not any(head in p.variables() for p in clause.percepts):
                 return (f"variable {arg} cannot mean every instance: clause "

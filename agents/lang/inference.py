@@ -70,18 +70,27 @@ class Inference:
         self.types = sorted({t for s in self.plan for t in s.types})
         self.memo: Memo = EMPTY_MEMO
         self.last_stats = InferStats(len(self.plan), 0)
+        self._base: tuple = ()                # the base facts of the last run
+        self._base_sets: dict[str, set] = {}  # pred -> its base facts (same objects while equal)
 
     def forget(self) -> None:
         """Drop the memo, so that the next run evaluates every stratum (from-scratch timings)."""
         self.memo = EMPTY_MEMO
 
-    def run(self, percepts: Iterable[Percept]) -> FactStore:
-        """Every concept instance that holds for ``percepts``, as a FactStore (read-only: its
-        fact sets may be shared with the previous and next cycles' stores)."""
+    def run(self, percepts: Iterable[Percept], base: tuple[tuple, ...] = ()) -> FactStore:
+        """Every concept instance that holds for ``percepts`` and the ``base`` facts
+        ((pred, arg, ...) tuples: the agent's world model, asserted by SCS bodies, seed 002),
+        as a FactStore (read-only: its fact sets may be shared with the previous and next
+        cycles' stores). Base facts are facts before the first stratum; a concept that has
+        clauses too gets its inferred instances joined with them."""
         index = percepts if isinstance(percepts, PerceptIndex) else PerceptIndex(percepts)
+        if base != self._base:
+            self._set_base(base)
         memo = self.memo
         same = unchanged_types(index, self.types, memo)
         store = FactStore()
+        for pred, facts in self._base_sets.items():
+            store.facts[pred] = set(facts) if pred in self.program.concepts else facts
         deps = []
         evaluated = 0
         for i, stratum in enumerate(self.plan):
@@ -98,6 +107,13 @@ class Inference:
         self.memo = Memo(store, sigs, tuple(deps), memo.beliefs if store is memo.store else None)
         self.last_stats = InferStats(len(self.plan), evaluated)
         return store
+
+    def _set_base(self, base: tuple[tuple, ...]) -> None:
+        """New base facts: every stratum may read them, so nothing of the memo is reused."""
+        sets: dict[str, set] = {}
+        for row in base:
+            sets.setdefault(row[0], set()).add(tuple(row[1:]))
+        self._base, self._base_sets, self.memo = tuple(base), sets, EMPTY_MEMO
 
     def _evaluate(self, stratum: Stratum, index: PerceptIndex, store: FactStore) -> None:
         """Add the facts of one stratum to ``store``."""
@@ -129,10 +145,10 @@ class Inference:
                     delta[pred] = fresh
                     store.add(pred, fresh)
 
-    def beliefs(self, percepts: Iterable[Percept]) -> BeliefSet:
+    def beliefs(self, percepts: Iterable[Percept], base: tuple[tuple, ...] = ()) -> BeliefSet:
         """``run`` as a frozenset of Belief (carrying its FactStore); last cycle's BeliefSet
         itself when every stratum was reused."""
-        store = self.run(percepts)
+        store = self.run(percepts, base)
         memo = self.memo
         if memo.beliefs is not None and memo.beliefs.store is store:
             return memo.beliefs

@@ -4,7 +4,8 @@
 
 Percepts are agent-centred and limited in range (seed 000, Table 3); the mapping is the
 pure `perceive` of the domain the snapshot names (world/domain.py). The agent's action
-outcomes of t-1, which the world state of t carries, travel on with the percepts.
+outcomes of t-1 and its memory (world-model facts, SCS state), which the world state of t
+carries, travel on with the percepts.
 """
 
 from __future__ import annotations
@@ -26,8 +27,9 @@ def make_step(run: str, agent: str, process: str):
         percepts = tuple(list(p) for p in domain_of(state.snapshot).perceive(state.snapshot,
                                                                              agent))
         outcomes = tuple(state.outcomes.get(agent, ()))
+        memory = state.memory.get(agent) or {}
         return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts,
-                                   outcomes))]
+                                   outcomes, memory if isinstance(memory, dict) else {}))]
 
     return step
 
