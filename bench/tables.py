@@ -102,21 +102,23 @@ def _law_skills_changed(key: str) -> int:
     return sum(((a - b) + (b - a)).values())
 
 
-def trace(scenario: str, program: Path, seed: int) -> tuple[list, int, dict]:
-    """Per-cycle actions of one run, the cycles in which a law acted, the final counters."""
+def trace(scenario: str, program: Path, seed: int) -> tuple[list, tuple[int, int], dict]:
+    """Per-cycle actions of one run, (cycles in which a law acted, cycles in which the problem
+    solver acted), the final counters."""
     sc = load_scenario(ROOT / scenario)
     sc = dataclasses.replace(sc, agents=tuple(dataclasses.replace(a, program=program)
                                               for a in sc.agents))
     run = simulate(sc, None, seed)
     laws = sum(1 for r in run.records for a in sc.agent_ids
                if any(gid.startswith("p") and status == "active" for gid, status in r[a]["goals"]))
-    return ([[r[a]["actions"] for a in sc.agent_ids] for r in run.records], laws,
+    solver = sum(1 for r in run.records for a in sc.agent_ids if "solver" in r[a])
+    return ([[r[a]["actions"] for a in sc.agent_ids] for r in run.records], (laws, solver),
             run.final["counters"])
 
 
 def compare(job: tuple[str, str, str, int]) -> tuple:
     """Run one pair on one scenario and seed: (job, cycles, first differing cycle or -1, cycles
-    in which a law acted in the prioritized run, its final counters)."""
+    in which a law and the problem solver acted in the prioritized run, its final counters)."""
     prio, orig, scenario, seed = job
     a, laws, counters = trace(scenario, lp.TABLES / f"{prio}.tlp", seed)
     if orig == prio:
@@ -163,7 +165,8 @@ def main(seeds: str, jobs: int, write: bool, skip_runs: bool) -> None:
     click.echo(f"\nSame behaviour: per-cycle actions of both notations, seeds {seeds} "
                f"({time.perf_counter() - t0:.0f} s)")
     click.echo(markdown(("laws", "scenario", "runs", "cycles compared", "cycles a law acted",
-                         "deliveries", "law violations", "identical runs",
+                         "cycles the solver acted", "deliveries", "law violations",
+                         "identical runs",
                          "first difference (seed: cycle)"), rows))
     sys.exit(1 if failed else 0)
 
@@ -184,8 +187,9 @@ def _behaviour_rows(results: list[tuple]) -> tuple[list[tuple], bool]:
                 totals.update(agent)
         broken = sum(v for k, v in totals.items() if k != "deliveries")
         rows.append((prio.removeprefix("prioritized_"), scenario, len(runs),
-                     sum(r[1] for r in runs), sum(r[3] for r in runs), totals["deliveries"],
-                     broken, f"{same}/{len(runs)}", diffs))
+                     sum(r[1] for r in runs), sum(r[3][0] for r in runs),
+                     sum(r[3][1] for r in runs), totals["deliveries"], broken,
+                     f"{same}/{len(runs)}", diffs))
     return rows, failed
 
 
