@@ -58,6 +58,9 @@ class Checker:
         for clauses in concepts.values():
             for c in clauses:
                 self.check_concept(c)
+        sections = [x for items in self.parts.sections.values() for x in items]
+        for item in sections:   # a mechanism's own predicates (the planner's, seed 003)
+            item.define(self)
         self.bodies = BodyChecks(self, self.parts.skills,
                                  known_actions(self.parts.resources))
         skills = []
@@ -72,6 +75,8 @@ class Checker:
             self.use(g.literal, "goal")
         self.check_goal_variables(concepts)
         self.check_resources(skills)
+        for item in sections:
+            item.check(self)
         strata = self.stratify(concepts)
         errors = [d for d in self.diags if d.severity == "error"]
         if errors:
@@ -81,7 +86,8 @@ class Checker:
             skills=tuple(skills), goals=tuple(self.parts.goals), resources=self.parts.resources,
             strata=strata, warnings=tuple(sorted(self.diags, key=_order)),
             sources=tuple(self.parts.sources),
-            skills_by_pred={k: tuple(v) for k, v in by_pred.items()})
+            skills_by_pred={k: tuple(v) for k, v in by_pred.items()},
+            sections={k: tuple(v) for k, v in self.parts.sections.items()})
 
     # -- names and arities -------------------------------------------------------------------
     def define(self, head: Literal) -> None:

@@ -13,12 +13,13 @@ from .extend import extend_program
 from .goals import GoalEntry, enumerable, parse_goal
 from .inference import Inference
 from .outcomes import as_outcomes
+from .planning.rogue import RoguePlanner
 from .program import Program
 from .reuse import InferStats
 from .scs.state import model_of
 from .solving.solver import MeansEndsSolver
 from .state import EngineState
-from .store import BeliefSet, PerceptIndex, store_of
+from .store import BeliefSet, FactStore, PerceptIndex, store_of
 from .terms import Percept
 
 
@@ -36,8 +37,11 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
-SOLVERS: dict[str, type] = {"means-ends": MeansEndsSolver}
-"""Impasse handlers by name (seed 000's means-ends problem solver and learner)."""
+SOLVERS: dict[str, type] = {"means-ends": MeansEndsSolver, "rogue": RoguePlanner}
+"""Impasse handlers by name: seed 000's means-ends problem solver and learner, seed 003's
+ROGUE planner (agents/lang/planning). A handler may also offer ``known(state, store)`` (its
+own facts, added to the beliefs the walk judges goals by) and ``finish(decision, state)``
+(its word on the decision, after the walk)."""
 
 
 class Engine:
@@ -121,8 +125,7 @@ class Engine:
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
         """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
         on the previous cycle's actions (Outcome values or neutral dicts)."""
-        return self.executive_for(state).decide(state, _index(percepts), store_of(beliefs),
-                                                as_outcomes(outcomes))
+        return self._decide(state, _index(percepts), store_of(beliefs), outcomes)
 
     def cycle(self, state: EngineState, percepts: Iterable,
               outcomes: Iterable = ()) -> CycleResult:
@@ -130,9 +133,18 @@ class Engine:
         SCS bodies in earlier cycles) joins inference as base facts."""
         index = _index(percepts)
         beliefs = self.inference.beliefs(index, state.scs.model)
-        decision, new_state = self.executive_for(state).decide(state, index, beliefs.store,
-                                                               as_outcomes(outcomes))
+        decision, new_state = self._decide(state, index, beliefs.store, outcomes)
         return CycleResult(beliefs, decision, new_state)
+
+    def _decide(self, state: EngineState, index: PerceptIndex, store: FactStore,
+                outcomes: Iterable) -> tuple[Decision, EngineState]:
+        known = getattr(self.solver, "known", None)
+        if known is not None:
+            store = known(state, store)
+        decision, new_state = self.executive_for(state).decide(state, index, store,
+                                                               as_outcomes(outcomes))
+        finish = getattr(self.solver, "finish", None)
+        return (decision, new_state) if finish is None else finish(decision, new_state)
 
 
 def _index(percepts: Iterable) -> PerceptIndex:

@@ -22,6 +22,7 @@ def extend_program(program: Program, clauses: tuple[str, ...],
     parts.goals = list(program.goals)
     parts.resources = program.resources
     parts.sources = [*program.sources, source]
+    parts.sections = {k: list(v) for k, v in program.sections.items()}
     for text in clauses:
         forms, diags = read(text, source)
         parts.diags.extend(diags)

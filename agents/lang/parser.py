@@ -12,6 +12,7 @@ from .arith import OPS
 from .errors import Diagnostic
 from .limits import MAX_DIAGNOSTICS
 from .pieces import PieceParser, items_of, op_name, suggest
+from .planning.reader import PLANNING_SECTIONS
 from .program import ConceptClause, GoalSpec, Skill
 from .scs.reader import BodyReader
 from .sexpr import Atom, SList, to_text
@@ -34,6 +35,9 @@ class Parts:
         self.resource_locs: dict[str, Loc] = {}
         self.diags: list[Diagnostic] = []
         self.sources: list[str] = []
+        # a mechanism's own sections (SECTIONS): name -> items, each with define(checker)
+        # and check(checker), called by agents/lang/checks.py
+        self.sections: dict[str, list] = {}
 
 
 class Parser(PieceParser):
@@ -224,6 +228,7 @@ SECTIONS = {
     "skills": lambda p, n: p.section_clauses(n, "skills"),
     "goals": Parser.goals_section,
     "resources": Parser.resources_section,
+    **PLANNING_SECTIONS,   # (operators ...), (requests ...), (control-rules ...): seed 003
 }
 
 

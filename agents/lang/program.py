@@ -86,6 +86,7 @@ class Program:
     warnings: tuple[Diagnostic, ...] = ()
     sources: tuple[str, ...] = ()
     skills_by_pred: dict[str, tuple[Skill, ...]] = field(default_factory=dict)
+    sections: dict[str, tuple] = field(default_factory=dict)  # a mechanism's own sections
 
     def skills_for(self, pred: str) -> tuple[Skill, ...]:
         """Skills whose head is ``pred``, in program order."""

@@ -2,7 +2,8 @@
 intention of t out.
 
     python -m agents.processes.executive --run RUN --agent ME --program FILE
-        [--state FILE] [--learned FILE] [--learned-out FILE] [--no-solver] [bus flags]
+        [--state FILE] [--learned FILE] [--learned-out FILE] [--no-solver]
+        [--mechanism NAME] [bus flags]
 
 Each cycle it brings the engine's user goals in line with the goal list the goal-entry
 process published for t (posted, cancelled, reprioritised goals), then takes one executive
@@ -16,7 +17,9 @@ The SCS state (body threads, discount factors, world model) also goes out with t
 the agent's memory and comes back through the world with the next percepts, which is how the
 world model reaches the inference process (docs/bus.md, "Agent memory"). --learned starts
 from skills learned in an earlier run; --learned-out writes the skills as they are learned;
---no-solver runs the executive alone (an impasse stays an impasse).
+--no-solver runs the executive alone (an impasse stays an impasse); --mechanism names
+what answers an impasse (agents.lang.engine.SOLVERS: means-ends, the default; rogue, the
+planner of seed 003, whose tail-plans, head-plan and monitoring live in the same state).
 """
 
 from __future__ import annotations
@@ -28,6 +31,8 @@ from typing import Any
 import click
 
 from agents.processes.common import agent_options, run_stage, setup_logging
+from agents.processes.goal_sync import GoalSync
+from agents.processes.hints import with_hints
 from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
@@ -41,34 +46,11 @@ class Executive:
         self.engine = engine
         self.log = log
         self.state = engine.initial_state() if state is None else state
-        # goal id -> (goal text, priority) of the user goals the state already holds
-        self.user: dict[str, tuple[str, int]] = {e.id: (e.text, e.priority)
-                                                 for e in self.state.goals if e.origin == "user"}
-        self.refused: set[str] = set()
+        self.goals = GoalSync.of(self.state)   # the user goals the state already holds
 
     def sync_goals(self, goal_list: tuple[dict[str, Any], ...]) -> None:
         """Add new goals, drop withdrawn ones, move reprioritised ones (in list order)."""
-        from agents.lang import GoalError
-
-        wanted = {g["id"]: (g["goal"], int(g["priority"])) for g in goal_list}
-        for goal_id in [i for i in self.user if i not in wanted]:
-            self.state = self.engine.remove_goal(self.state, goal_id)
-            del self.user[goal_id]
-        for goal_id, (text, priority) in wanted.items():
-            known = self.user.get(goal_id)
-            try:
-                if known is None and goal_id not in self.refused:
-                    self.state = self.engine.add_goal(self.state, text, priority=priority,
-                                                      goal_id=goal_id)
-                elif known is not None and known[1] != priority:
-                    self.state = self.engine.set_priority(self.state, goal_id, priority)
-                else:
-                    continue
-            except GoalError as exc:
-                self.log.warning("goal %s %s refused by the engine: %s", goal_id, text, exc)
-                self.refused.add(goal_id)
-                continue
-            self.user[goal_id] = (text, priority)
+        self.state = self.goals.apply(self.engine, self.state, goal_list, self.log)
 
     def remember(self, memory: dict[str, Any]) -> None:
         """Take the SCS state from the memory the world handed back (a malformed one is
@@ -107,7 +89,8 @@ class Executive:
 
 
 def make_executive(program_path: str, log: logging.Logger, state: Any = None,
-                   learned: str | None = None, solver: bool = True) -> Executive:
+                   learned: str | None = None, solver: bool = True,
+                   mechanism: str = "means-ends") -> Executive:
     """The executive of ``program_path``: from ``state`` (read back after a restart) if
     given, else fresh, starting from the skills in the learned file ``learned``. Raises
     LangError (a ProgramError naming file:line:col) for a bad program or learned file."""
@@ -116,7 +99,7 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
     from agents.lang.solving.learned import read_learned
 
     program = load_program(program_path)
-    engine = Engine(program, solver="means-ends" if solver else None)
+    engine = Engine(program, solver=mechanism if solver else None)
     if state is None and learned:
         state = engine.initial_state(learned=read_learned(program, read_text(learned), learned))
     return Executive(engine, log, state)
@@ -124,12 +107,13 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
 
 def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger,
               state_path: str | None = None, learned: str | None = None,
-              learned_out: str | None = None, solver: bool = True):
+              learned_out: str | None = None, solver: bool = True,
+              mechanism: str = "means-ends"):
     """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)]."""
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
     executive = make_executive(program_path, log, saved.state if saved else None, learned,
-                               solver)
+                               solver, mechanism)
     out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
@@ -149,7 +133,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
         executive.remember(seen.memory)                           # after a restart
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
-        intention, actions = decision.to_dict(), [a.to_list() for a in decision.actions]
+        intention = with_hints(decision.to_dict(), seen.percepts)
+        actions = [a.to_list() for a in decision.actions]
         if saver is not None:
             saver.save(Saved(cycle, executive.state, intention, actions))
         if out is not None:
@@ -159,6 +144,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     return step
 
 
+@click.option("--mechanism", default="means-ends", show_default=True,
+              help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
 @click.option("--no-solver", "no_solver", is_flag=True,
               help="No means-ends problem solver: an impasse stays an impasse.")
 @click.option("--learned-out", type=click.Path(dir_okay=False),
@@ -170,7 +157,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
                    "cycle (so a restart keeps paths, goal stacks and learned skills).")
 @agent_options(with_program=True)
 def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: str | None,
-         learned: str | None, learned_out: str | None, no_solver: bool) -> None:
+         learned: str | None, learned_out: str | None, no_solver: bool,
+         mechanism: str) -> None:
     """Prioritised executive of one agent."""
     from agents.lang import LangError
 
@@ -179,7 +167,7 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: 
     inputs = [keys.percepts(run, agent), keys.beliefs(run, agent), keys.goal_list(run, agent)]
     try:
         step = make_step(run, agent, process, program, log, state_path, learned, learned_out,
-                         not no_solver)
+                         not no_solver, mechanism)
     except LangError as exc:
         raise click.ClickException(str(exc)) from exc
     run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)], step, log)

@@ -166,6 +166,18 @@ def test_live_goals_per_agent_are_bounded_and_a_cancel_frees_a_place():
     assert record.id == f"g{MAX_LIVE_GOALS + 1}"
 
 
+def test_an_achieved_goal_frees_a_place():
+    store = GoalStore()
+    for n in range(MAX_LIVE_GOALS):
+        store, _ = store.post("ME", f"(package-delivered P{n})", 5, 0, accept_all)
+    decision = {"goals": [{"id": "g3", "status": "satisfied"}]}
+    store = store.update_from_intention("ME", decision, 7)
+    store, record = store.post("ME", "(package-delivered EXTRA)", 5, 8, accept_all)
+    assert record.id == f"g{MAX_LIVE_GOALS + 1}" and store.get("g3").status.value == "achieved"
+    with pytest.raises(GoalStoreError, match=f"ME has {MAX_LIVE_GOALS} live goals, the limit"):
+        store.post("ME", "(package-delivered MORE)", 5, 8, accept_all)
+
+
 def test_only_the_latest_withdrawn_goals_are_kept():
     store = GoalStore()
     for n in range(MAX_KEPT_WITHDRAWN + 5):

@@ -81,11 +81,13 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
                                           f"{_short(reason)}")
 
 
-def decide(task: Task, entry: StackEntry, on_stack: list[str]
+def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = False
            ) -> tuple[StackEntry, StackEntry | None, str]:
     """One chaining decision for ``entry``: (entry updated, the child to push, "") or, when
     no way is left, (entry, None, why): the chosen way goes on with its next unsatisfied
-    condition; failing that, the next alternative is chosen afresh."""
+    condition; failing that, the next alternative is chosen afresh. With ``ready`` (the
+    planner's back-chainer, agents/lang/planning/backchain.py), a chosen way whose
+    conditions all hold is answered (entry, None, ""): apply it."""
     if not entry.alternatives and entry.chosen == -1 and entry.tried == 0:
         entry = replace(entry, alternatives=task.alternatives(literal(entry.goal)))
         if not entry.alternatives:
@@ -98,6 +100,8 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str]
             way = entry.alternatives[entry.tried]
             entry = entry.choose(entry.tried, tuple(c for c in way.conditions
                                                      if task.holds(c)))
+        if ready and all(task.holds(c) for c in entry.decision.conditions):
+            return entry, None, ""
         child, why = _push(task, entry, entry.decision, on_stack)
         if child is not None:
             return replace(entry, pushes=entry.pushes + (child.goal,)), child, ""

@@ -81,20 +81,26 @@ class Task:
         return types[0] if types else None
 
     # -- ways to chain off a goal ----------------------------------------------------------
-    def alternatives(self, goal: Literal) -> tuple[Alternative, ...]:
+    def alternatives(self, goal: Literal, applicable: bool = False,
+                     concepts: bool = True) -> tuple[Alternative, ...]:
         """Skill chaining first, then concept chaining (seed 000: "chaining backwards off
         either conceptual clauses or primitive skills, with a priority on the latter"): the
         primitive skills for the goal in program order, then its concept clauses; within a
         clause the best-ranked bindings (``rank``), at most MAX_PER_CLAUSE of them. Skills
         with subgoals (learned or written) are not chained off: the executive already found
-        none of them executable, and their starts are compound."""
+        none of them executable, and their starts are compound.
+        ``applicable``: also the skills whose conditions all hold already (a planner that
+        projects operators ahead of execution applies them; the solver never needs them, the
+        executive would have executed such a skill); ``concepts``: concept chaining too
+        (PRODIGY's back-chainer, agents/lang/planning, chains on operators only)."""
         out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
-               for a in self._by_skill(s, goal)]
-        for clause in self.program.concepts.get(goal.pred, ()):
+               for a in self._by_skill(s, goal, applicable)]
+        for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
             out += self._by_concept(clause, goal)
         return tuple(out)
 
-    def _by_skill(self, s: Skill, goal: Literal) -> list[Alternative]:
+    def _by_skill(self, s: Skill, goal: Literal, applicable: bool = False
+                  ) -> list[Alternative]:
         b0 = unify_head(s.head, goal, {})
         if b0 is None:
             return []
@@ -102,7 +108,7 @@ class Task:
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
             ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground):
+            if self._chainable(ground, applicable):
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
@@ -123,10 +129,11 @@ class Task:
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
                             f"concept {name}") for _, _, b, ground in self._best(ranked)]
 
-    def _chainable(self, ground: list) -> bool:
-        """Something is left to achieve, and all of it can become a subgoal."""
+    def _chainable(self, ground: list, applicable: bool = False) -> bool:
+        """Something is left to achieve (or, ``applicable``, nothing), and all of it can
+        become a subgoal."""
         unsat = [c for c in ground if not self.holds(c)]
-        return bool(unsat) and all(pushable(c) for c in unsat)
+        return (applicable or bool(unsat)) and all(pushable(c) for c in unsat)
 
     @staticmethod
     def _best(ranked: list) -> list:
