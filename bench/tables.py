@@ -10,7 +10,9 @@ each notation. Table 8 diffs the clauses of the 2-law programs against those in 
 giving-way-to-pedestrians) are replaced, counting the driving skills (not the laws' own skills)
 that are deleted or rewritten. Then every prioritized/original pair runs `teleo simulate`'s loop
 (tools.simulate.simulate) on scenarios/driving_demo.toml and scenarios/busy_streets.toml with
-each seed, and the per-cycle actions are compared. Exits 1 if any pair differs.
+each seed, and the runs' trace lines (each cycle's actions, counters and world digest, what
+`teleo simulate` writes to trace.jsonl) are compared. Exits 1 if any pair differs. With no law
+both notations are one program, so the 0-law rows run it once.
 """
 
 from __future__ import annotations
@@ -79,19 +81,31 @@ def revised(old: Program, new: Program, replaced: set[str]) -> tuple[int, int]:
 
 
 def table7() -> list[tuple]:
-    rows = []
+    """Rows (laws, original, prioritized, seed's two) and the ratios against each baseline:
+    original / prioritized, and original / the 0-law program (the growth the laws cause)."""
+    rows, base, seed_base = [], 0, SEED_T7[0][0]
     for k, key in PAIRS.items():
-        rows.append((k, len(load(original(key)).skills), len(load(f"prioritized_{key}").skills),
-                     *SEED_T7[k]))
+        o, p = len(load(original(key)).skills), len(load(f"prioritized_{key}").skills)
+        so, sp = SEED_T7[k]
+        base = base or o
+        rows.append((k, o, p, so, sp, _r(o, p), _r(so, sp), _r(o, base), _r(so, seed_base)))
     return rows
 
 
+def _r(a: int, b: int) -> str:
+    return f"{a / b:.2f}"
+
+
 def table8() -> list[tuple]:
-    rows = [(0, 0, 0, 0, 0, *SEED_T8[0])]
+    """Rows (laws replaced, original, its twins, prioritized, the laws' own skills, seed's
+    two) and the twins per basic skill clause, here and in the seed (54 basic skills)."""
+    base = len(driving_clauses(load("prioritized_0laws")))
+    rows = [(0, 0, 0, 0, 0, *SEED_T8[0], _r(0, base), _r(0, SEED_T7[0][1]))]
     for k, key in REPLACED.items():
         o_all, o_twins = revised(load("original_2laws"), load(f"original_{key}"), GONE[k])
         p_all, _ = revised(load("prioritized_2laws"), load(f"prioritized_{key}"), GONE[k])
-        rows.append((k, o_all, o_twins, p_all, _law_skills_changed(key), *SEED_T8[k]))
+        rows.append((k, o_all, o_twins, p_all, _law_skills_changed(key), *SEED_T8[k],
+                     _r(o_twins, base), _r(SEED_T8[k][0], SEED_T7[0][1])))
     return rows
 
 
@@ -102,9 +116,10 @@ def _law_skills_changed(key: str) -> int:
     return sum(((a - b) + (b - a)).values())
 
 
-def trace(scenario: str, program: Path, seed: int) -> tuple[list, tuple[int, int], dict]:
-    """Per-cycle actions of one run, (cycles in which a law acted, cycles in which the problem
-    solver acted), the final counters."""
+def trace(scenario: str, program: Path, seed: int) -> tuple[list[str], tuple[int, int], dict]:
+    """One run's trace lines (world/trace.py: each cycle's actions, counters and world digest,
+    as `teleo simulate` writes trace.jsonl), (cycles in which a law acted, cycles in which the
+    problem solver acted), the final counters."""
     sc = load_scenario(ROOT / scenario)
     sc = dataclasses.replace(sc, agents=tuple(dataclasses.replace(a, program=program)
                                               for a in sc.agents))
@@ -112,13 +127,13 @@ def trace(scenario: str, program: Path, seed: int) -> tuple[list, tuple[int, int
     laws = sum(1 for r in run.records for a in sc.agent_ids
                if any(gid.startswith("p") and status == "active" for gid, status in r[a]["goals"]))
     solver = sum(1 for r in run.records for a in sc.agent_ids if "solver" in r[a])
-    return ([[r[a]["actions"] for a in sc.agent_ids] for r in run.records], (laws, solver),
-            run.final["counters"])
+    return list(run.trace), (laws, solver), run.final["counters"]
 
 
 def compare(job: tuple[str, str, str, int]) -> tuple:
-    """Run one pair on one scenario and seed: (job, cycles, first differing cycle or -1, cycles
-    in which a law and the problem solver acted in the prioritized run, its final counters)."""
+    """Run one pair on one scenario and seed: (job, cycles, first cycle whose trace lines
+    differ or -1, cycles in which a law and the problem solver acted in the prioritized run,
+    its final counters)."""
     prio, orig, scenario, seed = job
     a, laws, counters = trace(scenario, lp.TABLES / f"{prio}.tlp", seed)
     if orig == prio:
@@ -146,11 +161,14 @@ def main(seeds: str, jobs: int, write: bool, skip_runs: bool) -> None:
             click.echo(f"wrote {path.relative_to(ROOT)}")
     click.echo("Table 7: skill clauses needed for the driving laws (counted in programs/tables/)")
     click.echo(markdown(("laws", "original", "prioritized", "seed: original",
-                         "seed: prioritized"), table7()))
+                         "seed: prioritized", "original / prioritized",
+                         "seed: original / prioritized", "original / 0 laws",
+                         "seed: original / 0 laws"), table7()))
     click.echo("\nTable 8: driving skill clauses revised when laws are replaced")
     click.echo(markdown(("changed laws", "original", "original: twins", "prioritized",
                          "prioritized: the laws' own skills", "seed: original",
-                         "seed: prioritized"), table8()))
+                         "seed: prioritized", "twins / basic skills",
+                         "seed: original / basic skills"), table8()))
     click.echo("\n" + NOTES.format(b=len(driving_clauses(load("prioritized_0laws")))))
     if skip_runs:
         return
@@ -162,7 +180,8 @@ def main(seeds: str, jobs: int, write: bool, skip_runs: bool) -> None:
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         results = list(pool.map(compare, jobs_list))
     rows, failed = _behaviour_rows(results)
-    click.echo(f"\nSame behaviour: per-cycle actions of both notations, seeds {seeds} "
+    click.echo(f"\nSame behaviour: trace lines (actions, counters, world digest) of both "
+               f"notations, every cycle, seeds {seeds} "
                f"({time.perf_counter() - t0:.0f} s)")
     click.echo(markdown(("laws", "scenario", "runs", "cycles compared", "cycles a law acted",
                          "cycles the solver acted", "deliveries", "law violations",
