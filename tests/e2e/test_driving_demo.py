@@ -1,8 +1,9 @@
 """Deliveries through the real processes: PACKET1 is a goal from the start, PACKET2 is posted
 mid-run with the real `teleo goal post`, as a user would; both get delivered and no
 pedestrian is hit. First with the tests' own small program (deliver_ahead.tlp), then the
-README's demo: scenarios/driving_demo.toml with programs/driving.tlp, run until both are
-delivered, less its scripted PACKET2 request, which the test makes instead.
+README's demo: scenarios/driving_demo.toml with programs/driving.tlp (which breaks no law at
+all), run until both are delivered, less its scripted PACKET2 request, which the test makes
+instead.
 """
 
 from __future__ import annotations
@@ -61,8 +62,10 @@ def demo_without_scripted_packet2(folder: Path) -> Path:
     return path
 
 
-def test_the_driving_demo_delivers_both_packages_and_hits_no_pedestrian(teleo, tmp_path):
+def test_the_driving_demo_delivers_both_packages_and_breaks_no_law(teleo, tmp_path):
     scenario = demo_without_scripted_packet2(tmp_path)
     summary = deliver_two(teleo, scenario, post_after=100, timeout=400)
     assert summary["goals_achieved"] == 2 and summary["achievements"]["ME"]["deliveries"] >= 2
-    assert summary["law_violations"]["ME"]["pedestrian_hits"] == 0
+    assert summary["law_violations"]["ME"] == {
+        "pedestrian_hits": 0, "vehicle_collisions": 0, "off_road": 0, "yellow_crossings": 0,
+        "speeding_cycles": 0}

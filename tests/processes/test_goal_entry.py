@@ -15,7 +15,7 @@ from bus.messages import Envelope, GoalRequest
 from world.run_scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
-DEMO = ROOT / "scenarios" / "driving_demo.toml"   # programs/driving.tlp: 5 standing goals
+DEMO = ROOT / "scenarios" / "driving_demo.toml"   # programs/driving.tlp: 2 standing laws
 ENV = Envelope(1, "r", -1, "cli", 0)
 
 
@@ -45,25 +45,26 @@ def test_the_rule_names_the_standing_goals_a_priority_would_outrank():
 
 
 def test_a_post_above_the_driving_laws_is_refused_unless_forced(entry):
-    ok, reason = ask(entry, "post", "(package-delivered PACKET2)", 2)
+    ok, reason = ask(entry, "post", "(package-delivered PACKET2)", 1)
     assert not ok
-    assert "above the program's standing goals p3 (at-desired-speed ME)" in reason
-    assert "give priority 5 or more" in reason and "--force" in reason
+    assert "above the program's standing goal p2 (at-desired-speed ?self)" in reason
+    assert "give priority 2 or more" in reason and "--force" in reason
     assert entry.store.goals == ()
-    ok, reason = ask(entry, "post", "(package-delivered PACKET2)", 2, force=True)
+    ok, reason = ask(entry, "post", "(package-delivered PACKET2)", 1, force=True)
     assert ok and reason.startswith("posted g1 for ME: (package-delivered PACKET2)")
-    assert "forced: priority 2 ranks the goal above" in reason
-    assert entry.store.get("g1").priority == 2
+    assert "forced: priority 1 ranks the goal above" in reason
+    assert entry.store.get("g1").priority == 1
+    assert ask(entry, "post", "(package-delivered PACKET1)", 2)[0]     # after both laws
 
 
 def test_raising_a_goal_above_the_laws_is_refused_unless_forced(entry):
     assert ask(entry, "post", "(package-delivered PACKET2)", 100)[0]
-    ok, reason = ask(entry, "priority", priority=2, goal_id="g1")
-    assert not ok and "p3 (at-desired-speed ME)" in reason
+    ok, reason = ask(entry, "priority", priority=1, goal_id="g1")
+    assert not ok and "p2 (at-desired-speed ?self)" in reason
     assert entry.store.get("g1").priority == 100
     assert ask(entry, "priority", priority=5, goal_id="g1") == (
         True, "g1 now has priority 5 (from cycle 0)")
-    assert ask(entry, "priority", priority=2, goal_id="g1", force=True)[0]
+    assert ask(entry, "priority", priority=1, goal_id="g1", force=True)[0]
 
 
 def test_cancelling_an_achieved_goal_is_refused_like_a_cancelled_one(entry):

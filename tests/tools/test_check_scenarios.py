@@ -34,8 +34,8 @@ def invoke(*args):
     (("address = 6,", "address = 99,"), r"\[world\] package PACKET1: no address 99 on B"),
     (('goal = "(package-delivered PACKET1)"', 'goal = "(flying ME)"'),
      r"\[\[goals\]\] #1: goal \(flying ME\): undefined concept 'flying'"),
-    (("priority = 5\nat_cycle = 0", "priority = 2\nat_cycle = 0"),
-     r"\[\[goals\]\] #1: priority 2 ranks the goal above the program's standing goals p3"),
+    (("priority = 5\nat_cycle = 0", "priority = 1\nat_cycle = 0"),
+     r"\[\[goals\]\] #1: priority 1 ranks the goal above the program's standing goal p2"),
     (("priority = 5\nat_cycle = 0", "priority = 0\nat_cycle = 0"),
      r"\[\[goals\]\] #1: priority: expected an integer in 1..1000000, got 0"),
     (('id = "PACKET2"', 'id = "PACKET 2"'), r"\[world\] package 'PACKET 2': expected an id"),
@@ -92,7 +92,7 @@ def test_check_json_gives_each_files_verdict_and_errors(tmp_path):
     doc = json.loads(result.output)
     assert doc["ok"] is False
     program, scen = doc["files"]
-    assert (program["kind"], program["ok"], program["goals"]) == ("program", True, 5)
+    assert (program["kind"], program["ok"], program["goals"]) == ("program", True, 2)
     assert (scen["kind"], scen["ok"]) == ("scenario", False)
     assert "no address 99 on B" in scen["errors"][0]["message"]
     broken = tmp_path / "broken.tlp"

@@ -25,7 +25,7 @@ def test_self_percept_in_the_right_lane_of_first_street() -> None:
     (self_p,) = [p for p in perceive(snapshot(me), "ME") if p[0] == "self"]
     assert self_p == ["self", "ME", "speed", 12.5, "heading", 0.0, "wheel-angle", 0.0,
                       "throttle", 0.0, "limit", 15.0, "breakthrottle", 0.0, "segment", "S1",
-                      "street", "FIRST"]
+                      "street", "FIRST", "x", 50.0, "y", -2.0]
 
 
 def test_lane_lines_eastbound_yellow_on_the_left_white_on_the_right() -> None:
@@ -102,8 +102,11 @@ def test_streets_segments_and_intersections_in_range() -> None:
     # behind the car and 2 m north: on a westbound car's right -> negative
     assert inters["I2"]["angle"] == round(-(180 - math.degrees(math.atan2(2, 45))), 3)
     segs = by_type(percepts, "segment")
-    assert segs["S1"] == {"street": "FIRST", "dist": 2.0, "blocked": "NIL"}
+    assert segs["S1"] == {"street": "FIRST", "dist": 2.0, "blocked": "NIL", "from": "I1",
+                          "to": "I2", "heading": 0.0, "length": 100.0}
     assert set(segs) == {"S1", "S2", "S16"}
+    assert (segs["S16"]["from"], segs["S16"]["to"], segs["S16"]["heading"]) == ("I2", "I6", 90.0)
+    assert (inters["I2"]["x"], inters["I2"]["y"]) == (100.0, 0.0)
 
 
 def test_packages_are_always_seen_with_route_guidance() -> None:
@@ -116,6 +119,21 @@ def test_packages_are_always_seen_with_route_guidance() -> None:
     assert pk["P1"]["delivered"] == "NIL" and pk["P1"]["dist"] > QUIET.perception_range
     assert pk["P2"]["next-turn"] == "ARRIVING" and pk["P2"]["turn-dist"] == 43.0
     assert pk["P2"]["angle"] < 0                         # curb point on the car's right
+
+
+def test_packages_say_where_their_address_is_served() -> None:
+    """For route planning in a program: the curb point, and the lane that has the address on
+    its right (its segment, heading and the intersection where its block begins)."""
+    packages = (PackageState("P1", 5, "A", "ME"),        # A 5: west side, second block
+                PackageState("P2", 4, "FIRST", "ME"))    # FIRST 4: south side, first block
+    pk = by_type(perceive(snapshot(car(20.0, -2.0, 0.0), packages=packages), "ME"), "package")
+    # odd addresses lie left of the axis (west of A, which points north): served southbound
+    assert {k: pk["P1"][k] for k in ("segment", "heading", "entry", "entry-x", "entry-y")} == {
+        "segment": "S14", "heading": -90.0, "entry": "I9", "entry-x": 0.0, "entry-y": 200.0}
+    assert (pk["P1"]["x"], pk["P1"]["y"]) == (-5.0, 137.0)       # 37 m into its block
+    assert {k: pk["P2"][k] for k in ("segment", "heading", "entry", "x", "y")} == {
+        "segment": "S1", "heading": 0.0, "entry": "I1", "x": 63.0, "y": -5.0}
+    assert math.hypot(63.0 - 20.0, -5.0 + 2.0) == pytest.approx(pk["P2"]["dist"], abs=1e-3)
 
 
 def test_package_on_the_left_of_the_street_needs_a_loop() -> None:

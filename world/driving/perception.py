@@ -13,8 +13,8 @@ import math
 from typing import Any
 
 from world.angles import wrap
-from world.driving.city import LINES, City, Segment, build_city
-from world.driving.navigation import aligned_segment, current_edge, guide
+from world.driving.city import LINES, Building, City, Segment, build_city
+from world.driving.navigation import aligned_segment, current_edge, edge_end, guide, target_edge
 from world.driving.snapshot import CarState, WorldSnapshot
 
 Percept = list[Any]
@@ -50,7 +50,7 @@ def _self(city: City, snap: WorldSnapshot, me: CarState,
     return ["self", me.id, "speed", _r(me.speed), "heading", _r(wrap(me.heading)),
             "wheel-angle", _r(me.wheel), "throttle", _r(me.throttle),
             "limit", _r(snap.config.speed_limit), "breakthrottle", _r(me.brake),
-            "segment", where, "street", street], street
+            "segment", where, "street", street, "x", _r(me.x), "y", _r(me.y)], street
 
 
 def _lane_lines(me: CarState, seg: Segment) -> list[Percept]:
@@ -99,8 +99,21 @@ def _packages(city: City, snap: WorldSnapshot, me: CarState) -> list[Percept]:
             turn, turn_dist = g.turn, g.dist
         out.append(["package", p.id, "address", p.address, "street", p.street,
                     "delivered", "T" if p.delivered else "NIL", "dist", _r(dist),
-                    "angle", _r(angle), "next-turn", turn, "turn-dist", _r(turn_dist)])
+                    "angle", _r(angle), "next-turn", turn, "turn-dist", _r(turn_dist),
+                    *_address_lane(city, b)])
     return out
+
+
+def _address_lane(city: City, b: Building) -> list:
+    """Where an address is served (for route planning in a program): the curb point, the
+    segment, the heading [deg] of the lane that has the building on its right, and the
+    intersection where that lane's block begins (with its position [m])."""
+    seg_id, d = target_edge(b)
+    seg = city.segment(seg_id)
+    entry = city.intersection(edge_end(seg, -d))
+    return ["x", _r(b.curb[0]), "y", _r(b.curb[1]), "segment", seg_id,
+            "heading", _r(wrap(seg.heading if d > 0 else seg.heading + 180.0)),
+            "entry", entry.id, "entry-x", _r(entry.x), "entry-y", _r(entry.y)]
 
 
 def perceive(snap: WorldSnapshot, agent: str) -> list[Percept]:
@@ -117,12 +130,13 @@ def perceive(snap: WorldSnapshot, agent: str) -> list[Percept]:
     out.append(self_percept)
     blocked = set(snap.blocked)
     out += [["segment", s.id, "street", s.street, "dist", _r(d),
-             "blocked", "T" if s.id in blocked else "NIL"] for s, d in segs]
+             "blocked", "T" if s.id in blocked else "NIL", "from", s.start, "to", s.end,
+             "heading", _r(s.heading), "length", _r(s.length)] for s, d in segs]
     for n in city.intersections:
         dist, angle = polar(me, n.x, n.y)
         if dist <= reach:
             out.append(["intersection", n.id, "street", n.ew, "cross", n.ns, "dist", _r(dist),
-                        "angle", _r(angle)])
+                        "angle", _r(angle), "x", _r(n.x), "y", _r(n.y)])
     if aligned is not None:
         out += _lane_lines(me, aligned[0])
     out += _buildings(city, me, reach)
