@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 STANDARD_KEYS = frozenset({"cycle", "goals", "goal_id", "path", "resources", "actions",
@@ -186,10 +187,19 @@ def line(node: Node, symbols: dict[str, str] = ASCII) -> str:
     if node.bindings:
         text += " " + bindings_text(node.bindings)
     if node.where:
-        text += f"  ({node.where})"
+        text += f"  ({_near(node.where)})"
     if node.note:
         text += f": {node.note}" if node.kind == "passed" else f"  -- {node.note}"
     return text
+
+
+def _near(where: str) -> str:
+    """file:line:col with the file relative to the current folder when it is inside it."""
+    file, sep, rest = where.partition(":")
+    try:
+        return str(Path(file).resolve().relative_to(Path.cwd().resolve())) + sep + rest
+    except (ValueError, OSError):
+        return where
 
 
 def render_text(node: Node, symbols: dict[str, str] = ASCII) -> str:
