@@ -9,12 +9,13 @@ from .errors import GoalError
 from .executive import Executive
 from .explanation import Decision
 from .goals import GoalEntry, parse_goal
-from .inference import Inference
+from .inference import InferStats, Inference
+from .intake import frame_of
 from .program import Program
-from .reuse import InferStats
 from .state import EngineState
 from .store import BeliefSet, PerceptIndex, store_of
 from .terms import Percept
+from .tracker import check_frame
 
 
 @dataclass(frozen=True, slots=True)
@@ -32,14 +33,16 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
 
 
 class Engine:
-    """Runs a Program cycle by cycle. Holds compiled program data and the inference memo
-    (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
-    every result is exactly what a fresh Engine would give (docs/language.md, Performance)."""
+    """Runs a Program cycle by cycle. Holds compiled program data and what inference carries
+    from cycle to cycle (``Inference``: last cycle's percept relations, facts and derivation
+    counts), which only saves work: every result is exactly what a fresh Engine would give
+    (docs/language.md, Performance)."""
 
     def __init__(self, program: Program):
         self.program = program
         self.inference = Inference(program)
         self.executive = Executive(program)
+        self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
 
     # -- goals ---------------------------------------------------------------------------
     def initial_state(self) -> EngineState:
@@ -79,26 +82,40 @@ class Engine:
     # -- cycle ---------------------------------------------------------------------------
     @property
     def last_infer_stats(self) -> InferStats:
-        """Strata evaluated vs reused by the last ``infer``/``cycle`` (for tests and bench)."""
+        """What the last ``infer``/``cycle`` did: strata evaluated and reused, percept tuples
+        changed, derivations computed, concepts changed (for tests and bench)."""
         return self.inference.last_stats
 
     def infer(self, percepts: Iterable) -> BeliefSet:
-        """Every concept instance that holds for this cycle's percepts."""
-        return self.inference.beliefs(_index(percepts))
+        """Every concept instance that holds for this cycle's percepts (neutral lists as they
+        come from the bus, Percepts, or a PerceptIndex). Raises LangError naming a bad
+        percept."""
+        return self.inference.beliefs(percepts)
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable):
         """The executive step: (Decision, next EngineState)."""
-        return self.executive.decide(state, _index(percepts), store_of(beliefs))
+        return self.executive.decide(state, self._index(percepts), store_of(beliefs))
 
     def cycle(self, state: EngineState, percepts: Iterable) -> CycleResult:
         """infer + decide on the same percepts."""
-        index = _index(percepts)
-        beliefs = self.inference.beliefs(index)
+        beliefs = self.inference.beliefs(percepts)
+        index = self.inference.frame.index
         decision, new_state = self.executive.decide(state, index, beliefs.store)
         return CycleResult(beliefs, decision, new_state)
 
+    def _index(self, percepts: Iterable) -> PerceptIndex:
+        """The executive's index of ``percepts``, every value checked."""
+        if isinstance(percepts, PerceptIndex):
+            return percepts
+        frame = frame_of(percepts)
+        check_frame(frame, self._checked)
+        return frame.index
+
 
 def _index(percepts: Iterable) -> PerceptIndex:
+    """A checked PerceptIndex of ``percepts`` (raises LangError naming a bad percept)."""
     if isinstance(percepts, PerceptIndex):
         return percepts
-    return PerceptIndex(as_percepts(percepts))
+    frame = frame_of(percepts)
+    check_frame(frame, {})
+    return frame.index
