@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from .codegen import Estimator, variants
 from .columns import EMPTY, summarize_values
-from .intake import Frame, frame_of
+from .intake import Frame, PerceptCache, frame_of
 from .maintain import Maintainer
 from .program import Program
 from .rules import Rule
@@ -96,6 +96,7 @@ class Inference:
         rels = {e.rel for s in self.plan for r, _ in s.rules for e in r.elems if e.percept}
         consts = _constants(self.plan)
         self.tracker = PerceptTracker(rels, summarize_values(consts) if consts else EMPTY)
+        self.percepts = PerceptCache(self.tracker.cols)
         self.edb = FactStore()
         self.idb = FactStore()
         self.counts: dict[str, dict] = {}
@@ -109,6 +110,7 @@ class Inference:
         PerceptIndex or a Frame), as the live FactStore (valid until the next run)."""
         frame = self.frame = frame_of(percepts)
         change = self.tracker.update(frame, self.edb)
+        frame.cache = self.percepts
         deltas = change.deltas
         moved = sum(len(d.dels) + len(d.ins) for d in deltas.values())
         if self.fresh or (change.was_mixed and not change.mixed):

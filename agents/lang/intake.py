@@ -5,10 +5,11 @@ Percept per object. Percept objects are built only when the executive asks for t
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-from itertools import groupby
+from collections.abc import Iterable, Iterator, Mapping
+from itertools import count, groupby
 from operator import itemgetter
 
+from .columns import ID, changed
 from .terms import Percept, check_row
 
 MISSING = object()
@@ -21,17 +22,18 @@ class Frame:
     never changed). Rows of a type are validated when the type is read by column
     (``columns.read``) or, for the rest, by ``check``; ``index`` is the executive's view."""
 
-    __slots__ = ("groups", "checked", "_index")
+    __slots__ = ("groups", "checked", "cache", "_index")
 
     def __init__(self, groups: dict[str, list], checked: bool = False):
         self.groups = groups
         self.checked = checked  # every row already validated (built from Percept objects)
+        self.cache: PerceptCache | None = None  # last cycle's Percepts, if read by column
         self._index: PerceptIndex | None = None
 
     @property
     def index(self) -> PerceptIndex:
         if self._index is None:
-            self._index = PerceptIndex.of_groups(self.groups)
+            self._index = PerceptIndex.of_groups(self.groups, self.cache)
         return self._index
 
     def check(self, types: Iterable[str]) -> None:
@@ -75,23 +77,25 @@ def frame_of(percepts: object) -> Frame:
 
 class PerceptIndex:
     """Percepts of one cycle indexed by type, (type, id) and, on demand, (type, attr) -> value.
-    Built lazily: from Percept objects, or from a Frame's rows, making a Percept per row only
-    when the executive first asks (most cycles it asks about few types)."""
+    Built lazily: from Percept objects, or from a Frame's rows, making Percepts only for the
+    types and ids the executive asks about (most cycles it asks about few objects)."""
 
     __slots__ = ("_groups", "_percepts", "_by_type", "_by_id", "_attr")
 
     def __init__(self, percepts: Iterable[Percept] = ()):
         self._percepts: list[Percept] | None = list(percepts)
         self._groups: dict[str, list] | None = None
-        self._by_type: dict[str, list[Percept]] | None = None
-        self._by_id: dict[tuple, list[Percept]] | None = None
+        self._by_type: Mapping[str, list[Percept]] | None = None
+        self._by_id: Mapping[tuple, list[Percept]] | None = None
         self._attr: dict[tuple, dict] = {}
 
     @classmethod
-    def of_groups(cls, groups: dict[str, list]) -> PerceptIndex:
+    def of_groups(cls, groups: dict[str, list], cache: PerceptCache | None = None) -> PerceptIndex:
         self = cls()
         self._percepts = None
         self._groups = groups
+        self._by_type = _ByType(groups, cache)
+        self._by_id = _ById(groups, self._by_type)
         return self
 
     def frame(self) -> Frame:
@@ -104,29 +108,22 @@ class PerceptIndex:
         return Frame(groups, checked=True)
 
     @property
-    def by_type(self) -> dict[str, list[Percept]]:
+    def by_type(self) -> Mapping[str, list[Percept]]:
+        """type -> its percepts."""
         if self._by_type is None:
-            if self._groups is not None:
-                of_row = Percept.of_row
-                self._by_type = {t: list(map(of_row, rows)) for t, rows in self._groups.items()}
-            else:
-                self._by_type = {}
-                for p in self._percepts:
-                    self._by_type.setdefault(p.type, []).append(p)
+            by_type: dict[str, list[Percept]] = {}
+            for p in self._percepts:
+                by_type.setdefault(p.type, []).append(p)
+            self._by_type = by_type
         return self._by_type
 
     @property
-    def by_id(self) -> dict[tuple, list[Percept]]:
+    def by_id(self) -> Mapping[tuple, list[Percept]]:
+        """(type, id) -> the percepts of that object (usually one)."""
         if self._by_id is None:
             by_id: dict[tuple, list[Percept]] = {}
-            for t, ps in self.by_type.items():
-                for p in ps:
-                    k = (t, p.id)
-                    same = by_id.get(k)
-                    if same is None:
-                        by_id[k] = [p]
-                    else:
-                        same.append(p)
+            for p in self._percepts:
+                by_id.setdefault((p.type, p.id), []).append(p)
             self._by_id = by_id
         return self._by_id
 
@@ -142,3 +139,106 @@ class PerceptIndex:
                     ix.setdefault(v, []).append(p)
             self._attr[key] = ix
         return ix
+
+
+class _ByType(Mapping):
+    """type -> Percepts, each type's made on first use from its rows."""
+
+    def __init__(self, groups: dict[str, list], cache: PerceptCache | None):
+        self.groups = groups
+        self.cache = cache
+        self.made: dict[str, list[Percept]] = {}
+
+    def __getitem__(self, t: str) -> list[Percept]:
+        got = self.made.get(t)
+        if got is None:
+            rows = self.groups[t]
+            got = self.cache.percepts(t, rows) if self.cache is not None else \
+                list(map(Percept.of_row, rows))
+            self.made[t] = got
+        return got
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.groups)
+
+    def __len__(self) -> int:
+        return len(self.groups)
+
+
+class _ById(Mapping):
+    """(type, id) -> Percepts, made on first use; a type's ids are indexed on first use."""
+
+    def __init__(self, groups: dict[str, list], by_type: _ByType):
+        self.groups = groups
+        self.by_type = by_type
+        self.rows: dict[str, dict] = {}  # type -> id -> row position, or list of positions
+        self.made: dict[tuple, list[Percept]] = {}
+
+    def _rows(self, t: str) -> dict:
+        ix = self.rows.get(t)
+        if ix is None:
+            rows = self.groups.get(t, ())
+            ix = dict(zip(map(_SECOND, rows), count()))
+            if len(ix) != len(rows):  # an id given twice
+                ix = {}
+                for i, r in enumerate(rows):
+                    ix.setdefault(r[1], []).append(i)
+            self.rows[t] = ix
+        return ix
+
+    def __getitem__(self, key: tuple) -> list[Percept]:
+        got = self.made.get(key)
+        if got is None:
+            if not isinstance(key, tuple) or len(key) != 2:
+                raise KeyError(key)
+            t = key[0]
+            at = self._rows(t)[key[1]]
+            made = self.by_type.made.get(t)
+            if made is not None:
+                got = [made[at]] if isinstance(at, int) else [made[i] for i in at]
+            else:
+                rows = self.groups[t]
+                got = [Percept.of_row(rows[at])] if isinstance(at, int) else \
+                    [Percept.of_row(rows[i]) for i in at]
+            self.made[key] = got
+        return got
+
+    def __iter__(self) -> Iterator[tuple]:
+        return ((t, i) for t in self.groups for i in self._rows(t))
+
+    def __len__(self) -> int:
+        return sum(len(self._rows(t)) for t in self.groups)
+
+
+class PerceptCache:
+    """Each type's Percepts of the last cycle they were asked for, with the columns they were
+    made from (``cols``: this cycle's columns per type, kept by inference's tracker): the next
+    cycle makes Percepts only for the rows that changed (strictly) since."""
+
+    def __init__(self, cols: dict):
+        self.cols = cols
+        self.last: dict[str, tuple] = {}
+
+    def percepts(self, t: str, rows: list) -> list[Percept]:
+        new = self.cols.get(t)
+        prev = self.last.get(t)
+        if new is None:
+            self.last.pop(t, None)
+            return list(map(Percept.of_row, rows))
+        if prev is not None and prev[0] is new:
+            return prev[1]
+        if prev is None or prev[0].names != new.names or prev[0].ids != new.ids:
+            out = list(map(Percept.of_row, rows))
+        else:
+            old, out = prev[0], list(prev[1])
+            moved = set()
+            for a in (ID, *new.names):
+                moved.update(changed(old.vals[a], new.vals[a], old.types[a], new.types[a],
+                                     a in new.floats))
+            for i in moved:
+                out[i] = Percept.of_row(rows[i])
+        self.last[t] = (new, out)
+        return out
+
+
+_SECOND = itemgetter(1)

@@ -79,13 +79,18 @@ class Maintainer:
     def apply_counts(self, pred: str, minus: list, plus: list) -> Delta | None:
         if minus == plus:
             return None
-        cm, cp = Counter(minus), Counter(plus)
-        if cm == cp:
-            return None
+        sm, sp = set(minus), set(plus)
+        if len(sm) == len(minus) and len(sp) == len(plus):  # no head derived twice
+            moved = sm ^ sp
+            if not moved:
+                return None
+            changes = [(h, 1 if h in sp else -1) for h in moved]
+        else:
+            cm, cp = Counter(minus), Counter(plus)
+            changes = [(h, cp.get(h, 0) - cm.get(h, 0)) for h in sm | sp]
         counts = self.counts.setdefault(pred, {})
         dels, ins = [], []
-        for h in {h for h, _ in cm.items() ^ cp.items()}:
-            dd = cp.get(h, 0) - cm.get(h, 0)
+        for h, dd in changes:
             if not dd:
                 continue
             c = counts.get(h, 0)

@@ -126,28 +126,50 @@ class Test:
 class Percept:
     """An observed object ``(type id attr value ...)`` (seed 000, Table 3). Immutable; equal and
     hashed by (type, id, attrs). A plain slotted class rather than a frozen dataclass because the
-    executive's percept index builds one per object per cycle (``Percept.of_row``)."""
+    executive's percept index makes one per object per cycle (``Percept.of_row``): ``attrs``
+    and the attribute map are then built on first use."""
 
-    __slots__ = ("type", "id", "attrs", "_map")
+    __slots__ = ("type", "id", "_row", "_attrs", "_m")
 
     def __init__(self, type: str, id: object, attrs: tuple = ()) -> None:  # noqa: A002
-        setattr_ = object.__setattr__
-        setattr_(self, "type", type)
-        setattr_(self, "id", id)
-        setattr_(self, "attrs", tuple(attrs))
-        setattr_(self, "_map", dict(self.attrs))
+        _set(self, "type", type)
+        _set(self, "id", id)
+        _set(self, "_row", None)
+        _set(self, "_attrs", tuple(attrs))
+        _set(self, "_m", None)
 
     @classmethod
     def of_row(cls, row: list | tuple) -> Percept:
         """From an already validated neutral list (no checks: used after ``intake``)."""
-        self = object.__new__(cls)
-        setattr_ = object.__setattr__
-        setattr_(self, "type", row[0])
-        setattr_(self, "id", row[1])
-        names, values = row[2::2], row[3::2]
-        setattr_(self, "attrs", tuple(zip(names, values)))
-        setattr_(self, "_map", dict(zip(names, values)))
+        self = _new(cls)
+        _set(self, "type", row[0])
+        _set(self, "id", row[1])
+        _set(self, "_row", tuple(row))
+        _set(self, "_attrs", None)
+        _set(self, "_m", None)
         return self
+
+    @property
+    def attrs(self) -> tuple:
+        """((attr, value), ...) in the order given."""
+        a = self._attrs
+        if a is None:
+            row = self._row
+            a = tuple(zip(row[2::2], row[3::2]))
+            _set(self, "_attrs", a)
+        return a
+
+    @property
+    def _map(self) -> dict:
+        m = self._m
+        if m is None:
+            if self._row is not None:
+                row = self._row
+                m = dict(zip(row[2::2], row[3::2]))
+            else:
+                m = dict(self._attrs)
+            _set(self, "_m", m)
+        return m
 
     def __setattr__(self, name: str, value: object) -> None:
         raise AttributeError(f"Percept is immutable: cannot set {name}")
@@ -205,6 +227,10 @@ def check_row(items: object) -> None:
     for a in items[2::2]:
         if not isinstance(a, str):
             raise LangError(f"percept {items!r}: attribute name {a!r} is not a symbol")
+
+
+_set = object.__setattr__
+_new = object.__new__
 
 
 class Belief(NamedTuple):

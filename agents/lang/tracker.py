@@ -96,8 +96,7 @@ class PerceptTracker:
             return
         if new.same_ids:
             dead, born = [], []
-            o_at = n_at = range(new.n)
-            o_pick = n_pick = None
+            o_at = n_at = o_pick = n_pick = None
         else:
             where = dict(zip(old.ids, range(old.n)))
             at = list(map(where.get, new.ids))
@@ -123,13 +122,13 @@ class PerceptTracker:
             attrs = rel[1]
             if not _has(new, attrs):
                 continue
-            ks = set(moved(ID))
-            for a in attrs:
-                ks.update(moved(a))
+            ks = _union([moved(ID), *map(moved, attrs)])
             if ks or dead or born:
-                ks = sorted(ks)
-                gone = dead + [o_at[k] for k in ks]
-                came = born + [n_at[k] for k in ks]
+                if o_pick is None:
+                    gone = came = ks
+                else:
+                    gone = dead + [o_at[k] for k in ks]
+                    came = born + [n_at[k] for k in ks]
                 deltas[rel] = Delta(_rows_at(old, attrs, gone), _rows_at(new, attrs, came))
         if dead or born or cache.get(ID):
             self._summaries(t, new, self.read[t])
@@ -171,6 +170,14 @@ def check_frame(frame: Frame, seen: dict) -> None:
     for t in [t for t in seen if t not in frame.groups]:
         del seen[t]
     frame.checked = True
+
+
+def _union(lists: list[list[int]]) -> list[int]:
+    """Sorted union of sorted position lists (usually one or none is non-empty)."""
+    full = [x for x in lists if x]
+    if len(full) <= 1:
+        return full[0] if full else []
+    return sorted(set().union(*full))
 
 
 def _has(c: Cols, attrs: tuple[str, ...]) -> bool:
