@@ -21,26 +21,31 @@ ID = None  # the column of ids (no attribute name is None)
 
 
 class Cols:
-    """One type's rows of one cycle by column: ``ids``, ``vals[attr]`` (tuples, row order) and
-    the exact type of every value (``types[attr]``: lists); the ids are the column ``ID``."""
+    """One type's rows of one cycle by column: ``vals[attr]`` (tuples, row order; the ids are
+    the column ``ID``), the exact type of every value (``types[attr]``: lists) and the set of
+    types in each column (``kinds[attr]``)."""
 
-    __slots__ = ("n", "names", "ids", "vals", "types", "strs", "floats", "same_ids")
+    __slots__ = ("n", "names", "ids", "vals", "types", "kinds", "same", "same_ids")
 
-    def __init__(self, n, names, ids, vals, types, strs, floats, same_ids):
+    def __init__(self, n, names, vals, types, kinds, same, same_ids):
         self.n = n
         self.names: tuple[str, ...] = names
-        self.ids: tuple = ids
-        self.vals: dict[str | None, tuple] = vals  # attr -> values; ID -> ids
-        self.types: dict[str, list] = types
-        self.strs: frozenset[str] = strs  # columns whose values are all str
-        self.floats: frozenset[str] = floats  # columns holding a float
+        self.ids: tuple = vals[ID]
+        self.vals: dict[str | None, tuple] = vals
+        self.types: dict[str | None, list] = types
+        self.kinds: dict[str | None, frozenset] = kinds
+        self.same: set = same  # columns found strictly equal to the previous Cols'
         self.same_ids = same_ids  # ids equal (==) to the previous Cols' ids, in the same order
+
+
+_STRS = frozenset({str})
 
 
 def read_cols(rows: list, old: Cols | None) -> Cols | None:
     """``rows`` (of one type) by column, every value checked to be str, int or float; None when
     the rows are irregular (different lengths or names, repeated ids or names, other value
-    types): the caller then checks them row by row and reads them one by one."""
+    types): the caller then checks them row by row and reads them one by one. ``old``: the
+    previous cycle's columns of the type, which make the checks cheaper."""
     try:
         cols = list(zip(*rows, strict=True))
     except ValueError:
@@ -62,33 +67,28 @@ def read_cols(rows: list, old: Cols | None) -> Cols | None:
         old = None
     ids = cols[1]
     same_ids = old is not None and ids == old.ids
-    vals, types = {}, {}
-    strs, floats = set(), set()
+    vals, types, kinds, same = {}, {}, {}, set()
     for a, col in zip((ID, *names_t), cols[1::2], strict=True):
         vals[a] = col
-        if old is not None and same_ids and a in old.strs and col == old.vals[a]:
-            types[a] = old.types[a]  # equal to last cycle's strs: strs again
-            strs.add(a)
-            continue
-        ts = list(map(type, col))
-        prev = old.types.get(a) if old is not None else None
-        if prev is not None and prev == ts:
-            types[a] = prev
-            if a in old.strs:
-                strs.add(a)
-            if a in old.floats:
-                floats.add(a)
-            continue
-        if not ATOMS.issuperset(ts):
+        if old is not None:
+            was = old.kinds[a]
+            if was == _STRS and same_ids and (a is ID or col == old.vals[a]):
+                types[a], kinds[a] = old.types[a], was  # equal to last cycle's strs: strs
+                same.add(a)
+                continue
+            ts = list(map(type, col))
+            if ts == old.types[a]:
+                types[a], kinds[a] = old.types[a], was
+                continue
+        else:
+            ts = list(map(type, col))
+        got = frozenset(ts)
+        if not got <= ATOMS:
             return None
-        types[a] = ts
-        if ts.count(str) == n:
-            strs.add(a)
-        elif float in ts:
-            floats.add(a)
+        types[a], kinds[a] = ts, got
     if not same_ids and len(set(ids)) != n:
         return None
-    return Cols(n, names_t, ids, vals, types, frozenset(strs), frozenset(floats), same_ids)
+    return Cols(n, names_t, vals, types, kinds, same, same_ids)
 
 
 def changed(old: tuple, new: tuple, old_t, new_t, floats: bool) -> list[int]:
@@ -137,20 +137,25 @@ class Summary:
 EMPTY = Summary()
 
 
-def summarize(vals: tuple | list, types: list) -> Summary:
-    """Summary of one column (exact types in ``types``; other numbers are classified one by one)."""
-    n = len(types)
-    if types.count(str) == n:
+def summarize(vals: tuple | list, types: list, kinds: frozenset | None = None) -> Summary:
+    """Summary of one column (``types``: each value's exact type; ``kinds``: their set)."""
+    kinds = frozenset(types) if kinds is None else kinds
+    if kinds == _STRS or not kinds:
         return EMPTY
-    ints = set(compress(vals, map(is_, types, repeat(int))))
-    fl = list(compress(vals, map(is_, types, repeat(float))))
-    if types.count(int) + types.count(float) + types.count(str) != n:
-        for v, t in zip(vals, types, strict=True):  # subclasses of int or float
-            if t not in ATOMS:
-                if isinstance(v, float):
-                    fl.append(v)
-                elif isinstance(v, int):
-                    ints.add(v)
+    if kinds == _FLOATS:
+        ints, fl = set(), vals
+    elif kinds == _INTS:
+        ints, fl = set(vals), ()
+    else:
+        ints = set(compress(vals, map(is_, types, repeat(int))))
+        fl = list(compress(vals, map(is_, types, repeat(float))))
+        if not kinds <= ATOMS:
+            for v, t in zip(vals, types, strict=True):  # subclasses of int or float
+                if t not in ATOMS:
+                    if isinstance(v, float):
+                        fl.append(v)
+                    elif isinstance(v, int):
+                        ints.add(v)
     floats = set(compress(fl, map(float.is_integer, fl)))
     pos0 = neg0 = False
     if 0.0 in floats:
@@ -162,6 +167,10 @@ def summarize(vals: tuple | list, types: list) -> Summary:
     if not ints and not floats:
         return EMPTY
     return Summary(frozenset(ints), frozenset(floats), pos0, neg0)
+
+
+_FLOATS = frozenset({float})
+_INTS = frozenset({int})
 
 
 def summarize_values(values: list) -> Summary:

@@ -234,7 +234,7 @@ class PerceptCache:
             moved = set()
             for a in (ID, *new.names):
                 moved.update(changed(old.vals[a], new.vals[a], old.types[a], new.types[a],
-                                     a in new.floats))
+                                     float in new.kinds[a]))
             for i in moved:
                 out[i] = Percept.of_row(rows[i])
         self.last[t] = (new, out)

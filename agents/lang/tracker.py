@@ -112,10 +112,13 @@ class PerceptTracker:
         def moved(a: str | None) -> list[int]:
             got = cache.get(a)
             if got is None:
+                if o_pick is None and a in new.same:
+                    got = cache[a] = []
+                    return got
                 o, n, ot, nt = old.vals[a], new.vals[a], old.types[a], new.types[a]
                 if o_pick is not None:
                     o, n, ot, nt = o_pick(o), n_pick(n), o_pick(ot), n_pick(nt)
-                got = cache[a] = changed(o, n, ot, nt, a in new.floats)
+                got = cache[a] = changed(o, n, ot, nt, float in new.kinds[a])
             return got
 
         for rel in rels:
@@ -147,10 +150,10 @@ class PerceptTracker:
 
     def _summaries(self, t: str, c: Cols, attrs: Iterable[str], ids: bool = True) -> None:
         if ids:
-            self.sums[(t, ID)] = summarize(c.ids, c.types[ID])
+            self.sums[(t, ID)] = summarize(c.ids, c.types[ID], c.kinds[ID])
         for a in attrs:
             if a in c.vals:
-                self.sums[(t, a)] = summarize(c.vals[a], c.types[a])
+                self.sums[(t, a)] = summarize(c.vals[a], c.types[a], c.kinds[a])
             else:
                 self.sums.pop((t, a), None)
 
