@@ -2,9 +2,10 @@
 decision, against the previous release's engine on the same inputs in the same process.
 
 Workload (issue 13): N blocks in towers of 1..4 on one table, each block with a color and a
-distance [m]; programs/blocks.tlp plus bench/towers.tlp (joins on shared attributes, numeric
-tests, negation, recursion, ``near`` reading the distance, ``samecolor`` joined by a shared
-variable). Every cycle's percepts are new lists decoded by msgpack, as from the bus. Rows:
+distance [m]; programs/blocks.tlp, bench/towers.tlp and bench/samecolor.tlp (joins on shared
+attributes, numeric tests, negation, recursion, ``near`` reading the distance, ``samecolor``
+joined by a shared variable; ``--without-samecolor`` leaves it out, which the previous release
+evaluated in quadratic time). Every cycle's percepts are new lists decoded by msgpack, as from the bus. Rows:
 
   all     every block's distance changes (the geometry stays put)
   1%      max(1, N/100) blocks' distances change
@@ -43,7 +44,8 @@ sys.path.insert(0, str(ROOT))
 from agents.lang import Engine, load_program  # noqa: E402
 
 BASELINE = "a24e6ef"
-PROGRAM = (ROOT / "programs" / "blocks.tlp", ROOT / "bench" / "towers.tlp")
+PROGRAM = (ROOT / "programs" / "blocks.tlp", ROOT / "bench" / "towers.tlp",
+           ROOT / "bench" / "samecolor.tlp")
 COLORS = ("red", "green", "blue")
 KINDS = ("all", "1%", "none", "move", "scratch")
 
@@ -144,20 +146,23 @@ def main() -> None:
     ap.add_argument("--kinds", default=",".join(KINDS))
     ap.add_argument("--gc", choices=("on", "off", "freeze"), default="on",
                     help="garbage collector during the runs (freeze: gc.freeze() after loading)")
+    ap.add_argument("--without-samecolor", action="store_true",
+                    help="leave bench/samecolor.tlp out of the program")
     ap.add_argument("--clock", choices=("cpu", "wall"), default="cpu",
                     help="cpu: this thread's CPU time (steadier on a shared machine); wall")
     args = ap.parse_args()
     clock = time.thread_time if args.clock == "cpu" else time.perf_counter
     with tempfile.TemporaryDirectory() as tmp:
         base = load_baseline(Path(tmp))
-        ours_prog, base_prog = load_program(*PROGRAM), base.load_program(*PROGRAM)
+        files = PROGRAM[:2] if args.without_samecolor else PROGRAM
+        ours_prog, base_prog = load_program(*files), base.load_program(*files)
         if args.gc == "off":
             gc.disable()
         print(f"{'objects':>8} {'change':>7} {'beliefs':>7} | {'infer':>7} {'base':>7} {'x':>6} |"
               f" {'cycle':>7} {'base':>7} {'x':>6}   [ms {args.clock} time, median]")
         results = {}
         for n in map(int, args.sizes.split(",")):
-            calls = 40 if n <= 1000 else 8
+            calls = 40 if n <= 100 else 20 if n <= 1000 else 3
             for kind in args.kinds.split(","):
                 seq = cycles(n, kind, 2 * calls + 2)
                 row = []

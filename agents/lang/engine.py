@@ -90,7 +90,9 @@ class Engine:
         """Every concept instance that holds for this cycle's percepts (neutral lists as they
         come from the bus, Percepts, or a PerceptIndex). Raises LangError naming a bad
         percept."""
-        return self.inference.beliefs(percepts)
+        beliefs = self.inference.beliefs(percepts)
+        self.inference.frame = None  # hold no percept list past the call (fewer GC passes)
+        return beliefs
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable):
         """The executive step: (Decision, next EngineState)."""
@@ -99,7 +101,7 @@ class Engine:
     def cycle(self, state: EngineState, percepts: Iterable) -> CycleResult:
         """infer + decide on the same percepts."""
         beliefs = self.inference.beliefs(percepts)
-        index = self.inference.frame.index
+        index, self.inference.frame = self.inference.frame.index, None
         decision, new_state = self.executive.decide(state, index, beliefs.store)
         return CycleResult(beliefs, decision, new_state)
 
