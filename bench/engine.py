@@ -5,7 +5,8 @@ Workload (issue 13): N blocks in towers of 1..4 on one table, each block with a 
 distance [m]; programs/blocks.tlp, bench/towers.tlp and bench/samecolor.tlp (joins on shared
 attributes, numeric tests, negation, recursion, ``near`` reading the distance, ``samecolor``
 joined by a shared variable; ``--without-samecolor`` leaves it out, which the previous release
-evaluated in quadratic time). Every cycle's percepts are new lists decoded by msgpack, as from the bus. Rows:
+evaluated in quadratic time). Every cycle's percepts are new lists decoded by msgpack, as
+from the bus. Rows:
 
   all     every block's distance changes (the geometry stays put)
   1%      max(1, N/100) blocks' distances change

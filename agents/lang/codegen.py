@@ -77,16 +77,18 @@ def plan(rule: Rule, driver: int | None, est: Estimator) -> tuple:
             steps += [("test", k) for k in tests] + [("neg", j) for j in negs]
             break
 
-        def cost(j: int) -> tuple:
-            e = rule.elems[j]
-            known = tuple(p for p, a in enumerate(e.args) if not isinstance(a, Var) or a in bound)
-            return (est.fanout(e.rel, e.percept, known, len(e.args)), j)
-
-        best = min(pos, key=cost)
+        best = min(pos, key=lambda j, bound=bound: _cost(rule, j, bound, est))
         pos.remove(best)
         steps.append(("pos", best))
         bound |= rule.elems[best].variables()
     return tuple(steps)
+
+
+def _cost(rule: Rule, j: int, bound: set[Var], est: Estimator) -> tuple:
+    """Expected matches of element ``j`` per binding of ``bound`` (ties: written order)."""
+    e = rule.elems[j]
+    known = tuple(p for p, a in enumerate(e.args) if not isinstance(a, Var) or a in bound)
+    return (est.fanout(e.rel, e.percept, known, len(e.args)), j)
 
 
 def _driver_vars(rule: Rule, driver: int | None) -> set[Var]:

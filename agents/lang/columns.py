@@ -106,7 +106,7 @@ def _transpose(rows: list) -> list[tuple] | None:
         return None
     if len(set(map(len, parts))) != 1:
         return None
-    return [tuple(chain.from_iterable(cs)) for cs in zip(*parts)]
+    return [tuple(chain.from_iterable(cs)) for cs in zip(*parts, strict=True)]
 
 
 def changed(old: tuple, new: tuple, old_t, new_t, floats: bool) -> list[int]:

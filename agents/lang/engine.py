@@ -9,7 +9,7 @@ from .errors import GoalError
 from .executive import Executive
 from .explanation import Decision
 from .goals import GoalEntry, parse_goal
-from .inference import InferStats, Inference
+from .inference import Inference, InferStats
 from .intake import frame_of
 from .program import Program
 from .state import EngineState
@@ -113,11 +113,3 @@ class Engine:
         check_frame(frame, self._checked)
         return frame.index
 
-
-def _index(percepts: Iterable) -> PerceptIndex:
-    """A checked PerceptIndex of ``percepts`` (raises LangError naming a bad percept)."""
-    if isinstance(percepts, PerceptIndex):
-        return percepts
-    frame = frame_of(percepts)
-    check_frame(frame, {})
-    return frame.index

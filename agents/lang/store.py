@@ -97,7 +97,7 @@ class FactStore:
     def replace(self, rel: object, tuples: Iterable[tuple]) -> None:
         """Make ``rel`` hold exactly ``tuples`` (its indexes are dropped and built again on use)."""
         self.facts[rel] = set(tuples)
-        for key, ix in self._by_rel.pop(rel, ()):
+        for _key, ix in self._by_rel.pop(rel, ()):
             ix.clear()
         for k in [k for k in self._ix if k[0] == rel]:
             del self._ix[k]

@@ -155,7 +155,7 @@ class Percept:
         a = self._attrs
         if a is None:
             row = self._row
-            a = tuple(zip(row[2::2], row[3::2]))
+            a = tuple(zip(row[2::2], row[3::2], strict=True))
             _set(self, "_attrs", a)
         return a
 
@@ -165,7 +165,7 @@ class Percept:
         if m is None:
             if self._row is not None:
                 row = self._row
-                m = dict(zip(row[2::2], row[3::2]))
+                m = dict(zip(row[2::2], row[3::2], strict=True))
             else:
                 m = dict(self._attrs)
             _set(self, "_m", m)

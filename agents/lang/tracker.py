@@ -17,7 +17,7 @@ from itertools import compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
-from .columns import ID, EMPTY, Cols, Summary, changed, read_cols, summarize, summarize_values
+from .columns import EMPTY, ID, Cols, Summary, changed, read_cols, summarize, summarize_values
 from .intake import Frame
 from .store import Delta, FactStore
 
@@ -51,14 +51,14 @@ class PerceptTracker:
         """The changes from last cycle's percepts (as held in ``edb``) to ``frame``'s."""
         deltas: dict = {}
         sums_before = dict(self.sums)
+        news = {t: read_cols(rows, self.cols.get(t)) for t, rows in frame.groups.items()}
+        if not frame.checked:  # every check before any change: a bad message changes nothing
+            frame.check([t for t, c in news.items() if c is None])
         for t, rows in frame.groups.items():
-            old = self.cols.get(t)
-            new = read_cols(rows, old)
+            old, new = self.cols.get(t), news[t]
             if old is not None and (new is None or old.names != new.names):
                 old = None
             if new is None:
-                if not frame.checked:
-                    frame.check([t])  # raises LangError naming a bad percept
                 self.cols.pop(t, None)
                 if t in self.rels_of:
                     self._irregular(t, rows, edb, deltas)
@@ -98,7 +98,7 @@ class PerceptTracker:
             dead, born = [], []
             o_at = n_at = o_pick = n_pick = None
         else:
-            where = dict(zip(old.ids, range(old.n)))
+            where = dict(zip(old.ids, range(old.n), strict=True))
             at = list(map(where.get, new.ids))
             kept = list(map(is_not, at, repeat(None)))
             n_at = list(compress(range(new.n), kept))
@@ -139,7 +139,7 @@ class PerceptTracker:
             self._summaries(t, new, [a for a in self.read[t] if cache.get(a)], ids=False)
 
     def _irregular(self, t: str, rows: list, edb: FactStore, deltas: dict) -> None:
-        maps = [(r[1], dict(zip(r[2::2], r[3::2]))) for r in rows]
+        maps = [(r[1], dict(zip(r[2::2], r[3::2], strict=True))) for r in rows]
         for rel in self.rels_of[t]:
             attrs = rel[1]
             tuples = {(i, *(m[a] for a in attrs)) for i, m in maps if all(a in m for a in attrs)}
@@ -188,7 +188,7 @@ def _has(c: Cols, attrs: tuple[str, ...]) -> bool:
 
 
 def _rows_of(c: Cols, attrs: tuple[str, ...]):
-    return zip(c.ids, *(c.vals[a] for a in attrs))
+    return zip(c.ids, *(c.vals[a] for a in attrs), strict=True)
 
 
 def _picker(positions: list[int]):
@@ -205,7 +205,7 @@ def _rows_at(c: Cols, attrs: tuple[str, ...], positions: list[int]) -> list:
     if not positions:
         return []
     pick = _picker(positions)
-    return list(zip(pick(c.ids), *(pick(c.vals[a]) for a in attrs)))
+    return list(zip(pick(c.ids), *(pick(c.vals[a]) for a in attrs), strict=True))
 
 
 def _diff(rel: tuple, new: set, edb: FactStore, deltas: dict) -> None:
@@ -216,7 +216,7 @@ def _diff(rel: tuple, new: set, edb: FactStore, deltas: dict) -> None:
             deltas[rel] = Delta([], list(new))
         return
     dels, ins = list(cur - new), list(new - cur)
-    stored = dict(zip(cur, cur))
+    stored = dict(zip(cur, cur, strict=True))
     for t in new:
         o = stored.get(t)
         if o is not None and o is not t and not _strictly_same(o, t):

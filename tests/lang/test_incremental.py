@@ -139,8 +139,8 @@ def mixed(rows: list) -> bool:
 
 
 @settings(max_examples=300, deadline=None)
-@given(programs(), st.lists(ROW, min_size=2, max_size=10), st.lists(CHANGE, min_size=1, max_size=12),
-       st.randoms(use_true_random=False))
+@given(programs(), st.lists(ROW, min_size=2, max_size=10),
+       st.lists(CHANGE, min_size=1, max_size=12), st.randoms(use_true_random=False))
 def test_incremental_inference_equals_inference_from_scratch(text, rows, changes, rnd):
     program = load_program_text(text, "random.tlp")
     engine = Engine(program)

@@ -46,7 +46,18 @@ def test_bad_percepts_are_refused_naming_the_percept(bad, why):
             call(percepts)
         assert why in str(err.value)
         assert repr(bad) in str(err.value)
-    assert engine.infer(GOOD) == Engine(PROGRAM).infer(GOOD)  # and nothing was half applied
+    assert engine.infer(GOOD) == Engine(PROGRAM).infer(GOOD)
+
+
+def test_a_refused_message_changes_nothing():
+    """The good part of a refused message is not taken in either."""
+    engine = Engine(PROGRAM)
+    engine.infer(GOOD)
+    moved = [["block", "A", "xpos", 2, "weight", 1.0], GOOD[1], ["lamp", "L", "on", None]]
+    with pytest.raises(LangError, match="None"):
+        engine.infer(moved)
+    assert engine.infer(GOOD[:2]) == Engine(PROGRAM).infer(GOOD[:2])
+    assert engine.last_infer_stats.mode == "unchanged"
 
 
 def test_a_bool_equal_to_last_cycles_int_is_still_refused():
