@@ -110,21 +110,20 @@ def _transpose(rows: list) -> list[tuple] | None:
 
 
 def changed(old: tuple, new: tuple, old_t, new_t, floats: bool) -> list[int]:
-    """Positions where aligned columns differ strictly (value, type, or zero sign);
+    """Positions (ascending) where aligned columns differ strictly (value, type, or zero sign);
     ``floats``: the new column may hold floats."""
-    if old == new:
-        pos: set[int] | tuple = ()
-    else:
-        pos = set(compress(range(len(new)), map(ne, old, new)))
+    n = len(new)
+    pos = [] if old == new else list(compress(range(n), map(ne, old, new)))
+    more = []
     if old_t is not new_t and old_t != new_t:
-        pos = set(pos) | set(compress(range(len(new)), map(is_not, old_t, new_t)))
+        more = list(compress(range(n), map(is_not, old_t, new_t)))
     if floats and 0.0 in new:
-        flips = [i for i in compress(range(len(new)), map(not_, new))
+        more += [i for i in compress(range(n), map(not_, new))
                  if new_t[i] is float and old_t[i] is float
                  and copysign(1.0, new[i]) != copysign(1.0, old[i])]
-        if flips:
-            pos = set(pos) | set(flips)
-    return sorted(pos) if pos else []
+    if more:
+        return sorted(set(pos).union(more))
+    return pos
 
 
 @dataclass(frozen=True, slots=True)

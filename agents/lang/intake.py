@@ -94,8 +94,16 @@ class PerceptIndex:
         self = cls()
         self._percepts = None
         self._groups = groups
-        self._by_type = _ByType(groups, cache)
-        self._by_id = _ById(groups, self._by_type)
+        by_type = _ByType(groups, cache)
+        if sum(map(len, groups.values())) <= _SMALL:  # plain dicts answer faster
+            self._by_type = {t: by_type[t] for t in groups}
+            self._by_id = by_id = {}
+            for ps in self._by_type.values():
+                for p in ps:
+                    by_id.setdefault((p.type, p.id), []).append(p)
+        else:
+            self._by_type = by_type
+            self._by_id = _ById(groups, by_type)
         return self
 
     def frame(self) -> Frame:
@@ -141,6 +149,9 @@ class PerceptIndex:
         return ix
 
 
+_SMALL = 64  # percepts up to which the index is built at once
+
+
 class _ByType(Mapping):
     """type -> Percepts, each type's made on first use from its rows."""
 
@@ -157,6 +168,12 @@ class _ByType(Mapping):
                 list(map(Percept.of_row, rows))
             self.made[t] = got
         return got
+
+    def get(self, t: str, default: object = None) -> object:
+        got = self.made.get(t)
+        if got is not None:
+            return got
+        return self[t] if t in self.groups else default
 
     def __iter__(self) -> Iterator[str]:
         return iter(self.groups)
@@ -202,6 +219,15 @@ class _ById(Mapping):
                     [Percept.of_row(rows[i]) for i in at]
             self.made[key] = got
         return got
+
+    def get(self, key: tuple, default: object = None) -> object:
+        got = self.made.get(key)
+        if got is not None:
+            return got
+        try:
+            return self[key]
+        except KeyError:
+            return default
 
     def __iter__(self) -> Iterator[tuple]:
         return ((t, i) for t in self.groups for i in self._rows(t))

@@ -50,13 +50,7 @@ class FactStore:
         if ix is None:
             ix = self._ix[(rel, positions)] = {}
             key = key_getter(positions)
-            for t in self.facts.get(rel, ()):
-                k = key(t)
-                bucket = ix.get(k)
-                if bucket is None:
-                    ix[k] = {t}
-                else:
-                    bucket.add(t)
+            _fill(ix, key, self.facts.get(rel, ()))
             self._by_rel.setdefault(rel, []).append((key, ix))
         return ix
 
@@ -72,13 +66,7 @@ class FactStore:
             s = self.facts[rel] = set()
         s.update(tuples)
         for key, ix in self._by_rel.get(rel, ()):
-            for t in tuples:
-                k = key(t)
-                bucket = ix.get(k)
-                if bucket is None:
-                    ix[k] = {t}
-                else:
-                    bucket.add(t)
+            _fill(ix, key, tuples)
 
     def delete(self, rel: object, tuples: list) -> None:
         """Remove ``tuples``, all of them present, keeping the indexes up to date."""
@@ -109,6 +97,17 @@ class FactStore:
 
     def beliefs(self) -> frozenset[Belief]:
         return frozenset(_new_tuple(Belief, (p, t)) for p, ts in self.facts.items() for t in ts)
+
+
+def _fill(ix: dict, key, tuples) -> None:
+    """Add ``tuples`` to index ``ix`` (key -> set of tuples)."""
+    for t in tuples:
+        k = key(t)
+        bucket = ix.get(k)
+        if bucket is None:
+            ix[k] = {t}
+        else:
+            bucket.add(t)
 
 
 class Delta:

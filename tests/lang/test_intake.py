@@ -78,13 +78,15 @@ def test_columns_are_read_only_from_regular_rows():
     assert again.same_ids and again.types["x"] is cols.types["x"]
 
 
-def test_lazy_percept_index_agrees_with_percept_objects():
+@pytest.mark.parametrize("lamps", [1, 100])  # a small index is built at once, a big one lazily
+def test_lazy_percept_index_agrees_with_percept_objects(lamps):
     rows = [["block", "A", "xpos", 1, "weight", 3.5], ["block", "A", "color", "red"],
-            ["lamp", "L", "on", "yes"], ["block", "B", "xpos", 1]]
+            *[["lamp", f"L{i}", "on", "yes"] for i in range(lamps)], ["block", "B", "xpos", 1]]
     lazy = frame_of([list(r) for r in rows]).index
     eager = PerceptIndex([Percept.from_list(r) for r in rows])
     assert lazy.by_id.get(("block", "A")) == eager.by_id.get(("block", "A"))
-    assert lazy.by_id.get(("block", "Z"), ()) == ()
+    assert lazy.by_id.get(("block", "Z"), ()) == () and lazy.by_type.get("car", ()) == ()
+    assert lazy.by_id[("lamp", "L0")] == eager.by_id[("lamp", "L0")]
     assert dict(lazy.by_type) == dict(eager.by_type)
     assert dict(lazy.by_id) == dict(eager.by_id)
     assert lazy.attr_index("block", "xpos") == eager.attr_index("block", "xpos")
@@ -98,3 +100,18 @@ def test_percepts_made_from_rows_behave_as_constructed_ones():
     assert p.to_list() == ["self", "ME", "speed", 20.0, "limit", 25] and str(p) == str(q)
     with pytest.raises(AttributeError):
         p.id = "YOU"
+
+
+def test_the_executive_gets_last_cycles_percepts_where_rows_did_not_change():
+    inference = Engine(PROGRAM).inference
+    rows = [["block", f"B{i}", "xpos", i, "weight", 1.5] for i in range(100)]
+    inference.run(rows)
+    before = inference.frame.index.by_type["block"]
+    rows = [list(r) for r in rows]
+    rows[7][5] = 2.5
+    rows[9][5] = 1  # 1.5 -> 1: int now
+    inference.run(rows)
+    after = inference.frame.index.by_type["block"]
+    assert [i for i, (p, q) in enumerate(zip(before, after, strict=True)) if p is not q] == [7, 9]
+    assert after[7].get("weight") == 2.5 and str(after[9]) == "(block B9 xpos 9 weight 1)"
+    assert after == [Percept.from_list(r) for r in rows]
