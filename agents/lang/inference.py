@@ -1,8 +1,9 @@
 """Bottom-up inference over stratified concepts (seed 000, "Inference and Execution
 Mechanisms"), kept up to date cycle by cycle: work follows what changed.
 
-The first run (and a run after ``forget``) evaluates every stratum from scratch: one pass for a
-non-recursive stratum, counting derivations, semi-naive iteration for a recursive one. Later
+The first run (and a run after ``forget``, or one where most percept tuples changed) evaluates
+every stratum from scratch: one pass for a non-recursive stratum, counting derivations,
+semi-naive iteration for a recursive one. Later
 runs read which percept relations changed (``tracker.py``: per object and attribute, strictly)
 and bring each stratum that reads a changed relation up to date (``maintain.py``); a stratum
 that reads nothing changed costs nothing. The facts are always exactly those a run from
@@ -31,6 +32,7 @@ from .terms import Belief, Var
 from .tracker import PerceptTracker
 
 _new_tuple = tuple.__new__
+_SCRATCH_ABOVE = 256  # percept tuples above which a change of most of them starts from scratch
 
 
 @dataclass(frozen=True, slots=True)
@@ -86,8 +88,6 @@ class Inference:
     def __init__(self, program: Program):
         self.program = program
         self.plan = build_strata(program)
-        self.types = sorted({e.rel[0] for s in self.plan for r, _ in s.rules for e in r.elems
-                             if e.percept})
         self.last_stats = InferStats(len(self.plan), 0)
         self.forget()
 
@@ -113,7 +113,7 @@ class Inference:
         frame.cache = self.percepts
         deltas = change.deltas
         moved = sum(len(d.dels) + len(d.ins) for d in deltas.values())
-        if self.fresh or (change.was_mixed and not change.mixed):
+        if self.fresh or (change.was_mixed and not change.mixed) or self._most(moved):
             self._apply(deltas)
             self._scratch()
             return self.idb
@@ -151,6 +151,11 @@ class Inference:
         self.last_stats = InferStats(len(self.plan), len(evaluated), mode, moved, m.derivations,
                                      names)
         return self.idb
+
+    def _most(self, moved: int) -> bool:
+        """True when more than half the percept tuples changed (from scratch is cheaper)."""
+        held = sum(map(len, self.edb.facts.values()))
+        return held > _SCRATCH_ABOVE and moved > held
 
     def _apply(self, deltas: dict) -> None:
         for rel, d in deltas.items():

@@ -107,36 +107,35 @@ class PerceptTracker:
             alive = set(new.ids)
             dead = list(compress(range(old.n), map(not_, map(alive.__contains__, old.ids))))
             o_pick, n_pick = _picker(o_at), _picker(n_at)
-        cache: dict[str | None, list[int]] = {}
-
-        def moved(a: str | None) -> list[int]:
-            got = cache.get(a)
-            if got is None:
-                if o_pick is None and a in new.same:
-                    got = cache[a] = []
-                    return got
-                o, n, ot, nt = old.vals[a], new.vals[a], old.types[a], new.types[a]
-                if o_pick is not None:
-                    o, n, ot, nt = o_pick(o), n_pick(n), o_pick(ot), n_pick(nt)
-                got = cache[a] = changed(o, n, ot, nt, float in new.kinds[a])
-            return got
-
+        moves = {}
+        for a in (ID, *self.read[t]):
+            if a not in new.vals:
+                continue
+            if o_pick is None and a in new.same:
+                moves[a] = []
+                continue
+            o, n, ot, nt = old.vals[a], new.vals[a], old.types[a], new.types[a]
+            if o_pick is not None:
+                o, n, ot, nt = o_pick(o), n_pick(n), o_pick(ot), n_pick(nt)
+            moves[a] = changed(o, n, ot, nt, float in new.kinds[a])
+        hot = {a for a, m in moves.items() if m}
+        if not (hot or dead or born):
+            return
         for rel in rels:
             attrs = rel[1]
-            if not _has(new, attrs):
+            if not _has(new, attrs) or not (dead or born or ID in hot or not hot.isdisjoint(attrs)):
                 continue
-            ks = _union([moved(ID), *map(moved, attrs)])
-            if ks or dead or born:
-                if o_pick is None:
-                    gone = came = ks
-                else:
-                    gone = dead + [o_at[k] for k in ks]
-                    came = born + [n_at[k] for k in ks]
-                deltas[rel] = Delta(_rows_at(old, attrs, gone), _rows_at(new, attrs, came))
-        if dead or born or cache.get(ID):
+            ks = _union([moves[ID], *(moves[a] for a in attrs)])
+            if o_pick is None:
+                gone = came = ks
+            else:
+                gone = dead + [o_at[k] for k in ks]
+                came = born + [n_at[k] for k in ks]
+            deltas[rel] = Delta(_rows_at(old, attrs, gone), _rows_at(new, attrs, came))
+        if dead or born or ID in hot:
             self._summaries(t, new, self.read[t])
         else:
-            self._summaries(t, new, [a for a in self.read[t] if cache.get(a)], ids=False)
+            self._summaries(t, new, hot, ids=False)
 
     def _irregular(self, t: str, rows: list, edb: FactStore, deltas: dict) -> None:
         maps = [(r[1], dict(zip(r[2::2], r[3::2], strict=True))) for r in rows]
