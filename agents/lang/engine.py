@@ -10,7 +10,7 @@ from .executive import Executive
 from .explanation import Decision
 from .goals import GoalEntry, parse_goal
 from .inference import Inference, InferStats
-from .intake import frame_of
+from .intake import PerceptCache, frame_of
 from .program import Program
 from .state import EngineState
 from .store import BeliefSet, PerceptIndex, store_of
@@ -43,6 +43,7 @@ class Engine:
         self.inference = Inference(program)
         self.executive = Executive(program)
         self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
+        self._percepts = PerceptCache(self._checked)  # and the Percepts made from them
 
     # -- goals ---------------------------------------------------------------------------
     def initial_state(self) -> EngineState:
@@ -110,6 +111,10 @@ class Engine:
         if isinstance(percepts, PerceptIndex):
             return percepts
         frame = frame_of(percepts)
-        check_frame(frame, self._checked)
+        if not frame.checked:
+            check_frame(frame, self._checked)
+            frame.cache = self._percepts  # Percepts of unchanged rows are last cycle's
+        else:
+            self._checked.clear()
         return frame.index
 

@@ -160,7 +160,8 @@ class PerceptTracker:
 def check_frame(frame: Frame, seen: dict) -> None:
     """Check every value of ``frame`` (raises LangError naming a bad percept); ``seen`` keeps
     each type's columns from the last call, so that unchanged columns are checked cheaply."""
-    if frame.checked:
+    if frame.checked:  # Percept objects: nothing to check, and no columns read
+        seen.clear()
         return
     for t, rows in frame.groups.items():
         c = read_cols(rows, seen.get(t))

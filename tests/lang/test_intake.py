@@ -115,3 +115,14 @@ def test_the_executive_gets_last_cycles_percepts_where_rows_did_not_change():
     assert [i for i, (p, q) in enumerate(zip(before, after, strict=True)) if p is not q] == [7, 9]
     assert after[7].get("weight") == 2.5 and str(after[9]) == "(block B9 xpos 9 weight 1)"
     assert after == [Percept.from_list(r) for r in rows]
+
+
+def test_decide_alone_reuses_percepts_only_of_rows_it_has_seen():
+    """An executive fed lists, then Percept objects, then lists again gets each cycle's own
+    percepts (never a Percept of another cycle)."""
+    engine = Engine(PROGRAM)
+    rows = [["block", f"B{i}", "xpos", i, "weight", 1.5] for i in range(100)]
+    for ps in (rows, [Percept.from_list([*r[:5], 9.5]) for r in rows],
+               [[*r[:5], 7.5] for r in rows]):
+        index = engine._index(ps)
+        assert index.by_type["block"][3] == Percept.from_list(ps[3])
