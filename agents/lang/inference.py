@@ -32,6 +32,7 @@ from .terms import Belief, Var
 from .tracker import PerceptTracker
 
 _new_tuple = tuple.__new__
+_REPLAN_EVERY = 8  # runs between looks at whether join plans were made for other sizes
 _SCRATCH_ABOVE = 256  # percept tuples above which a change of most of them starts from scratch
 
 
@@ -89,6 +90,7 @@ class Inference:
         self.program = program
         self.plan = build_strata(program)
         self.last_stats = InferStats(len(self.plan), 0)
+        self.runs = 0
         self.forget()
 
     def forget(self) -> None:
@@ -120,7 +122,8 @@ class Inference:
         if not deltas:
             self.last_stats = InferStats(len(self.plan), 0, "unchanged")
             return self.idb
-        est = Estimator(self.edb, self.idb)
+        self.runs += 1
+        est = Estimator(self.edb, self.idb, check=self.runs % _REPLAN_EVERY == 0)
         m = Maintainer(self.edb, self.idb, self.counts, est)
         if change.clash:
             passes = [{r: Delta(d.dels, []) for r, d in deltas.items() if d.dels},

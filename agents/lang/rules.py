@@ -10,6 +10,7 @@ the rest the same way whatever it reads (seed 000, "Inference and Execution Mech
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from operator import itemgetter
 
 from .program import ConceptClause
@@ -80,6 +81,13 @@ class Rule:
 
     def negation(self, j: int) -> Negation:
         """Keying of negated element ``j``."""
+        return self._negations[j]
+
+    @cached_property
+    def _negations(self) -> dict[int, Negation]:
+        return {j: self._negation(j) for j, e in enumerate(self.elems) if e.negated}
+
+    def _negation(self, j: int) -> Negation:
         args = self.elems[j].args
         keys = tuple(p for p, a in enumerate(args) if not isinstance(a, Var) or a in self.outer)
         consts = tuple((p, a) for p, a in enumerate(args) if not isinstance(a, Var))
