@@ -17,8 +17,9 @@ from the bus. Rows:
 "infer" times ``Engine.infer(lists)``; "cycle" times ``Engine.cycle(state, lists)`` (infer and
 the executive's decision). Each figure is the median over the cycles of a row [ms], of this
 thread's CPU time by default (``--clock wall`` for wall time); "x" is the baseline's median over
-ours. The baseline is commit a24e6ef's agents/lang (git archive,
-imported as another package), run with its cross-cycle reuse as it shipped.
+ours; "gc" counts the garbage collections that started during the timed infer calls, per call.
+The baseline is commit a24e6ef's agents/lang (git archive, imported as another package), run
+with its cross-cycle reuse as it shipped.
 Run: .venv/bin/python bench/engine.py [--sizes 10,100,1000,10000] [--gc on|off|freeze]
 """
 
@@ -118,13 +119,23 @@ def goal_state(engine, n: int):
     return engine.add_goal(state, "(clear B0)", priority=0)
 
 
-def measure(engine, kind: str, seq: list[bytes], calls: int, clock) -> tuple:
-    """Median infer and cycle time [ms] over the cycles of ``seq`` in turn, and the beliefs."""
+def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool) -> tuple:
+    """Median infer and cycle time [ms] over the cycles of ``seq`` in turn, the beliefs and the
+    collections per infer; ``freeze``: ``gc.freeze()`` after the first two cycles."""
     first = msgpack.unpackb(seq[0])
     state = goal_state(engine, sum(1 for p in first if p[0] == "block"))
     beliefs = len(engine.infer(first))
     engine.cycle(state, msgpack.unpackb(seq[1]))
+    if freeze:
+        gc.collect()
+        gc.freeze()
     times: dict[str, list[float]] = {"infer": [], "cycle": []}
+    collections = [0, False]  # garbage collections started during timed infer calls
+
+    def count(phase: str, info: dict) -> None:
+        collections[0] += phase == "start" and collections[1]
+
+    gc.callbacks.append(count)
     step = 2
     for what in ("infer", "cycle"):
         for _ in range(calls):
@@ -132,13 +143,18 @@ def measure(engine, kind: str, seq: list[bytes], calls: int, clock) -> tuple:
             step += 1
             if kind == "scratch":
                 engine.inference.forget()
+            collections[1] = what == "infer"
             t0 = clock()
             if what == "infer":
                 engine.infer(ps)
             else:
                 engine.cycle(state, ps)
             times[what].append((clock() - t0) * 1000)
-    return statistics.median(times["infer"]), statistics.median(times["cycle"]), beliefs
+            collections[1] = False
+    gc.callbacks.remove(count)
+    gc.unfreeze()
+    return (statistics.median(times["infer"]), statistics.median(times["cycle"]), beliefs,
+            collections[0] / calls)
 
 
 def main() -> None:
@@ -146,7 +162,8 @@ def main() -> None:
     ap.add_argument("--sizes", default="10,100,1000,10000")
     ap.add_argument("--kinds", default=",".join(KINDS))
     ap.add_argument("--gc", choices=("on", "off", "freeze"), default="on",
-                    help="garbage collector during the runs (freeze: gc.freeze() after loading)")
+                    help="garbage collector during the runs (freeze: gc.freeze() after the "
+                         "first two cycles)")
     ap.add_argument("--without-samecolor", action="store_true",
                     help="leave bench/samecolor.tlp out of the program")
     ap.add_argument("--clock", choices=("cpu", "wall"), default="cpu",
@@ -160,7 +177,8 @@ def main() -> None:
         if args.gc == "off":
             gc.disable()
         print(f"{'objects':>8} {'change':>7} {'beliefs':>7} | {'infer':>7} {'base':>7} {'x':>6} |"
-              f" {'cycle':>7} {'base':>7} {'x':>6}   [ms {args.clock} time, median]")
+              f" {'cycle':>7} {'base':>7} {'x':>6} | {'gc':>4} {'base':>4}"
+              f"   [ms {args.clock} time, median; gc: collections per infer]")
         results = {}
         for n in map(int, args.sizes.split(",")):
             calls = 40 if n <= 100 else 20 if n <= 1000 else 3
@@ -169,17 +187,14 @@ def main() -> None:
                 row = []
                 for make in (lambda: Engine(ours_prog), lambda: base.Engine(base_prog)):
                     engine = make()
-                    if args.gc == "freeze":
-                        gc.collect()
-                        gc.freeze()
-                    row.append(measure(engine, kind, seq, calls, clock))
+                    row.append(measure(engine, kind, seq, calls, clock, args.gc == "freeze"))
                     del engine
-                (i, c, b), (bi, bc, _) = row
+                (i, c, b, g), (bi, bc, _, bg) = row
                 results[(n, kind)] = i
                 print(f"{n:>8} {kind:>7} {b:>7} | {i:>7.3f} {bi:>7.3f} {bi / i:>5.1f}x |"
-                      f" {c:>7.3f} {bc:>7.3f} {bc / c:>5.1f}x", flush=True)
+                      f" {c:>7.3f} {bc:>7.3f} {bc / c:>5.1f}x | {g:>4.2f} {bg:>4.2f}",
+                      flush=True)
                 del seq
-                gc.unfreeze()
         targets(results)
 
 
