@@ -12,7 +12,7 @@ at those positions. "Equal" is strict: ``3`` and ``3.0``, or ``0.0`` and ``-0.0`
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import chain, compress, repeat
+from itertools import compress, repeat
 from math import copysign
 from operator import is_, is_not, ne, not_
 
@@ -90,23 +90,12 @@ def read_cols(rows: list, old: Cols | None) -> Cols | None:
     return Cols(n, names_t, vals, types, kinds, same, same_ids)
 
 
-_CHUNK = 256  # rows per zip: fewer than the garbage collector's first threshold (700)
-
-
 def _transpose(rows: list) -> list[tuple] | None:
-    """The columns of ``rows``, or None if their lengths differ. Zipped in chunks, because
-    ``zip(*rows)`` makes an iterator per row at once, and a thousand fresh objects start a
-    collection that walks every young object (this cycle's percept lists among them)."""
+    """The columns of ``rows``, or None if their lengths differ."""
     try:
-        if len(rows) <= _CHUNK:
-            return list(zip(*rows, strict=True))
-        parts = [list(zip(*rows[i:i + _CHUNK], strict=True))
-                 for i in range(0, len(rows), _CHUNK)]
+        return list(zip(*rows, strict=True))
     except ValueError:
         return None
-    if len(set(map(len, parts))) != 1:
-        return None
-    return [tuple(chain.from_iterable(cs)) for cs in zip(*parts, strict=True)]
 
 
 def changed(old: tuple, new: tuple, old_t, new_t, floats: bool) -> list[int]:

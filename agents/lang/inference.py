@@ -17,6 +17,7 @@ are computed from scratch again."""
 
 from __future__ import annotations
 
+import gc
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -109,7 +110,21 @@ class Inference:
 
     def run(self, percepts: Iterable) -> FactStore:
         """Every concept instance that holds for ``percepts`` (neutral lists, Percepts, a
-        PerceptIndex or a Frame), as the live FactStore (valid until the next run)."""
+        PerceptIndex or a Frame), as the live FactStore (valid until the next run).
+
+        The garbage collector is paused meanwhile (and left as it was): a run allocates in
+        bursts (a column per attribute, a tuple per changed object), and each burst would start
+        a collection walking every young object, this cycle's percept lists among them; a run
+        makes no reference cycles, so nothing waits for the collector."""
+        if not gc.isenabled():
+            return self._run(percepts)
+        gc.disable()
+        try:
+            return self._run(percepts)
+        finally:
+            gc.enable()
+
+    def _run(self, percepts: Iterable) -> FactStore:
         frame = self.frame = frame_of(percepts)
         change = self.tracker.update(frame, self.edb)
         frame.cache = self.percepts
