@@ -37,9 +37,6 @@ class Estimator:
         self.memo: dict = {}
         self.check = check  # whether variants look for sizes that drifted since they were planned
 
-    def size(self, rel: object, percept: bool) -> int:
-        return len(self.stores[percept].get(rel))
-
     def fanout(self, rel: object, percept: bool, positions: tuple, arity: int) -> float:
         store = self.stores[percept]
         n = len(store.get(rel))
@@ -247,14 +244,16 @@ class Variant:
     has changed size by more than a factor of 4 (and 32 tuples) since (looked at when the
     Estimator says so: every run from scratch and every eighth run)."""
 
-    __slots__ = ("rule", "driver", "fn", "sizes", "cache")
+    __slots__ = ("rule", "driver", "fn", "sizes", "cache", "reads")
 
     def __init__(self, rule: Rule, driver: int | None):
         self.rule = rule
         self.driver = driver
         self.fn: Callable | None = None
-        self.sizes: tuple = ()
+        self.sizes: list = []
         self.cache: dict[tuple, Callable] = {}
+        self.reads = [(e.percept, e.rel) for j, e in enumerate(rule.elems)
+                      if j != driver and not e.negated]
 
     def get(self, est: Estimator) -> Callable:
         """The compiled function, planned again if the sizes it was planned for drifted."""
@@ -270,9 +269,9 @@ class Variant:
             self.fn, self.sizes = fn, sizes
         return self.fn
 
-    def _sizes(self, est: Estimator) -> tuple:
-        return tuple(est.size(e.rel, e.percept) for j, e in enumerate(self.rule.elems)
-                     if j != self.driver and not e.negated)
+    def _sizes(self, est: Estimator) -> list:
+        stores = est.stores
+        return [len(stores[p].get(rel)) for p, rel in self.reads]
 
 
 def variants(rule: Rule) -> dict:
