@@ -20,7 +20,7 @@ _FIRST = itemgetter(0)
 class Frame:
     """One cycle's percepts, grouped by type: type -> rows (neutral lists or tuples, as given,
     never changed). Rows of a type are validated when the type is read by column
-    (``columns.read``) or, for the rest, by ``check``; ``index`` is the executive's view."""
+    (``columns.read_cols``) or, for the rest, by ``check``; ``index`` is the executive's view."""
 
     __slots__ = ("groups", "checked", "cache", "_index")
 
@@ -46,7 +46,7 @@ class Frame:
 def frame_of(percepts: object) -> Frame:
     """Group ``percepts`` by type. Raises LangError naming a percept that is not a list or tuple
     ``[type, id, attr, value, ...]``; the values themselves are checked column by column later
-    (``columns.read``), or by ``Frame.check``."""
+    (``columns.read_cols``), or by ``Frame.check``."""
     if isinstance(percepts, PerceptIndex):
         return percepts.frame()
     if isinstance(percepts, Frame):
