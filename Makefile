@@ -3,7 +3,7 @@ PY ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: setup demo test lint bench clean
+.PHONY: setup browser demo test lint bench clean
 
 $(BIN)/teleo: pyproject.toml
 	$(PY) -m venv $(VENV)
@@ -13,10 +13,17 @@ $(BIN)/teleo: pyproject.toml
 
 setup: $(BIN)/teleo
 
+# Headless Chromium for the web view's browser test (tests/e2e/test_view_browser.py), from
+# Debian's packages when it is missing (CI runs as root; elsewhere run this once with sudo).
+browser:
+	@command -v chromium >/dev/null 2>&1 || { \
+	  echo "installing chromium (apt-get) for the browser test"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
+
 demo: setup
 	$(BIN)/teleo launch scenarios/driving_demo.toml --summary out/demo-summary.json --render out/demo.png
 
-test: setup
+test: setup browser
 	$(BIN)/ruff check .
 	$(BIN)/python -m pytest -q
 

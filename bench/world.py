@@ -15,10 +15,10 @@ from pathlib import Path
 # this file is bench/world.py: keep its folder off the path so `world` means the package
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).parent.resolve()]
 
-from world.perception import perceive  # noqa: E402
-from world.render import render_png  # noqa: E402
-from world.scenario import WorldConfig  # noqa: E402
-from world.simulation import Simulation  # noqa: E402
+from world.driving.config import WorldConfig  # noqa: E402
+from world.driving.perception import perceive  # noqa: E402
+from world.driving.render import render_png  # noqa: E402
+from world.driving.simulation import Simulation  # noqa: E402
 
 
 def steps_per_second(vehicles: int, pedestrians: int, steps: int) -> tuple[float, float]:

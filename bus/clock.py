@@ -200,7 +200,8 @@ class _CycleRun:
         return CycleReport(
             cycle=self.cycle, actions=actions, late=_unique(self.late), dead=_unique(self.dead),
             noop=tuple(self.noop), republished=self.republished,
-            elapsed_ms=(now - self.start) * 1e3, stage_ms=dict(self.book.stage_ms))
+            elapsed_ms=(now - self.start) * 1e3, stage_ms=dict(self.book.stage_ms),
+            memory={a: m for a, m in self.book.memory.items() if a not in self.noop})
 
 
 def _unique(names: Sequence[str]) -> tuple[str, ...]:

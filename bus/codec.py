@@ -78,6 +78,8 @@ def _fields(key: str, kind: str, spec: _Spec, body: dict) -> dict[str, Any]:
         for name, check, default in spec:
             if name in body:
                 values[name] = check(body[name])
+            elif isinstance(default, _Fresh):
+                values[name] = default.make()   # a new empty map for each message
             elif default is not MISSING:
                 values[name] = default
             else:
@@ -184,13 +186,26 @@ _FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
     "percepts": _rows, "beliefs": _rows, "actions": _rows, "decision": _dict,
     "op": _str, "goal": _str, "priority": _int, "goal_id": _str,
     "ok": _bool, "reason": _str, "goals": _dict_rows,
-    "process": _str, "compute_ms": _float, "late": _int, "event": _dict,
+    "process": _str, "compute_ms": _float, "late": _int, "event": _dict, "memory": _dict,
 }
+
+_KIND_FIELD_CHECKS: dict[tuple[str, str], Callable[[Any], Any]] = {
+    ("Percepts", "outcomes"): _dict_rows,   # a list of outcome maps (WorldState's is a map)
+}
+
+class _Fresh:
+    """The default of a field declared with a default_factory (made anew per message)."""
+
+    def __init__(self, make: Callable[[], Any]) -> None:
+        self.make = make
+
 
 _Spec = tuple[tuple[str, Callable[[Any], Any], Any], ...]
 
 _SPECS: dict[type, _Spec] = {
-    cls: tuple((f.name, _FIELD_CHECKS.get(f.name, _any), f.default)
+    cls: tuple((f.name, _KIND_FIELD_CHECKS.get((cls.KIND, f.name),
+                                               _FIELD_CHECKS.get(f.name, _any)),
+                _Fresh(f.default_factory) if f.default_factory is not MISSING else f.default)
                for f in fields(cls) if f.name != "env")
     for cls in MESSAGE_TYPES.values()
 }

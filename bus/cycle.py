@@ -95,6 +95,7 @@ class CycleBook:
     cycle: int
     agents: frozenset[str]
     actions: dict[str, tuple] = field(default_factory=dict)
+    memory: dict[str, dict] = field(default_factory=dict)
     stage_ms: dict[str, float] = field(default_factory=dict)
 
     def record(self, msg: Message, last_seen: dict[str, int]) -> None:
@@ -106,6 +107,7 @@ class CycleBook:
                 self.stage_ms[msg.process] = msg.compute_ms
         elif isinstance(msg, Actions) and msg.env.cycle == self.cycle and msg.agent in self.agents:
             self.actions.setdefault(msg.agent, msg.actions)
+            self.memory.setdefault(msg.agent, msg.memory)
 
     def has(self, agent: str) -> bool:
         return agent in self.actions
@@ -128,7 +130,8 @@ class CycleReport:
     late: stages that missed the per-cycle deadline (the first stuck stage of each
     agent); dead: stages whose liveliness token was gone; noop: agents given the no-op;
     republished: how many times state t was re-sent for a restarted stage;
-    elapsed_ms: publish to return [ms]; stage_ms: each stage's compute time this cycle [ms].
+    elapsed_ms: publish to return [ms]; stage_ms: each stage's compute time this cycle [ms];
+    memory: agent -> the memory sent with its actions (absent for agents given the no-op).
     """
 
     cycle: int
@@ -139,6 +142,7 @@ class CycleReport:
     republished: int = 0
     elapsed_ms: float = 0.0
     stage_ms: dict[str, float] = field(default_factory=dict)
+    memory: dict[str, dict] = field(default_factory=dict)
 
     @property
     def clean(self) -> bool:

@@ -7,7 +7,7 @@ The kind name of each class is its `KIND` and is what the codec writes on the wi
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar
 
 SCHEMA_VERSION = 1
@@ -39,21 +39,28 @@ class Envelope:
 
 @dataclass(frozen=True)
 class WorldState:
-    """World state of a cycle, with each agent's action outcomes of the previous cycle."""
+    """World state of a cycle, with each agent's action outcomes of the previous cycle and
+    the memory each agent last sent with its actions (docs/bus.md, "Agent memory")."""
 
     KIND: ClassVar[str] = "WorldState"
     env: Envelope
     snapshot: dict
     outcomes: dict  # agent -> list of outcome dicts {"action", "status", "reason"}
     events: list
+    memory: dict = field(default_factory=dict)  # agent -> its memory map (as sent)
 
 
 @dataclass(frozen=True)
 class Percepts:
+    """An agent's percepts of a cycle, with the outcomes of its actions of the previous
+    cycle as the world reported them (SCS failure semantics and ROGUE's monitoring use them)."""
+
     KIND: ClassVar[str] = "Percepts"
     env: Envelope
     agent: str
     percepts: tuple  # tuple of percept lists, e.g. ["self", "ME", "speed", 20.0]
+    outcomes: tuple = ()  # tuple of {"action": [...], "status": "done"|"failed", "reason": str}
+    memory: dict = field(default_factory=dict)  # the agent's memory, as the world echoed it
 
 
 @dataclass(frozen=True)
@@ -66,12 +73,15 @@ class Beliefs:
 
 @dataclass(frozen=True)
 class Actions:
-    """Actions of one agent for one cycle; an empty tuple is the no-op."""
+    """Actions of one agent for one cycle; an empty tuple is the no-op. ``memory``: what the
+    agent asks the world to keep and hand back with the next world state (its world-model
+    facts, SCS threads and discount factors; docs/bus.md, "Agent memory")."""
 
     KIND: ClassVar[str] = "Actions"
     env: Envelope
     agent: str
     actions: tuple  # tuple of action lists, e.g. ["*gas", 6.25]
+    memory: dict = field(default_factory=dict)  # {"model": [fact lists], "scs": {...}}
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,7 @@ import dataclasses
 import json
 import os
 import time
+from pathlib import Path
 
 import click
 
@@ -14,7 +15,7 @@ from bus.codec import decode
 from bus.config import BusConfig, bus_options
 from bus.errors import BusError, CodecError
 from bus.node import open_node
-from bus.record import Recorder, read_recording
+from bus.record import from_record
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
 
@@ -81,55 +82,87 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
 
 
 @click.command()
-@click.argument("file", type=click.Path(dir_okay=False, writable=True))
-@click.option("--run", "run_id", required=True, help="Run id: records teleo/<run>/**.")
+@click.argument("file", type=click.Path(dir_okay=False, writable=True, path_type=Path))
+@click.option("--run", "run_id", default=None,
+              help="Run id: records teleo/<run>/** (default: the running launch's run).")
 @click.option("--seconds", type=float, default=None, help="Stop after S seconds.")
-@click.option("--count", type=int, default=None, help="Stop after N samples.")
+@click.option("--count", type=int, default=None, help="Stop after N messages.")
 @bus_options
-def record(file: str, run_id: str, seconds: float | None, count: int | None,
+def record(file: Path, run_id: str | None, seconds: float | None, count: int | None,
            bus_config: BusConfig) -> None:
-    """Record all traffic of a run (key, time, raw payload) to FILE until Ctrl-C."""
+    """Record a run's messages to FILE (MCAP, as launches record themselves) until Ctrl-C.
+
+    Without --connect it records the running launch; with --connect, the run given by --run
+    on that router."""
+    from tools.recorder import BusRecorder
+    from tools.target import find_target
+
+    target = find_target(bus_config)
+    run_id = run_id or target.run
+    if run_id is None:
+        raise click.UsageError("--run RUN is needed with --connect (which run to record)")
+    try:
+        keys.check_chunk(run_id, "run")
+        recorder = BusRecorder(target.cfg, run_id, file, {"source": "record"}).start(
+            announce=True)
+    except BusError as exc:
+        raise click.ClickException(str(exc)) from exc
+    click.echo(f"recording run {run_id} from {target.who} to {file}", err=True)
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
-    with open_node(bus_config, run_id, "record") as node, open(file, "wb") as out:
-        rec = Recorder(out, run_id)
-        inbox = node.subscribe(keys.run_all(run_id), raw=True)
-        node.announce()  # after subscribing: anyone waiting for "record" may now publish
-        while not stop.is_set() and (end is None or time.monotonic() < end):
-            if count is not None and rec.count >= count:
-                break
-            item = inbox.receive(0.1)
-            if item is not None:
-                rec.write(item.key, item.t_ns, item.payload)
-    click.echo(f"recorded {rec.count} samples of run {run_id} to {file}", err=True)
+    while not stop.wait(0.05):
+        if (end is not None and time.monotonic() >= end) or \
+                (count is not None and recorder.received >= count):
+            break
+    writer = recorder.stop()
+    click.echo(f"recorded {writer.messages} messages ({writer.cycles} cycles) of run {run_id} "
+               f"to {file}", err=True)
 
 
 @click.command()
-@click.argument("file", type=click.Path(exists=True, dir_okay=False))
+@click.argument("file", metavar="RECORD", type=click.Path())
 @click.option("--speed", type=float, default=1.0, show_default=True,
-              help="Time scale (2: twice as fast; 0: as fast as possible).")
+              help="Time scale on world time (2: twice as fast; 0: as fast as possible).")
 @click.option("--wait", "wait_s", type=float, default=2.0, show_default=True,
               help="Wait up to S seconds for subscribers on the recorded keys first.")
 @bus_options
 def replay(file: str, speed: float, wait_s: float, bus_config: BusConfig) -> None:
-    """Re-publish a recording made by `teleo record`, keeping its timing."""
+    """Play a run record (RECORD: an .mcap file, a run folder or run id) back on the bus of
+    the running launch, or of the router named by --connect, with its world-time pacing."""
+    from tools.records import RecordError, RunRecord, locate
+    from tools.target import find_target
+
     try:
-        header, samples = read_recording(file)
-        items = list(samples)
-    except CodecError as exc:
+        rec = RunRecord(locate(file))
+        items = [(key, from_record(key, r), r["env"]["cycle"]) for key, r in rec.records()]
+        times = _log_times(rec)
+    except (RecordError, BusError) as exc:
         raise click.ClickException(str(exc)) from exc
+    target = find_target(bus_config)
+    click.echo(f"replaying run {rec.run} ({len(items)} messages) to {target.who}; watch it "
+               f"with `teleo view --run {rec.run}`", err=True)
     stop = stop_on_signals()
-    with open_node(bus_config, header["run"], f"replay-{os.getpid()}") as node:
-        node.declare({s.key for s in items})
-        node.wait_matching({s.key for s in items}, wait_s)
-        start, t0 = time.monotonic(), (items[0].t_ns if items else 0)
-        for s in items:
+    with open_node(target.cfg, rec.run, f"replay-{os.getpid()}") as node:
+        node.declare({key for key, _, _ in items})
+        if node.wait_matching({key for key, _, _ in items}, wait_s):
+            click.echo(f"nobody subscribed to some keys of run {rec.run} within {wait_s:g} s; "
+                       "replaying anyway", err=True)
+        start, sent = time.monotonic(), 0
+        t0 = times.get(items[0][2], 0) if items else 0
+        for key, payload, cycle in items:
             if speed > 0:
-                due = start + (s.t_ns - t0) / 1e9 / speed
+                due = start + (times.get(cycle, t0) - t0) / 1e9 / speed
                 if stop.wait(max(0.0, due - time.monotonic())):
                     break
-            node.put_raw(s.key, s.payload)
-    click.echo(f"replayed {len(items)} samples of run {header['run']}", err=True)
+            node.put_raw(key, payload)
+            sent += 1
+    click.echo(f"replayed {sent} messages of run {rec.run} to {target.who}", err=True)
+
+
+def _log_times(rec) -> dict[int, int]:
+    """cycle -> world time [ns] of a record (from its world states)."""
+    return {r["env"]["cycle"]: round(float(r["snapshot"].get("time", 0.0)) * 1e9)
+            for _, r in rec.kinds("state")}
 
 
 commands = [router, echo, record, replay]

@@ -17,6 +17,9 @@ _COMMAND_MODULES = (
     "tools.event_commands",  # event                     (world events into a running launch)
     "tools.inspect",         # inspect
     "tools.simulate",        # simulate                  (one process, no bus)
+    "tools.explain",         # explain                   (run records)
+    "tools.plot",            # plot                      (run records)
+    "tools.view",            # view                      (live web view)
 )
 
 

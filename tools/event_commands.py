@@ -29,14 +29,7 @@ def event(event_json: str) -> None:
     from bus.messages import WorldEvent
     from bus.node import open_node
 
-    try:
-        body = json.loads(event_json)
-    except ValueError as exc:
-        raise click.ClickException(f"JSON: not valid JSON: {exc}") from exc
-    if not isinstance(body, dict) or not isinstance(body.get("kind"), str):
-        raise click.ClickException(
-            f'JSON: expected an object with a "kind", e.g. {{"kind": "block", "segment": "S17"}}'
-            f", got {event_json!r}")
+    body = read_event(event_json)
     try:
         info = runfile.find()
     except runfile.NoRunningLaunch as exc:
@@ -53,6 +46,23 @@ def event(event_json: str) -> None:
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
     click.echo(f"sent to {info.run}: {json.dumps(body)}")
+
+
+def read_event(text: str) -> dict:
+    """The event object in JSON `text`, read within the limits of docs/language.md ("Limits":
+    size, depth, numbers, no NaN or Infinity); raises ClickException naming JSON:line:col."""
+    from agents.lang import LangError
+    from agents.lang.limits import MAX_EVENT_CHARS, read_json, shorten
+
+    try:
+        body = read_json(text, "JSON", max_chars=MAX_EVENT_CHARS)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from None
+    if not isinstance(body, dict) or not isinstance(body.get("kind"), str):
+        raise click.ClickException(
+            f'JSON: expected an object with a "kind", e.g. {{"kind": "block", "segment": "S17"}}'
+            f", got {shorten(text, 80)!r}")
+    return body
 
 
 commands = [event]

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import click
 
+from agents.processes.goal_store import MAX_PRIORITY
 from tools import runfile
 
 QUERY_TIMEOUT = 5.0  # [s]
@@ -59,8 +60,9 @@ def _table(goals) -> None:
         return
     click.echo(f"{'ID':<5} {'AGENT':<8} {'PRIO':>4}  {'STATUS':<10} GOAL")
     for g in goals:
+        note = f"  -- {g['note']}" if g.get("note") else ""   # why: impasse, failed
         click.echo(f"{g['id']:<5} {g.get('agent', ''):<8} {g['priority']:>4}  "
-                   f"{g['status']:<10} {g['goal']}")
+                   f"{g['status']:<10} {g['goal']}{note}")
 
 
 @click.group()
@@ -68,9 +70,12 @@ def goal() -> None:
     """Post, list, cancel and reprioritise goals of a running `teleo launch`."""
 
 
+_PRIORITY = click.IntRange(1, MAX_PRIORITY)
+
+
 @goal.command()
 @click.argument("text", metavar="GOAL")
-@click.option("--priority", "-p", type=int, default=100, show_default=True,
+@click.option("--priority", "-p", type=_PRIORITY, default=100, show_default=True,
               help="Rank: the goal goes after every goal of priority <= P (lower = sooner).")
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
 def post(text: str, priority: int, agent: str | None) -> None:
@@ -104,7 +109,7 @@ def cancel(goal_id: str, agent: str | None) -> None:
 
 @goal.command()
 @click.argument("goal_id", metavar="ID")
-@click.argument("new_priority", metavar="P", type=int)
+@click.argument("new_priority", metavar="P", type=_PRIORITY)
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
 def priority(goal_id: str, new_priority: int, agent: str | None) -> None:
     """Give goal ID the priority P."""

@@ -9,6 +9,7 @@ from pathlib import Path
 import click
 
 from agents.lang import (
+    Diagnostic,
     Engine,
     EngineState,
     LangError,
@@ -16,7 +17,10 @@ from agents.lang import (
     load_program,
     parse_percepts,
 )
+from agents.lang.limits import read_json
 from agents.lang.loader import read_text
+from agents.lang.outcomes import as_outcomes
+from agents.lang.solving.learned import is_learned_text, read_learned
 from agents.lang.terms import sort_key
 
 _include = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
@@ -47,18 +51,52 @@ def _percepts(path: str):
         _fail(exc)
 
 
+def _outcomes(path: str) -> tuple:
+    """The outcomes in ``path`` (a JSON list); exits 1 naming the file and the bad item."""
+    try:
+        data = json.loads(read_text(path))
+        if not isinstance(data, list):
+            raise LangError(f"expected a JSON list of outcomes, got {type(data).__name__}")
+        found = []
+        for i, item in enumerate(data):
+            try:
+                found += as_outcomes([item])
+            except LangError as exc:
+                raise LangError(f"item {i}: {exc}") from None
+        return tuple(found)
+    except json.JSONDecodeError as exc:
+        _fail(LangError(f"{path}:{exc.lineno}:{exc.colno}: bad JSON: {exc.msg}"))
+    except LangError as exc:
+        _fail(LangError(f"{path}: {exc}"))
+
+
 def _sorted_beliefs(beliefs) -> list:
     return sorted(beliefs, key=lambda b: (b.pred, [sort_key(a) for a in b.args]))
+
+
+def _goal_option(option: str) -> tuple[str, int | None]:
+    """'(clear B):1' -> ('(clear B)', 1); without ':P' (P up to 18 digits) no priority."""
+    text, sep, prio = option.rpartition(":")
+    prio = prio.strip()
+    if sep and text and prio.isascii() and prio.isdigit() and len(prio) <= 18:
+        return text, int(prio)
+    return option, None
 
 
 @click.command()
 @click.argument("programs", nargs=-1, required=True, type=click.Path())
 @_include
 def check(programs: tuple[str, ...], includes: tuple[str, ...]) -> None:
-    """Check PROGRAMS; exit 0 when every one is valid, 1 with all errors otherwise."""
+    """Check PROGRAMS; exit 0 when every one is valid, 1 with all errors otherwise. A file of
+    learned skills is checked against the program named before it (PROGRAM LEARNED)."""
     failed = 0
+    program = None
     for path in programs:
         try:
+            if _learned_file(path):
+                _check_learned(program, path)
+                continue
+            program = None
             program = load_program(path, *includes)
         except ProgramError as exc:
             failed += 1
@@ -72,6 +110,23 @@ def check(programs: tuple[str, ...], includes: tuple[str, ...]) -> None:
         click.echo(f"{path}: ok ({n_concepts} concepts, {len(program.skills)} skills, "
                    f"{len(program.goals)} goals)")
     sys.exit(1 if failed else 0)
+
+
+def _learned_file(path: str) -> bool:
+    try:
+        return is_learned_text(read_text(path))
+    except ProgramError:
+        return False
+
+
+def _check_learned(program, path: str) -> None:
+    """Check the learned-skills file ``path`` against ``program`` (the one before it)."""
+    if program is None:
+        raise ProgramError([Diagnostic(path, 1, 1, "a file of learned skills: name the valid "
+                                       "program it was learned with before it "
+                                       "(teleo check PROGRAM LEARNED)")])
+    clauses = read_learned(program, read_text(path), path)
+    click.echo(f"{path}: ok ({len(clauses)} learned skills for {program.sources[0]})")
 
 
 @click.command()
@@ -90,26 +145,34 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 @click.argument("program", type=click.Path())
 @click.option("--percepts", "percepts_file", required=True, type=click.Path(),
               help="Percept file: Table 3 s-expressions or JSON neutral lists.")
+@click.option("--outcomes", "outcomes_file", type=click.Path(),
+              help="The outcomes of the previous cycle's actions: a JSON list of "
+                   '{"action": [...], "status": "done"|"failed", "reason": "..."}.')
 @click.option("--state", "state_file", type=click.Path(), help="Engine state (JSON) to start from.")
 @click.option("--save-state", "save_file", type=click.Path(), help="Write the next state here.")
 @click.option("--goal", "goals", multiple=True,
               help="Add a user goal, e.g. '(package-delivered PACKET2)'; append :P for priority "
                    "P, e.g. '(clear B):1'. Repeatable.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
+@click.option("--mechanism", default="means-ends", show_default=True,
+              help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
 @_include
-def step(program: str, percepts_file: str, state_file: str | None, save_file: str | None,
-         goals: tuple[str, ...], as_json: bool, includes: tuple[str, ...]) -> None:
+def step(program: str, percepts_file: str, outcomes_file: str | None, state_file: str | None,
+         save_file: str | None, goals: tuple[str, ...], as_json: bool, mechanism: str,
+         includes: tuple[str, ...]) -> None:
     """Run one cycle: print beliefs, goal statuses, the skill path, actions and why."""
-    engine = Engine(_load(program, includes))
-    percepts = _percepts(percepts_file)
     try:
-        state = (EngineState.from_dict(json.loads(read_text(state_file))) if state_file
-                 else engine.initial_state())
+        engine = Engine(_load(program, includes), solver=mechanism)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from None
+    percepts = _percepts(percepts_file)
+    outcomes = _outcomes(outcomes_file) if outcomes_file else ()
+    try:
+        state = (EngineState.from_dict(read_json(read_text(state_file), state_file))
+                 if state_file else engine.initial_state())
         for g in goals:
-            text, _, prio = g.rpartition(":") if g.rstrip().endswith(tuple("0123456789")) \
-                and ":" in g else (g, "", "")
-            state = engine.add_goal(state, text or g, int(prio) if prio else None)
-        result = engine.cycle(state, percepts)
+            state = engine.add_goal(state, *_goal_option(g))
+        result = engine.cycle(state, percepts, outcomes)
     except (LangError, json.JSONDecodeError) as exc:
         click.echo(f"{state_file or program}: {exc}", err=True)
         sys.exit(1)

@@ -22,16 +22,20 @@ from pathlib import Path
 import click
 
 from tools import runfile, summary
-from tools.scenario import AGENT_STAGES, Scenario, ScenarioError, load_scenario
+from tools.scenario_check import load_checked
 from tools.supervisor import ProcSpec, Supervisor, module_argv
+from world.run_scenario import AGENT_STAGES, Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
 READY_TIMEOUT = 60.0  # [s] for every process to announce itself (imports + zenoh open)
 
 
 def process_specs(scenario: Scenario, run: str, run_dir: Path, bus_args: list[str],
-                  cycles: int, seed: int, mode: str) -> list[ProcSpec]:
-    """The command of every process of the run, in start order (world last)."""
+                  cycles: int, seed: int, mode: str, learned: str | None = None
+                  ) -> list[ProcSpec]:
+    """The command of every process of the run, in start order (world last). Each executive
+    keeps its engine state and learned skills in the run folder (summary.state_file,
+    summary.learned_file), starting from ``learned`` if given."""
     common = ["--run", run, *bus_args]
     specs = [ProcSpec("goals", module_argv(
         "agents.processes.goals", *common, "--scenario", str(scenario.path),
@@ -42,6 +46,13 @@ def process_specs(scenario: Scenario, run: str, run_dir: Path, bus_args: list[st
     for agent in scenario.agents:
         for stage in AGENT_STAGES:
             extra = [] if stage == "perception" else ["--program", str(agent.program)]
+            if stage == "executive":
+                extra += ["--state", str(summary.state_file(run_dir, agent.id)),
+                          "--learned-out", str(summary.learned_file(run_dir, agent.id)),
+                          *(["--learned", learned] if learned else []),
+                          *([] if agent.solver else ["--no-solver"]),
+                          *(["--mechanism", agent.mechanism]
+                            if agent.mechanism != "means-ends" else [])]
             specs.append(ProcSpec(f"{agent.id}.{stage}", module_argv(
                 modules[stage], *common, "--agent", agent.id, *extra),
                 agent.max_restarts(stage)))
@@ -59,6 +70,21 @@ def stop_order(scenario: Scenario) -> list[str]:
     return names + ["goals"]
 
 
+def check_learned(scenario: Scenario, learned: str) -> None:
+    """Refuse a learned file that does not fit every agent's program, before any process
+    starts (the message names file:line:col, e.g. a concept the program does not define)."""
+    from agents.lang import LangError, load_program
+    from agents.lang.loader import read_text
+    from agents.lang.solving.learned import read_learned
+
+    try:
+        text = read_text(learned)
+        for agent in scenario.agents:
+            read_learned(load_program(agent.program), text, learned)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from exc
+
+
 def _raise_interrupt(signum: int, frame: object) -> None:
     raise KeyboardInterrupt
 
@@ -72,14 +98,22 @@ def _raise_interrupt(signum: int, frame: object) -> None:
               help="Write the summary JSON here.")
 @click.option("--render", "render_file", type=click.Path(dir_okay=False),
               help="Draw the run: a .png of the last state or a .gif of the run.")
+@click.option("--learned", type=click.Path(exists=True, dir_okay=False),
+              help="Start every agent from the skills learned in an earlier run (its "
+                   "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
+@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
+              help="Plot the run record (PNG): speed, goal timeline, stage times.")
+@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
-           summary_file: str | None, render_file: str | None) -> None:
+           summary_file: str | None, render_file: str | None, learned: str | None,
+           plot_file: str | None, no_record: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     try:
-        scenario = load_scenario(scenario_file)
+        scenario, _ = load_checked(scenario_file)
     except ScenarioError as exc:
         raise click.ClickException(str(exc)) from exc
-    _check_programs(scenario)
+    if learned:
+        check_learned(scenario, learned)
     cycles = scenario.run.cycles if cycles is None else cycles
     seed = scenario.run.seed if seed is None else seed
     mode = mode or scenario.run.mode.value
@@ -88,8 +122,9 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     base = {"run": run, "scenario": str(scenario.path), "mode": mode, "seed": seed,
             "cycles_requested": cycles}
     signal.signal(signal.SIGTERM, _raise_interrupt)
-    restarts = _run(scenario, run, run_dir, cycles, seed, mode)
-    result = summary.build(run_dir, base, restarts)
+    restarts = _run(scenario, run, run_dir, cycles, seed, mode, learned,
+                    record=not no_record or bool(plot_file))
+    result = summary.build(run_dir, base, restarts, scenario.domain)
     summary.echo(result)
     if summary_file:
         Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
@@ -99,46 +134,31 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
+    if plot_file:
+        from tools.plot import plot_command_output
+
+        click.echo(plot_command_output(run_dir, Path(plot_file)))
     if not result["completed"]:
         raise SystemExit(1)
 
 
-def _check_programs(scenario: Scenario) -> None:
-    """Load the world settings and every agent's program before starting anything: a
-    mistake is reported here, with its diagnostics, not as a crash loop."""
-    from agents.lang import ProgramError, load_program
-    from world.errors import WorldError
-    from world.scenario import load_world_config
-
-    try:
-        load_world_config(scenario.world)
-    except WorldError as exc:
-        raise click.ClickException(f"{scenario.path}: {exc}") from exc
-    for agent in scenario.agents:
-        if not agent.program.is_file():
-            raise click.ClickException(f"{scenario.path}: agent {agent.id}: program "
-                                       f"{agent.program} not found")
-        try:
-            load_program(str(agent.program))
-        except ProgramError as exc:
-            raise click.ClickException(
-                f"agent {agent.id}: program {agent.program}:\n{exc}") from exc
-
-
 def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
-         mode: str) -> dict[str, int]:
+         mode: str, learned: str | None, record: bool = True) -> dict[str, int]:
     """Start, supervise and stop the processes; returns restarts per process."""
     from bus.config import BusConfig
     from bus.router import spawn_router
+    from tools.recorder import start_run_recorder
 
     run_dir.mkdir(parents=True, exist_ok=True)
     router = spawn_router()
     cfg = BusConfig(connect=(router.endpoint,))
+    recorder = start_run_recorder(cfg, run, run_dir, scenario) if record else None
     sup = Supervisor(run_dir / "logs")
     info = runfile.RunInfo(run, router.endpoint, os.getpid(), tuple(scenario.agent_ids),
                            str(run_dir), str(scenario.path))
     try:
-        for spec in process_specs(scenario, run, run_dir, cfg.to_args(), cycles, seed, mode):
+        for spec in process_specs(scenario, run, run_dir, cfg.to_args(), cycles, seed, mode,
+                                  learned):
             sup.start(spec)
         click.echo(f"run {run}: {len(sup.names())} processes, router {router.endpoint}, "
                    f"logs in {run_dir / 'logs'}")
@@ -147,6 +167,8 @@ def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
         click.echo("interrupted: stopping the run")
     finally:
         sup.stop_all(stop_order(scenario))
+        if recorder is not None:
+            recorder.stop()
         router.stop()
         runfile.remove(info)
     return sup.restarts()

@@ -1,9 +1,9 @@
 """`teleo render`: draw a run of the driving world to a PNG (one cycle) or an animated GIF.
 
 Sources: a run's `snapshots.jsonl` (one snapshot dict a line, as the world process saves them),
-a `.json` file (one snapshot dict or a list of them), a bus recording made by `teleo record`
-(its world/state samples), or a scenario `.toml` (simulated here for --steps cycles with idle
-agent cars, to look at a city).
+a `.json` file (one snapshot dict or a list of them), a run record (the record.mcap of a
+launch, a simulate or `teleo record`: its world states), or a scenario `.toml` (simulated here
+for --steps cycles with idle agent cars, to look at a city).
 """
 
 from __future__ import annotations
@@ -15,11 +15,10 @@ from typing import Any
 
 import click
 
+from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
+from world.driving.render import agent_trail, render_gif, render_png
+from world.driving.snapshot import WorldSnapshot
 from world.errors import WorldError
-from world.render import agent_trail, render_gif, render_png
-from world.scenario import load_world_config
-from world.simulation import Simulation
-from world.snapshot import WorldSnapshot
 
 
 def _from_json(path: Path) -> list[dict[str, Any]]:
@@ -33,37 +32,41 @@ def _from_json(path: Path) -> list[dict[str, Any]]:
 
 
 def _from_recording(path: Path) -> list[dict[str, Any]]:
-    from bus.codec import decode
-    from bus.errors import BusError
-    from bus.record import read_recording
+    """The world snapshots of a run record (tools/records.py: an .mcap file)."""
+    from tools.records import RecordError, RunRecord
 
     try:
-        _, samples = read_recording(str(path))
-        return [decode(s.key, s.payload).snapshot for s in samples
-                if s.key.endswith("/world/state")]
-    except BusError as exc:
+        return [r["snapshot"] for _, r in RunRecord(path).kinds("state")]
+    except RecordError as exc:
         raise click.ClickException(str(exc)) from exc
 
 
-def _from_scenario(path: Path, steps: int, seed: int) -> list[WorldSnapshot]:
-    table = tomllib.loads(path.read_text()).get("world", {})
-    config = load_world_config(table)
-    agents = [c.agent for c in config.cars] or ["ME"]
-    sim = Simulation(config, seed, agents)
-    snaps = [sim.snapshot()]
+def _from_scenario(path: Path, steps: int, seed: int | None) -> list[dict[str, Any]]:
+    """A scenario's world simulated for `steps` cycles with idle agents (a scenario may hold
+    only its [world] table: the agents are then its cars, or ME)."""
+    try:
+        doc = tomllib.loads(path.read_text())
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise click.ClickException(f"{path}: not valid TOML: {exc}") from exc
+    table = dict(doc.get("world", {}))
+    domain = get_domain(str(table.pop("domain", DEFAULT_DOMAIN)))
+    agents = [a.get("id") for a in doc.get("agents", []) if isinstance(a, dict)]
+    agents = agents or [c.get("agent") for c in table.get("cars", [])] or ["ME"]
+    run_seed = doc.get("run", {}).get("seed", 1)
+    world = domain.create(table, run_seed if seed is None else seed, agents)
+    snaps = [world.snapshot_dict()]
     for _ in range(steps):
-        sim.step()
-        snaps.append(sim.snapshot())
+        world.step()
+        snaps.append(world.snapshot_dict())
     return snaps
 
 
-def load_snapshots(source: Path, steps: int = 100, seed: int = 1) -> list[WorldSnapshot]:
-    """The snapshots of a source file (see the module doc), in cycle order."""
+def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> list[dict]:
+    """The snapshot dicts of a source file (see the module doc), in cycle order."""
     if source.suffix == ".toml":
         return _from_scenario(source, steps, seed)
     rows = _from_json(source) if source.suffix in (".json", ".jsonl") else _from_recording(source)
-    snaps = [WorldSnapshot.from_dict(r) for r in rows]
-    return sorted(snaps, key=lambda s: s.cycle)
+    return sorted(rows, key=lambda s: s.get("cycle", 0) if isinstance(s, dict) else 0)
 
 
 @click.command()
@@ -80,15 +83,23 @@ def load_snapshots(source: Path, steps: int = 100, seed: int = 1) -> list[WorldS
               help="Draw only a square of this side [m] that follows the agent's car.")
 @click.option("--steps", type=int, default=100, show_default=True,
               help="Scenario source: cycles to simulate.")
-@click.option("--seed", type=int, default=1, show_default=True, help="Scenario source: seed.")
+@click.option("--seed", type=int, default=None,
+              help="Scenario source: seed (default: the scenario's).")
 def render(source: Path, out: Path, agent: str | None, cycle: int | None, every: int,
-           scale: float | None, follow: float | None, steps: int, seed: int) -> None:
-    """Draw SOURCE (snapshots .jsonl/.json, a bus recording, or a scenario .toml) to --out."""
+           scale: float | None, follow: float | None, steps: int, seed: int | None) -> None:
+    """Draw SOURCE (snapshots .jsonl/.json, a run record .mcap, or a scenario .toml) to --out."""
     try:
-        snaps = load_snapshots(source, steps, seed)
-        if not snaps:
+        rows = load_snapshots(source, steps, seed)
+        if not rows:
             raise click.ClickException(f"{source}: no world snapshots in it")
         out.parent.mkdir(parents=True, exist_ok=True)
+        domain = domain_of(rows[0])
+        if domain.name != "driving":
+            upto = [r for r in rows if cycle is None or r.get("cycle", 0) <= cycle]
+            frames = domain.render(upto, out, agent)
+            click.echo(f"{out}: {frames} frame(s)")
+            return
+        snaps = [WorldSnapshot.from_dict(r) for r in rows]
         if out.suffix.lower() == ".gif":
             render_gif(snaps, out, agent=agent, every=max(1, every),
                        px_per_m=scale or (4.0 if follow else 1.5), follow=follow)

@@ -1,11 +1,8 @@
-"""The urban driving world of seed 000 ("An Illustrative Domain", Tables 3 and 4).
+"""The worlds agents act in, and the world process that is the clock of a run.
 
-scenario    WorldConfig and load_world_config (the `[world]` table of a scenario)
-city        static geometry: streets, segments, intersections, lane lines, buildings
-simulation  Simulation: pymunk bodies, the agent cars' actions, traffic, pedestrians, events
-snapshot    WorldSnapshot: the frozen state of a cycle, plain-data round trip
-perception  perceive(snapshot, agent): the agent's percepts (documented in percepts.md)
-navigation  route guidance for carried packages
-render      render_png / render_gif for people
-process     the world process on the bus (the only module here that touches the bus)
+domain        the contract every domain meets (World, Domain) and the registry of domains
+driving/      the urban driving city of seed 000 (Tables 3 and 4)
+run_scenario  scenario files ([run], [world], [[agents]], [[goals]], [[events]])
+process       the world process on the bus (the only module here that touches the bus)
+angles        angle arithmetic shared by domains
 """

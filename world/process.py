@@ -9,8 +9,11 @@ t through bus.clock.Clock, apply them and step the physics by dt. It writes in D
 trace.jsonl (one line per cycle: cycle, actions per agent, counters, a digest of the state,
 the outcomes of injected events; nothing that depends on timing, so two lockstep runs with
 one seed give the same file),
-snapshots.jsonl (every render_every cycles and the last, for world.render) and
-world-final.json (counters, late and dead stages, timing) for the launcher's summary.
+snapshots.jsonl (every render_every cycles and the last, for world.driving.render) and
+world-final.json (counters, late and dead stages, timing, each agent's last memory) for the
+launcher's summary. Each agent's memory (what its executive sends with its actions: world-model
+facts, SCS threads and discount factors) is kept and handed back in the next world state, so
+a restarted agent process loses none of it (docs/bus.md, "Agent memory").
 """
 
 from __future__ import annotations
@@ -34,9 +37,8 @@ from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode, CycleReport
 from bus.messages import WorldEvent, WorldState
 from bus.node import Inbox, open_node
-from tools.scenario import Scenario, load_scenario
-from world.scenario import load_world_config
-from world.simulation import Simulation
+from world.domain import get_domain
+from world.run_scenario import Scenario, load_scenario
 
 log = logging.getLogger("teleo.world")
 READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
@@ -97,7 +99,7 @@ class Recorder:
         self.snaps.write(json.dumps(snap) + "\n")
         self.last_written = t
 
-    def finish(self, completed: bool, elapsed_s: float) -> None:
+    def finish(self, completed: bool, elapsed_s: float, memory: dict[str, Any]) -> None:
         if self.last_snapshot is not None and self.last_written != self.cycles - 1:
             self._snapshot(self.cycles - 1, self.last_snapshot)
         self.trace.close()
@@ -108,6 +110,7 @@ class Recorder:
             "counters": (self.last_snapshot or {}).get("counters", {}),
             "timing_ms": {"cycle": self.cycle_ms, "world": self.world_ms,
                           "stages": dict(self.stage_ms)},
+            "memory": memory,
         }
         tmp = self.out / "world-final.json.tmp"
         tmp.write_text(json.dumps(final, indent=1))
@@ -122,11 +125,19 @@ def _drain(inbox: Inbox) -> list[dict[str, Any]]:
     return events
 
 
+def _actions_of(sim, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
+    """The agent's actions of this cycle, or the world's safe action when they did not arrive
+    (a dead or late stage): an uncontrolled agent is stopped, never left on its last controls."""
+    if agent in noop:
+        return sim.safe_actions(agent)
+    return [list(x) for x in actions]
+
+
 def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
               mode: str, out: Path, stop: threading.Event) -> bool:
     """Run `cycles` cycles (0: until stopped); returns whether all were run."""
     agents = scenario.agent_ids
-    sim = Simulation(load_world_config(scenario.world), seed, agents)
+    sim = get_domain(scenario.domain).create(scenario.world_table, seed, agents)
     scripted: dict[int, list[dict[str, Any]]] = {}
     for e in scenario.events:
         scripted.setdefault(e.at_cycle, []).append(e.event)
@@ -142,22 +153,25 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         log.info("all %d stages ready; running %s cycles, %s", len(expected),
                  cycles or "unlimited", mode)
         outcomes: dict[str, list] = {a: [] for a in agents}
+        memory: dict[str, dict] = {a: {} for a in agents}
         start = time.monotonic()
         for t in (range(cycles) if cycles else count()):
             if stop.is_set():
                 break
             w0 = time.perf_counter()
             injected = [sim.inject(e) for e in scripted.get(t, []) + _drain(events_in)]
-            snap = sim.snapshot().to_dict()
+            snap = sim.snapshot_dict()
             world_ms = (time.perf_counter() - w0) * 1e3
-            report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes, injected))
+            report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes, injected,
+                                                   dict(memory)))
+            memory.update(report.memory)   # an agent given the no-op keeps its last memory
             w0 = time.perf_counter()
-            outcomes = {a: sim.apply_actions(a, [list(x) for x in acts])
+            outcomes = {a: sim.apply_actions(a, _actions_of(sim, a, acts, report.noop))
                         for a, acts in report.actions.items()}
             sim.step()
             rec.cycle(t, snap, injected, report, world_ms + (time.perf_counter() - w0) * 1e3)
         completed = rec.cycles == cycles if cycles else True  # a forever run ends by a stop
-        rec.finish(completed, time.monotonic() - start)
+        rec.finish(completed, time.monotonic() - start, memory)
     log.info("stopped after %d cycles (%s)", rec.cycles, "complete" if completed else "early")
     return completed
 

@@ -4,13 +4,21 @@ undefined concepts, arity mismatches, unbound variables, unstratified negation (
 from __future__ import annotations
 
 import difflib
+from collections.abc import Collection
 from dataclasses import replace
 
 from .errors import Diagnostic, ProgramError
 from .parser import Parts
 from .program import ConceptClause, Program, Skill
+from .scs.checks import BodyChecks, known_actions, model_facts
 from .stratify import dependency_graph, negative_cycle, sccs
 from .terms import Literal, Loc, Test, Var
+
+MAX_SUGGESTIONS = 20
+"""'did you mean' is searched for the first MAX_SUGGESTIONS unknown names only, among at most
+MAX_SUGGESTION_NAMES known names: each search compares with every known name, so a large
+program full of unknown names stays fast."""
+MAX_SUGGESTION_NAMES = 2000
 
 
 class Checker:
@@ -21,6 +29,15 @@ class Checker:
         self.diags = parts.diags
         self.arity: dict[str, int] = {}
         self.arity_loc: dict[str, Loc | None] = {}
+        self.suggestions = 0
+
+    def close_match(self, name: str, known: Collection[str], cutoff: float) -> str | None:
+        """The known name closest to `name` (difflib), while MAX_SUGGESTIONS are not used up."""
+        self.suggestions += 1
+        if self.suggestions > MAX_SUGGESTIONS or len(known) > MAX_SUGGESTION_NAMES:
+            return None
+        close = difflib.get_close_matches(name, list(known), n=1, cutoff=cutoff)
+        return close[0] if close else None
 
     def err(self, loc: Loc | None, msg: str, severity: str = "error") -> None:
         src, line, col = (loc.source, loc.line, loc.col) if loc else ("<program>", 0, 0)
@@ -32,9 +49,20 @@ class Checker:
             group = concepts.setdefault(c.head.pred, [])
             group.append(replace(c, index=len(group) + 1))
             self.define(c.head)
+        model = model_facts(self.parts.skills)
+        for u in model:   # the world model's predicates (seed 002: assert, retract)
+            if u.fact.pred not in self.arity:
+                self.define(u.fact)
+        for u in model:
+            self.use(u.fact, f"fact of {u}")
         for clauses in concepts.values():
             for c in clauses:
                 self.check_concept(c)
+        sections = [x for items in self.parts.sections.values() for x in items]
+        for item in sections:   # a mechanism's own predicates (the planner's, seed 003)
+            item.define(self)
+        self.bodies = BodyChecks(self, self.parts.skills,
+                                 known_actions(self.parts.resources))
         skills = []
         by_pred: dict[str, list[Skill]] = {}
         for n, s in enumerate(self.parts.skills):
@@ -45,7 +73,10 @@ class Checker:
             self.check_skill(s)
         for g in self.parts.goals:
             self.use(g.literal, "goal")
+        self.check_goal_variables(concepts)
         self.check_resources(skills)
+        for item in sections:
+            item.check(self)
         strata = self.stratify(concepts)
         errors = [d for d in self.diags if d.severity == "error"]
         if errors:
@@ -55,7 +86,8 @@ class Checker:
             skills=tuple(skills), goals=tuple(self.parts.goals), resources=self.parts.resources,
             strata=strata, warnings=tuple(sorted(self.diags, key=_order)),
             sources=tuple(self.parts.sources),
-            skills_by_pred={k: tuple(v) for k, v in by_pred.items()})
+            skills_by_pred={k: tuple(v) for k, v in by_pred.items()},
+            sections={k: tuple(v) for k, v in self.parts.sections.items()})
 
     # -- names and arities -------------------------------------------------------------------
     def define(self, head: Literal) -> None:
@@ -69,8 +101,8 @@ class Checker:
 
     def use(self, lit: Literal, what: str) -> bool:
         if lit.pred not in self.arity:
-            close = difflib.get_close_matches(lit.pred, list(self.arity), n=1, cutoff=0.7)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            close = self.close_match(lit.pred, self.arity, 0.7)
+            hint = f" (did you mean '{close}'?)" if close else ""
             self.err(lit.loc, f"undefined concept '{lit.pred}' in {lit} ({what}){hint}")
             return False
         want = self.arity[lit.pred]
@@ -119,14 +151,28 @@ class Checker:
         for a in s.actions:
             self.unbound(a.variables() - bound, a.loc, f"action {a}",
                          "bind it in the head, :percepts, :start or :requires", bound)
+        if s.body is not None:
+            self.bodies.check(s, bound)
 
     def unbound(self, vs: set[Var], loc: Loc | None, where: str, hint: str,
                 bound: set[Var] = frozenset()) -> None:
         names = sorted(v.name for v in bound)
         for v in sorted(vs, key=lambda v: v.name):
-            close = difflib.get_close_matches(v.name, names, n=1, cutoff=0.6)
-            typo = f" (did you mean ?{close[0]}?)" if close else ""
+            close = self.close_match(v.name, names, 0.6)
+            typo = f" (did you mean ?{close}?)" if close else ""
             self.err(loc, f"variable ?{v.name} in {where} is bound nowhere{typo}; {hint}")
+
+    def check_goal_variables(self, concepts: dict[str, list[ConceptClause]]) -> None:
+        """A goal variable must mean "every instance", so its concept must take it from
+        percepts in every clause (agents/lang/goals.py, ``enumerable``)."""
+        from .goals import enumerable
+
+        view = Program({k: tuple(v) for k, v in concepts.items()}, {}, (), ())
+        for g in self.parts.goals:
+            if g.literal.pred in concepts:
+                why = enumerable(g.literal, view)
+                if why:
+                    self.err(g.literal.loc, f"goal {g.literal}: {why}")
 
     def check_resources(self, skills: list[Skill]) -> None:
         table = self.parts.resources

@@ -1,19 +1,25 @@
-"""The Engine: inference + executive for one program, as pure functions of explicit state."""
+"""The Engine: inference + executive for one program, as pure functions of explicit state
+(program, state, percepts, and the outcomes of the previous cycle's actions)."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
-from .errors import GoalError
-from .executive import Executive
+from .errors import GoalError, LangError
+from .executive import Executive, ImpasseHandler
 from .explanation import Decision
-from .goals import GoalEntry, parse_goal
+from .extend import extend_program
+from .goals import GoalEntry, enumerable, parse_goal
 from .inference import Inference, InferStats
 from .intake import PerceptCache, frame_of
+from .outcomes import as_outcomes
+from .planning.rogue import RoguePlanner
 from .program import Program
+from .scs.state import model_of
+from .solving.solver import MeansEndsSolver
 from .state import EngineState
-from .store import BeliefSet, PerceptIndex, store_of
+from .store import BeliefSet, FactStore, PerceptIndex, store_of
 from .terms import Percept
 from .tracker import check_frame
 
@@ -32,31 +38,58 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
+SOLVERS: dict[str, type] = {"means-ends": MeansEndsSolver, "rogue": RoguePlanner}
+"""Impasse handlers by name: seed 000's means-ends problem solver and learner, seed 003's
+ROGUE planner (agents/lang/planning). A handler may also offer ``known(state, store)`` (its
+own facts, added to the beliefs the walk judges goals by) and ``finish(decision, state)``
+(its word on the decision, after the walk)."""
+
+
 class Engine:
     """Runs a Program cycle by cycle. Holds compiled program data and what inference carries
     from cycle to cycle (``Inference``: last cycle's percept relations, facts and derivation
     counts), which only saves work: every result is exactly what a fresh Engine would give
-    (docs/language.md, Performance)."""
+    (docs/language.md, Performance).
+    ``solver``: what answers an impasse, a name in SOLVERS (default: the means-ends problem
+    solver), an ImpasseHandler, or None (an impasse stays an impasse)."""
 
-    def __init__(self, program: Program):
+    def __init__(self, program: Program, solver: ImpasseHandler | str | None = "means-ends"):
         self.program = program
+        if isinstance(solver, str) and solver not in SOLVERS:
+            raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(SOLVERS)}")
+        self.solver = SOLVERS[solver]() if isinstance(solver, str) else solver
         self.inference = Inference(program)
-        self.executive = Executive(program)
+        self.executive = Executive(program, self.solver)
         self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
         self._percepts = PerceptCache(self._checked)  # and the Percepts made from them
+        self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------
-    def initial_state(self) -> EngineState:
-        """Program goals with priorities 1..n in file order, ids p1..pn."""
+    def initial_state(self, seed: int = 0, learned: tuple[str, ...] = ()) -> EngineState:
+        """Program goals with priorities 1..n in file order, ids p1..pn; ``seed`` for the
+        agent's nondeterministic choices; ``learned``: skill clauses (text) to start from."""
         goals = tuple(GoalEntry(f"p{i + 1}", g.literal, i + 1, i, "program")
                       for i, g in enumerate(self.program.goals))
-        return EngineState(goals, (), len(goals), 0)
+        state = EngineState(goals, (), len(goals), 0, seed=seed, learned=tuple(learned))
+        self.executive_for(state)   # a bad learned clause is refused now, not mid-run
+        return state
+
+    def executive_for(self, state: EngineState) -> Executive:
+        """The executive of the program extended by the state's learned skills (cached)."""
+        ex = self._extended.get(state.learned)
+        if ex is None:
+            ex = Executive(extend_program(self.program, state.learned), self.solver)
+            self._extended[state.learned] = ex
+        return ex
 
     def add_goal(self, state: EngineState, goal: str, priority: int | None = None,
                  goal_id: str | None = None) -> EngineState:
         """Add ``goal`` (text such as ``(package-delivered PACKET2)``); it ranks after every goal
         with priority <= ``priority`` (default: last). Raises GoalError."""
         lit = parse_goal(goal, self.program)
+        why = enumerable(lit, self.program)
+        if why:
+            raise GoalError(f"goal {lit}: {why}")
         if priority is None:
             priority = max((e.priority for e in state.goals), default=0) + 1
         if not isinstance(priority, int) or isinstance(priority, bool):
@@ -87,23 +120,29 @@ class Engine:
         changed, derivations computed, concepts changed (for tests and bench)."""
         return self.inference.last_stats
 
-    def infer(self, percepts: Iterable) -> BeliefSet:
+    def infer(self, percepts: Iterable, model: Iterable = ()) -> BeliefSet:
         """Every concept instance that holds for this cycle's percepts (neutral lists as they
-        come from the bus, Percepts, or a PerceptIndex). Raises LangError naming a bad
-        percept."""
-        beliefs = self.inference.beliefs(percepts)
+        come from the bus, Percepts, or a PerceptIndex; LangError names a bad one) and the
+        agent's world model (``model``: facts as neutral lists or tuples, asserted by SCS
+        bodies; in the processes they come back with the world state, docs/bus.md "Agent
+        memory")."""
+        beliefs = self.inference.beliefs(percepts, model_of(model))
         self.inference.frame = None  # hold no percept list past the call (fewer GC passes)
         return beliefs
 
-    def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable):
-        """The executive step: (Decision, next EngineState)."""
-        return self.executive.decide(state, self._index(percepts), store_of(beliefs))
+    def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
+               outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
+        """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
+        on the previous cycle's actions (Outcome values or neutral dicts)."""
+        return self._decide(state, self._index(percepts), store_of(beliefs), outcomes)
 
-    def cycle(self, state: EngineState, percepts: Iterable) -> CycleResult:
-        """infer + decide on the same percepts."""
-        beliefs = self.inference.beliefs(percepts)
+    def cycle(self, state: EngineState, percepts: Iterable,
+              outcomes: Iterable = ()) -> CycleResult:
+        """infer + decide on the same percepts; the state's world model (facts asserted by
+        SCS bodies in earlier cycles) joins inference as base facts."""
+        beliefs = self.inference.beliefs(percepts, state.scs.model)
         index, self.inference.frame = self.inference.frame.index, None
-        decision, new_state = self.executive.decide(state, index, beliefs.store)
+        decision, new_state = self._decide(state, index, beliefs.store, outcomes)
         return CycleResult(beliefs, decision, new_state)
 
     def _index(self, percepts: Iterable) -> PerceptIndex:
@@ -117,4 +156,14 @@ class Engine:
         else:
             self._checked.clear()
         return frame.index
+
+    def _decide(self, state: EngineState, index: PerceptIndex, store: FactStore,
+                outcomes: Iterable) -> tuple[Decision, EngineState]:
+        known = getattr(self.solver, "known", None)
+        if known is not None:
+            store = known(state, store)
+        decision, new_state = self.executive_for(state).decide(state, index, store,
+                                                               as_outcomes(outcomes))
+        finish = getattr(self.solver, "finish", None)
+        return (decision, new_state) if finish is None else finish(decision, new_state)
 

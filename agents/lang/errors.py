@@ -24,12 +24,20 @@ class LangError(Exception):
     """Root of every error raised by agents.lang."""
 
 
+SHOWN_DIAGNOSTICS = 200
+"""At most this many diagnostics are written in a ProgramError's message; the rest are counted."""
+
+
 class ProgramError(LangError):
-    """A program (or percept text) is invalid; carries every diagnostic found, all of them."""
+    """A program (or percept text) is invalid; carries every diagnostic found, all of them
+    (its message shows the first SHOWN_DIAGNOSTICS and counts the others)."""
 
     def __init__(self, diagnostics: list[Diagnostic]):
         self.diagnostics = list(diagnostics)
-        super().__init__("\n".join(str(d) for d in self.diagnostics))
+        lines = [str(d) for d in self.diagnostics[:SHOWN_DIAGNOSTICS]]
+        if len(self.diagnostics) > SHOWN_DIAGNOSTICS:
+            lines.append(f"... and {len(self.diagnostics) - SHOWN_DIAGNOSTICS} more")
+        super().__init__("\n".join(lines))
 
     @property
     def errors(self) -> list[Diagnostic]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import StrEnum
+from typing import Any, Protocol
 
 from .terms import Action, fmt
 
@@ -16,6 +17,7 @@ class GoalStatus(StrEnum):
     ACTIVE = "active"         # this goal's skill path acts this cycle
     SUSPENDED = "suspended"   # unsatisfied, has a remembered path, a more important goal acts
     IMPASSE = "impasse"       # unsatisfied and no executable skill path exists
+    FAILED = "failed"         # given up on: every alternative failed (the reason in the note)
     PENDING = "pending"       # unsatisfied, not reached this cycle
 
 
@@ -41,7 +43,8 @@ class PathStep:
     skill: str      # e.g. at-address#2
     where: str      # file:line:col of the skill
     bindings: tuple  # ((var, value), ...)
-    mode: str       # "continued" (previous path kept) or "entered"
+    mode: str       # "continued" (kept from last cycle), "resumed" (kept after a suspension,
+                    # every :start holding again) or "entered"
 
     def to_dict(self) -> dict:
         return {"goal": self.goal, "skill": self.skill, "where": self.where,
@@ -78,14 +81,31 @@ class GoalPath:
                 "resources": list(self.resources), "parallel": self.parallel}
 
 
+class Section(Protocol):
+    """A mechanism's part of a decision (the problem solver's goal stacks, SCS threads, a
+    plan): plain data for the bus and readable lines for people."""
+
+    name: str
+
+    def to_dict(self) -> dict[str, Any]: ...
+
+    def lines(self) -> list[str]: ...
+
+
 @dataclass(frozen=True, slots=True)
 class Decision:
-    """One cycle's executive decision. ``actions`` is the cycle's output."""
+    """One cycle's executive decision. ``actions`` is the cycle's output; ``sections`` hold
+    what each mechanism that took part has to say (keyed by ``Section.name`` in to_dict)."""
 
     cycle: int
     goals: tuple[GoalReport, ...]
     paths: tuple[GoalPath, ...] = ()
     why: tuple[PassOver, ...] = field(default=())
+    sections: tuple[Section, ...] = field(default=())
+
+    def section(self, name: str) -> Section | None:
+        """The section a mechanism called ``name`` added this cycle, if any."""
+        return next((s for s in self.sections if s.name == name), None)
 
     @property
     def actions(self) -> tuple[Action, ...]:
@@ -107,7 +127,8 @@ class Decision:
                 "resources": list(self.paths[0].resources) if self.paths else [],
                 "actions": [a.to_list() for a in self.actions],
                 "parallel": [p.to_dict() for p in self.paths[1:]],
-                "why": [w.to_dict() for w in self.why]}
+                "why": [w.to_dict() for w in self.why],
+                **{s.name: s.to_dict() for s in self.sections}}
 
     def explain(self) -> str:
         """Human-readable explanation (format documented in docs/language.md)."""
@@ -125,6 +146,8 @@ class Decision:
             lines.append("  actions: " + (" ".join(str(a) for a in p.actions) or "none"))
         if not self.paths:
             lines.append("path: none (no goal acts this cycle)")
+        for section in self.sections:
+            lines += section.lines()
         if self.why:
             lines.append("passed over:")
             for w in self.why:

@@ -8,8 +8,8 @@ Instances of a goal with variables, e.g. ``(at-desired-speed ?any)`` ("every ins
 clause of the goal's concept, the clause head is unified with the goal and the clause's
 ``:percepts`` are matched against this cycle's percepts; each match fixes the goal variables that
 the head takes from percepts. The distinct results are the instances; the goal is satisfied when
-every instance holds. Variables no percept fixes stay variables and are existential (some belief
-must match). A clause without ``:percepts`` contributes the goal itself (existential).
+every instance holds. A goal variable that some clause of its concept does not take from its
+:percepts could not mean "every instance", so such a goal is refused (``enumerable``).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .errors import GoalError
+from .limits import MAX_GOAL_CHARS, shorten
 from .matcher import binding_key, holds, solve, unify_head
 from .program import Program
 from .sexpr import Atom, SList, read
@@ -46,11 +47,14 @@ def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
 
 def parse_goal(text: str, program: Program | None = None) -> Literal:
     """Read a goal such as ``(package-delivered PACKET2)``; check concept and arity if given a
-    program. Raises GoalError with the reason."""
+    program. Raises GoalError with the reason (and line:col for a reading error); a text over
+    MAX_GOAL_CHARS is refused before it is read."""
+    if len(text) > MAX_GOAL_CHARS:
+        raise GoalError(f"goal {shorten(text)!r}: longer than {MAX_GOAL_CHARS} characters")
     forms, diags = read(text, "<goal>")
     errors = [d for d in diags if d.severity == "error"]
     if errors:
-        raise GoalError(f"goal {text!r}: {errors[0].message}")
+        raise GoalError(f"goal {text!r}: {errors[0].line}:{errors[0].col}: {errors[0].message}")
     if len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:
         raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)")
     items = forms[0].items
@@ -90,6 +94,24 @@ def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Liter
     return [found[k] for k in sorted(found)]
 
 
+def enumerable(goal: Literal, program: Program) -> str:
+    """"" if every instance of ``goal`` can be found from percepts (see the module doc), else
+    why not: a goal variable that a clause of its concept binds only through :relations."""
+    for i, arg in enumerate(goal.args):
+        if not isinstance(arg, Var):
+            continue
+        for clause in program.concepts.get(goal.pred, ()):
+            if len(clause.head.args) != len(goal.args):
+                continue  # an arity mismatch, reported by the checker
+            head = clause.head.args[i]
+            if isinstance(head, Var) and not any(head in p.variables() for p in clause.percepts):
+                return (f"variable {arg} cannot mean every instance: clause "
+                        f"{goal.pred}#{clause.index} takes ?{head.name} from no percept; write "
+                        f"the goal with a constant there, or give the concept a :percepts "
+                        f"pattern for it")
+    return ""
+
+
 def satisfied(inst: Literal, store: FactStore) -> bool:
     """True if a belief matches the instance (remaining variables existential)."""
     return holds(inst, {}, store)
@@ -99,4 +121,5 @@ def _key(lit: Literal) -> tuple:
     return tuple((1, a.name) if isinstance(a, Var) else (0, sort_key(a)) for a in lit.args)
 
 
-__all__ = ["GoalEntry", "ordered", "parse_goal", "instances", "satisfied", "binding_key"]
+__all__ = ["GoalEntry", "ordered", "parse_goal", "instances", "enumerable", "satisfied",
+           "binding_key"]

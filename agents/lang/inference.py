@@ -22,6 +22,7 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from .base import BASE, BaseFacts, base_rule
 from .codegen import Estimator, variants
 from .columns import EMPTY, summarize_values
 from .intake import Frame, PerceptCache, frame_of
@@ -70,9 +71,12 @@ class Stratum:
 
 
 def build_strata(program: Program) -> list[Stratum]:
+    """The program's strata, each concept with its clauses and its base rule."""
     out = []
     for preds, recursive in program.strata:
-        rules = tuple((r, variants(r)) for p in preds for r in map(Rule.of, program.concepts[p]))
+        rules = [*(r for p in preds for r in map(Rule.of, program.concepts[p])),
+                 *(base_rule(p, program.arity[p]) for p in preds)]
+        rules = tuple((r, variants(r)) for r in rules)
         reads = frozenset(rel for r, _ in rules for rel in r.reads()) - set(preds)
         out.append(Stratum(tuple(preds), recursive, rules, reads))
     return out
@@ -96,10 +100,12 @@ class Inference:
 
     def forget(self) -> None:
         """Drop what was carried over, so that the next run evaluates every stratum."""
-        rels = {e.rel for s in self.plan for r, _ in s.rules for e in r.elems if e.percept}
+        rels = {e.rel for s in self.plan for r, _ in s.rules for e in r.elems
+                if e.percept and e.rel[0] != BASE}
         consts = _constants(self.plan)
         self.tracker = PerceptTracker(rels, summarize_values(consts) if consts else EMPTY)
         self.percepts = PerceptCache(self.tracker.cols)
+        self.base = BaseFacts(self.program.concepts)
         self.edb = FactStore()
         self.idb = FactStore()
         self.counts: dict[str, dict] = {}
@@ -108,27 +114,31 @@ class Inference:
         self._beliefs: set = set()
         self._result: BeliefSet | None = None
 
-    def run(self, percepts: Iterable) -> FactStore:
+    def run(self, percepts: Iterable, base: tuple[tuple, ...] = ()) -> FactStore:
         """Every concept instance that holds for ``percepts`` (neutral lists, Percepts, a
-        PerceptIndex or a Frame), as the live FactStore (valid until the next run).
+        PerceptIndex or a Frame) and the ``base`` facts ((pred, arg, ...) tuples: the agent's
+        world model, asserted by SCS bodies, seed 002; see ``base.py``), as the live FactStore
+        (valid until the next run).
 
         The garbage collector is paused meanwhile (and left as it was): a run allocates in
         bursts (a column per attribute, a tuple per changed object), and each burst would start
         a collection walking every young object, this cycle's percept lists among them; a run
         makes no reference cycles, so nothing waits for the collector."""
         if not gc.isenabled():
-            return self._run(percepts)
+            return self._run(percepts, base)
         gc.disable()
         try:
-            return self._run(percepts)
+            return self._run(percepts, base)
         finally:
             gc.enable()
 
-    def _run(self, percepts: Iterable) -> FactStore:
+    def _run(self, percepts: Iterable, base: tuple[tuple, ...]) -> FactStore:
         frame = self.frame = frame_of(percepts)
-        change = self.tracker.update(frame, self.edb)
+        summary = self.base.summary_of(base)
+        change = self.tracker.update(frame, self.edb, summary)
         frame.cache = self.percepts
         deltas = change.deltas
+        self.base.update(base, self.edb, self.idb, deltas)
         moved = sum(len(d.dels) + len(d.ins) for d in deltas.values())
         if self.fresh or (change.was_mixed and not change.mixed) or self._most(moved):
             self._apply(deltas)
@@ -149,6 +159,7 @@ class Inference:
         evaluated, changed = set(), []
         for changes in passes:
             self._apply(changes)
+            changed += [(r, d) for r, d in changes.items() if r.__class__ is str]
             for k, stratum in enumerate(self.plan):
                 if stratum.reads.isdisjoint(changes):
                     continue
@@ -176,13 +187,17 @@ class Inference:
         return held > _SCRATCH_ABOVE and moved > held
 
     def _apply(self, deltas: dict) -> None:
+        """Apply the changes of percept and base relations (asserted-only predicates: facts)."""
         for rel, d in deltas.items():
-            self.edb.delete(rel, d.dels)
-            self.edb.insert(rel, d.ins)
+            store = self.idb if rel.__class__ is str else self.edb
+            store.delete(rel, d.dels)
+            store.insert(rel, d.ins)
 
     def _scratch(self) -> None:
         """Evaluate every stratum from the percept relations alone."""
         idb = self.idb = FactStore()
+        for pred, facts in self.base.plain().items():
+            idb.insert(pred, list(facts))
         self.counts = {}
         est = Estimator(self.edb, idb)
         stores = (idb, self.edb)
@@ -211,10 +226,10 @@ class Inference:
                                      derivations + m.derivations,
                                      tuple(sorted(p for p, ts in idb.facts.items() if ts)))
 
-    def beliefs(self, percepts: Iterable) -> BeliefSet:
+    def beliefs(self, percepts: Iterable, base: tuple[tuple, ...] = ()) -> BeliefSet:
         """``run`` as a frozenset of Belief carrying its FactStore; the same object as last
         cycle's when no fact changed."""
-        self.run(percepts)
+        self.run(percepts, base)
         if self._result is None:
             self._result = BeliefSet(self._beliefs, self.idb)
         return self._result

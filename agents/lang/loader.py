@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import json
+import codecs
 from pathlib import Path
 
 from .checks import build_program
 from .errors import Diagnostic, LangError, ProgramError
+from .limits import MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json, shorten
 from .parser import Parts, parse_forms
 from .program import Program
 from .sexpr import Atom, SList, read, to_text
@@ -14,12 +15,39 @@ from .terms import Percept, is_const
 
 
 def read_text(path: str | Path) -> str:
-    """Contents of ``path`` (UTF-8); raises ProgramError naming the file if it cannot be read."""
+    """Contents of ``path``; raises ProgramError naming the file if it cannot be read, is over
+    MAX_TEXT_CHARS bytes, or is not UTF-8 (``decode_text``)."""
     try:
-        return Path(path).read_text(encoding="utf-8")
+        with open(path, "rb") as f:
+            data = f.read(MAX_TEXT_CHARS + 1)
     except OSError as exc:
         raise ProgramError([Diagnostic(str(path), 0, 0, f"cannot read file: {exc.strerror}")]) \
             from None
+    return decode_text(data, str(path))
+
+
+def decode_text(data: bytes, source: str) -> str:
+    """``data`` as UTF-8 text (a leading byte-order mark skipped); raises ProgramError when it
+    is over MAX_TEXT_CHARS bytes or holds a byte that is not UTF-8 (with that byte's
+    line:col)."""
+    if len(data) > MAX_TEXT_CHARS:
+        raise ProgramError([Diagnostic(source, 0, 0, f"file is larger than the limit of "
+                                                     f"{MAX_TEXT_CHARS} bytes")])
+    if data.startswith(codecs.BOM_UTF8):
+        data = data[len(codecs.BOM_UTF8):]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ProgramError([_not_utf8(source, data, exc)]) from None
+
+
+def _not_utf8(source: str, data: bytes, exc: UnicodeDecodeError) -> Diagnostic:
+    """Where the first byte that is not UTF-8 is, as line:col (col counts characters)."""
+    start = data.rfind(b"\n", 0, exc.start) + 1
+    line = data.count(b"\n", 0, exc.start) + 1
+    col = len(data[start:exc.start].decode("utf-8", errors="replace")) + 1
+    return Diagnostic(source, line, col, f"not UTF-8: byte 0x{data[exc.start]:02x} "
+                      f"({exc.reason}); save the file as UTF-8")
 
 
 def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str]) -> Program:
@@ -27,6 +55,9 @@ def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str])
     parts = Parts()
     for t, src in ((text, source), *more):
         forms, diags = read(t, src)
+        if not forms and not diags:
+            diags.append(Diagnostic(src, 1, 1, "the file holds no forms (empty program)",
+                                    "warning"))
         parts.diags.extend(diags)
         parts.sources.append(src)
         parse_forms(forms, src, parts)
@@ -56,6 +87,8 @@ def parse_percepts(text: str, source: str = "<percepts>") -> tuple[Percept, ...]
             nodes.append(f)
     out = []
     for n in nodes:
+        if len(diags) > MAX_DIAGNOSTICS:
+            break
         p = _percept(n, source, diags)
         if p is not None:
             out.append(p)
@@ -80,16 +113,13 @@ def _percept(node: object, source: str, diags: list[Diagnostic]) -> Percept | No
     try:
         return Percept.from_list(vals)
     except LangError as exc:
-        bad(str(exc))
+        bad(shorten(str(exc), 300))
         return None
 
 
 def _json_percepts(text: str, source: str) -> tuple[Percept, ...]:
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise ProgramError([Diagnostic(source, exc.lineno, exc.colno, f"bad JSON: {exc.msg}")]) \
-            from None
+    """JSON neutral lists, read within the limits (limits.read_json: no NaN or infinity)."""
+    data = read_json(text, source)
     if isinstance(data, dict):
         data = data.get("percepts", [])
     out, diags = [], []
@@ -97,7 +127,9 @@ def _json_percepts(text: str, source: str) -> tuple[Percept, ...]:
         try:
             out.append(Percept.from_list(item))
         except LangError as exc:
-            diags.append(Diagnostic(source, 1, 1, f"item {i}: {exc}"))
+            diags.append(Diagnostic(source, 1, 1, f"item {i}: {shorten(str(exc), 300)}"))
+            if len(diags) >= MAX_DIAGNOSTICS:
+                break
     if diags:
         raise ProgramError(diags)
     return tuple(out)

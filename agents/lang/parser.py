@@ -10,8 +10,11 @@ from __future__ import annotations
 
 from .arith import OPS
 from .errors import Diagnostic
+from .limits import MAX_DIAGNOSTICS
 from .pieces import PieceParser, items_of, op_name, suggest
+from .planning.reader import PLANNING_SECTIONS
 from .program import ConceptClause, GoalSpec, Skill
+from .scs.reader import BodyReader
 from .sexpr import Atom, SList, to_text
 from .terms import Literal, Loc, Test
 
@@ -32,6 +35,9 @@ class Parts:
         self.resource_locs: dict[str, Loc] = {}
         self.diags: list[Diagnostic] = []
         self.sources: list[str] = []
+        # a mechanism's own sections (SECTIONS): name -> items, each with define(checker)
+        # and check(checker), called by agents/lang/checks.py
+        self.sections: dict[str, list] = {}
 
 
 class Parser(PieceParser):
@@ -154,19 +160,21 @@ class Parser(PieceParser):
         if len(has) > 1:
             self.err(node, f"skill {head} gives {' and '.join(has)}; give exactly one")
         elif not has:
-            self.err(node, f"skill {head} needs :actions (primitive) or :subgoals (nonprimitive)")
-        if ":body" in f:
-            self.err(f[":body"], "skill :body (seed 002 SCS constructs) is not supported yet; "
-                     "use :subgoals or :actions")
+            self.err(node, f"skill {head} needs :actions (primitive), :subgoals (nonprimitive) "
+                     "or :body (SCS constructs, seed 002)")
         start = self.conditions(f.get(":start")) + [Test(t.expr, t.loc)
                                                     for t in self.tests(f.get(":tests"))]
         subgoals = tuple(x for x in (self.literal(s, "subgoal", allow_not=False)
                                      for s in items_of(f.get(":subgoals"))) if x is not None)
         actions = tuple(x for x in (self.action(a) for a in items_of(f.get(":actions")))
                         if x is not None)
+        before = len(self.parts.diags)
+        body = BodyReader(self).step(f[":body"]) if ":body" in f else None
+        if ":body" in f and body is None and len(self.parts.diags) == before:
+            self.err(f[":body"], f"skill {head}: :body could not be read")
         self.parts.skills.append(Skill(
             head, self.patterns(f.get(":percepts")), tuple(start),
-            tuple(self.conditions(f.get(":requires"))), subgoals, actions, None, self.loc(node)))
+            tuple(self.conditions(f.get(":requires"))), subgoals, actions, body, self.loc(node)))
 
     # -- pieces ----------------------------------------------------------------------------
     def literal(self, node: object, what: str, allow_not: bool = True) -> Literal | None:
@@ -220,12 +228,19 @@ SECTIONS = {
     "skills": lambda p, n: p.section_clauses(n, "skills"),
     "goals": Parser.goals_section,
     "resources": Parser.resources_section,
+    **PLANNING_SECTIONS,   # (operators ...), (requests ...), (control-rules ...): seed 003
 }
 
 
 def parse_forms(forms: list, source: str, parts: Parts) -> None:
-    """Add every top-level form of ``source`` to ``parts``."""
+    """Add every top-level form of ``source`` to ``parts``; stop after MAX_DIAGNOSTICS
+    problems of this source (limits.py), saying where."""
     p = Parser(source, parts)
+    before = len(parts.diags)
     for f in forms:
+        if len(parts.diags) - before > MAX_DIAGNOSTICS:
+            p.err(f, f"more than {MAX_DIAGNOSTICS} problems; the rest of {source} is not "
+                  "checked")
+            return
         p.form(f)
 

@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from .errors import Diagnostic
 from .terms import ActionTemplate, Literal, Loc, PerceptPattern, Test, Var
+
+if TYPE_CHECKING:
+    from .scs.syntax import Step
 
 
 @dataclass(frozen=True, slots=True)
@@ -29,8 +33,9 @@ class ConceptClause:
 class Skill:
     """A skill clause indexed by the concept (goal) it achieves.
 
-    Exactly one of ``actions`` (primitive), ``subgoals`` (nonprimitive) or, later, ``body`` (SCS
-    constructs of seed 002) is given; the executive dispatches on ``kind``.
+    Exactly one of ``actions`` (primitive), ``subgoals`` (nonprimitive) or ``body`` (a step tree
+    of SCS constructs, seed 002: agents/lang/scs/syntax.py) is given; the path finder asks the
+    runner of ``kind`` (agents/lang/bodies.py).
     """
 
     head: Literal
@@ -39,7 +44,7 @@ class Skill:
     requires: tuple = ()  # Literal | Test, checked on entry and while it continues
     subgoals: tuple[Literal, ...] = ()
     actions: tuple[ActionTemplate, ...] = ()
-    body: object = None  # reserved for seed 002 (SCS) constructs
+    body: Step | None = None  # SCS step tree (seed 002, Appendix C)
     loc: Loc | None = None
     index: int = 1  # 1-based clause number among skills for this head predicate
     number: int = 0  # 0-based position among all skills (stable id inside a program)
@@ -81,6 +86,7 @@ class Program:
     warnings: tuple[Diagnostic, ...] = ()
     sources: tuple[str, ...] = ()
     skills_by_pred: dict[str, tuple[Skill, ...]] = field(default_factory=dict)
+    sections: dict[str, tuple] = field(default_factory=dict)  # a mechanism's own sections
 
     def skills_for(self, pred: str) -> tuple[Skill, ...]:
         """Skills whose head is ``pred``, in program order."""

@@ -47,8 +47,9 @@ class PerceptTracker:
         self.constants = constants
         self.summary = constants
 
-    def update(self, frame: Frame, edb: FactStore) -> PerceptChange:
-        """The changes from last cycle's percepts (as held in ``edb``) to ``frame``'s."""
+    def update(self, frame: Frame, edb: FactStore, extra: Summary = EMPTY) -> PerceptChange:
+        """The changes from last cycle's percepts (as held in ``edb``) to ``frame``'s;
+        ``extra``: the values of other facts joining inference (the world model)."""
         deltas: dict = {}
         sums_before = dict(self.sums)
         news = {t: read_cols(rows, self.cols.get(t)) for t, rows in frame.groups.items()}
@@ -70,11 +71,13 @@ class PerceptTracker:
             if t not in frame.groups:
                 self.cols.pop(t, None)
                 for rel in self.rels_of[t]:
-                    _diff(rel, set(), edb, deltas)
+                    diff_relation(rel, set(), edb, deltas)
                 for a in (ID, *self.read[t]):
                     self.sums.pop((t, a), None)
         for t in [t for t in self.cols if t not in frame.groups]:
             del self.cols[t]
+        if extra is not self.sums.get(None, EMPTY):
+            self.sums[None] = extra
         was = self.summary
         if self.sums != sums_before:
             now = self.constants
@@ -91,7 +94,8 @@ class PerceptTracker:
         if old is None:
             for rel in rels:
                 attrs = rel[1]
-                _diff(rel, set(_rows_of(new, attrs)) if _has(new, attrs) else set(), edb, deltas)
+                tuples = set(_rows_of(new, attrs)) if _has(new, attrs) else set()
+                diff_relation(rel, tuples, edb, deltas)
             self._summaries(t, new, self.read[t])
             return
         if new.same_ids:
@@ -142,7 +146,7 @@ class PerceptTracker:
         for rel in self.rels_of[t]:
             attrs = rel[1]
             tuples = {(i, *(m[a] for a in attrs)) for i, m in maps if all(a in m for a in attrs)}
-            _diff(rel, tuples, edb, deltas)
+            diff_relation(rel, tuples, edb, deltas)
         self.sums[(t, ID)] = summarize_values([i for i, _ in maps])
         for a in self.read[t]:
             self.sums[(t, a)] = summarize_values([m[a] for _, m in maps if a in m])
@@ -208,8 +212,8 @@ def _rows_at(c: Cols, attrs: tuple[str, ...], positions: list[int]) -> list:
     return list(zip(pick(c.ids), *(pick(c.vals[a]) for a in attrs), strict=True))
 
 
-def _diff(rel: tuple, new: set, edb: FactStore, deltas: dict) -> None:
-    """The strict change from ``rel``'s tuples in ``edb`` to ``new``."""
+def diff_relation(rel: object, new: set, edb: FactStore, deltas: dict) -> None:
+    """Put in ``deltas`` the strict change from ``rel``'s tuples in ``edb`` to ``new``."""
     cur = edb.get(rel)
     if not cur:
         if new:

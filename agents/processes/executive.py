@@ -1,22 +1,37 @@
 """The executive process of one agent: percepts, beliefs and goal list of t in; actions and
 intention of t out.
 
-    python -m agents.processes.executive --run RUN --agent ME --program FILE [bus flags]
+    python -m agents.processes.executive --run RUN --agent ME --program FILE
+        [--state FILE] [--learned FILE] [--learned-out FILE] [--no-solver]
+        [--mechanism NAME] [bus flags]
 
 Each cycle it brings the engine's user goals in line with the goal list the goal-entry
 process published for t (posted, cancelled, reprioritised goals), then takes one executive
 step: the first unsatisfied goal of the prioritised list gets a skill path, the previous
 path preferred (seed 000, Adding Goal Priorities). The intention is Decision.to_dict(): the
-goal list with statuses, the skill path with bindings, the actions and why. The engine state
-(the path) lives here; the goals live in the goal-entry process, so a restart loses none.
+goal list with statuses, the skill path with bindings, the actions and why (and the problem
+solver's goal stacks). The goals live in the goal-entry process; the engine state (paths, goal
+stacks, learned skills, SCS threads) lives here and, with --state, in a file written after
+every cycle and read back at start, so a restart loses none of it (agents/processes/persist.py).
+The SCS state (body threads, discount factors, world model) also goes out with the actions as
+the agent's memory and comes back through the world with the next percepts, which is how the
+world model reaches the inference process (docs/bus.md, "Agent memory"). --learned starts
+from skills learned in an earlier run; --learned-out writes the skills as they are learned;
+--no-solver runs the executive alone (an impasse stays an impasse); --mechanism names
+what answers an impasse (agents.lang.engine.SOLVERS: means-ends, the default; rogue, the
+planner of seed 003, whose tail-plans, head-plan and monitoring live in the same state).
 """
 
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 from typing import Any
 
+import click
+
 from agents.processes.common import agent_options, run_stage, setup_logging
+from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
 from bus.messages import Actions, Envelope, Intention, Message
@@ -25,11 +40,13 @@ from bus.messages import Actions, Envelope, Intention, Message
 class Executive:
     """The engine state of one agent plus the user goals it was last given."""
 
-    def __init__(self, engine: Any, log: logging.Logger) -> None:
+    def __init__(self, engine: Any, log: logging.Logger, state: Any = None) -> None:
         self.engine = engine
         self.log = log
-        self.state = engine.initial_state()
-        self.user: dict[str, tuple[str, int]] = {}  # goal id -> (goal text, priority)
+        self.state = engine.initial_state() if state is None else state
+        # goal id -> (goal text, priority) of the user goals the state already holds
+        self.user: dict[str, tuple[str, int]] = {e.id: (e.text, e.priority)
+                                                 for e in self.state.goals if e.origin == "user"}
         self.refused: set[str] = set()
 
     def sync_goals(self, goal_list: tuple[dict[str, Any], ...]) -> None:
@@ -56,42 +73,124 @@ class Executive:
                 continue
             self.user[goal_id] = (text, priority)
 
-    def decide(self, percepts: tuple, belief_lists: tuple) -> Any:
-        """One executive step; returns the engine's Decision."""
-        from agents.lang import Belief
+    def remember(self, memory: dict[str, Any]) -> None:
+        """Take the SCS state from the memory the world handed back (a malformed one is
+        logged and ignored: the executive goes on with its own)."""
+        from agents.lang import LangError
+        from agents.lang.scs.state import from_memory
+
+        if not memory:
+            return
+        try:
+            self.state = replace(self.state, scs=from_memory(memory))
+        except LangError as exc:
+            self.log.warning("agent memory dropped: %s", exc)
+
+    def memory(self) -> dict[str, Any]:
+        """What goes out with the actions, for the world to hand back next cycle."""
+        from agents.lang.scs.state import ScsState, to_memory
+
+        return to_memory(self.state.scs) if self.state.scs != ScsState() else {}
+
+    def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
+        """One executive step; returns the engine's Decision. A malformed outcome is logged
+        and left out, never a crash (the world's outcomes are checked by the engine)."""
+        from agents.lang import Belief, LangError
+        from agents.lang.outcomes import as_outcomes
 
         beliefs = frozenset(Belief.from_list(b) for b in belief_lists)
-        decision, self.state = self.engine.decide(self.state, percepts, beliefs)
+        good = []
+        for o in outcomes:
+            try:
+                good += as_outcomes([o])
+            except LangError as exc:
+                self.log.warning("outcome dropped: %s", exc)
+        decision, self.state = self.engine.decide(self.state, percepts, beliefs, good)
         return decision
 
 
-def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger):
-    """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)]."""
+def make_executive(program_path: str, log: logging.Logger, state: Any = None,
+                   learned: str | None = None, solver: bool = True,
+                   mechanism: str = "means-ends") -> Executive:
+    """The executive of ``program_path``: from ``state`` (read back after a restart) if
+    given, else fresh, starting from the skills in the learned file ``learned``. Raises
+    LangError (a ProgramError naming file:line:col) for a bad program or learned file."""
     from agents.lang import Engine, load_program
+    from agents.lang.loader import read_text
+    from agents.lang.solving.learned import read_learned
 
-    executive = Executive(Engine(load_program(program_path)), log)
+    program = load_program(program_path)
+    engine = Engine(program, solver=mechanism if solver else None)
+    if state is None and learned:
+        state = engine.initial_state(learned=read_learned(program, read_text(learned), learned))
+    return Executive(engine, log, state)
+
+
+def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger,
+              state_path: str | None = None, learned: str | None = None,
+              learned_out: str | None = None, solver: bool = True,
+              mechanism: str = "means-ends"):
+    """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)]."""
+    saver = StateFile(state_path, log) if state_path else None
+    saved = saver.load() if saver else None
+    executive = make_executive(program_path, log, saved.state if saved else None, learned,
+                               solver, mechanism)
+    out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
 
-    def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        executive.sync_goals(inputs[g_key].goals)
-        decision = executive.decide(inputs[p_key].percepts, inputs[b_key].beliefs)
-        actions = tuple(a.to_list() for a in decision.actions)
+    def outputs(cycle: int, intention: dict, actions: list) -> list[tuple[str, Message]]:
         env = Envelope.now(run, cycle, process)
-        return [(keys.intention(run, agent), Intention(env, agent, decision.to_dict())),
-                (keys.actions(run, agent), Actions(env, agent, actions))]
+        return [(keys.intention(run, agent), Intention(env, agent, intention)),
+                (keys.actions(run, agent), Actions(env, agent, tuple(actions),
+                                                   executive.memory()))]
+
+    def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        if saved is not None and cycle <= saved.cycle:
+            log.info("cycle %d was decided before the restart: its outputs again", cycle)
+            return outputs(cycle, saved.intention, saved.actions)
+        executive.sync_goals(inputs[g_key].goals)
+        seen = inputs[p_key]
+        executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
+        executive.remember(seen.memory)                           # after a restart
+        decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
+        intention, actions = decision.to_dict(), [a.to_list() for a in decision.actions]
+        if saver is not None:
+            saver.save(Saved(cycle, executive.state, intention, actions))
+        if out is not None:
+            out.save(executive.state.learned)
+        return outputs(cycle, intention, actions)
 
     return step
 
 
+@click.option("--mechanism", default="means-ends", show_default=True,
+              help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
+@click.option("--no-solver", "no_solver", is_flag=True,
+              help="No means-ends problem solver: an impasse stays an impasse.")
+@click.option("--learned-out", type=click.Path(dir_okay=False),
+              help="Write the learned skills here (program syntax) whenever one is learned.")
+@click.option("--learned", type=click.Path(exists=True, dir_okay=False),
+              help="Start from the skills in this learned file (an earlier run's).")
+@click.option("--state", "state_path", type=click.Path(dir_okay=False),
+              help="Engine state file: read back at start if it exists, written after every "
+                   "cycle (so a restart keeps paths, goal stacks and learned skills).")
 @agent_options(with_program=True)
-def main(run: str, agent: str, program: str, bus_config: BusConfig) -> None:
+def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: str | None,
+         learned: str | None, learned_out: str | None, no_solver: bool,
+         mechanism: str) -> None:
     """Prioritised executive of one agent."""
+    from agents.lang import LangError
+
     process = f"{agent}.executive"
     log = setup_logging(process)
     inputs = [keys.percepts(run, agent), keys.beliefs(run, agent), keys.goal_list(run, agent)]
-    run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)],
-              make_step(run, agent, process, program, log), log)
+    try:
+        step = make_step(run, agent, process, program, log, state_path, learned, learned_out,
+                         not no_solver, mechanism)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from exc
+    run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)], step, log)
 
 
 if __name__ == "__main__":

@@ -1,23 +1,35 @@
-"""The goal-entry process's memory: user goals with their statuses, saved as JSON.
+"""The goal-entry process's memory: user goals with their statuses, as a frozen value.
 
-Pure: a GoalStore is a frozen value and every operation returns a new one; `save` and `load`
-are the only I/O. ROGUE (seed 003) takes requests asynchronously with priorities and keeps
-each task's state through suspension and resumption; here the executive reports each goal's
-status in its intention and the store mirrors it. The goal-entry process saves the store
-after every change, so a restart of any process loses no goal.
+Pure: every operation returns a new GoalStore; agents/processes/goal_file.py saves and
+recovers it. ROGUE (seed 003) takes requests asynchronously with priorities and keeps each
+task's state through suspension and resumption; here the executive reports each goal's status
+in its intention and the store mirrors it. Requests are bounded (docs/bus.md, "Goal
+requests"): a goal's length, the priority range, the live goals per agent; and the store
+keeps only the latest withdrawn goals of each agent, so it stays small.
 """
 
 from __future__ import annotations
 
-import json
-import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
-from pathlib import Path
 from typing import Any
 
+from agents.lang.limits import MAX_GOAL_CHARS, shorten
+
 STORE_VERSION = 1
+MAX_PRIORITY = 1_000_000
+"""Priorities are 1..MAX_PRIORITY (lower is more important); program goals have 1..n."""
+MAX_LIVE_GOALS = 16
+"""User goals per agent still to be achieved (pending, active, suspended, impasse: the
+executive looks for a path for each every cycle, at a cost of about 1-2 ms per goal per
+cycle); a post beyond it is refused. Achieved goals do not count: checking that one still
+holds is cheap, and an agent that has done 16 errands takes a 17th (seed 003's office
+robot serves requests all day)."""
+MAX_KEPT_WITHDRAWN = 100
+"""Cancelled and failed goals kept per agent (for `teleo goal list`); older ones are dropped."""
+MAX_ID_CHARS = 32
+"""[characters] of a goal id in a request (ids are g1, g2, ...)."""
 
 
 class GoalState(StrEnum):
@@ -26,18 +38,20 @@ class GoalState(StrEnum):
     PENDING = "pending"
     ACTIVE = "active"
     SUSPENDED = "suspended"
+    IMPASSE = "impasse"
     ACHIEVED = "achieved"
     FAILED = "failed"
     CANCELLED = "cancelled"
 
 
-# The engine's GoalStatus (docs/architecture.md) -> the user's status. An impasse is still
-# being worked on by the problem solver (seed 000, means-ends analysis), so it stays active.
+# The engine's GoalStatus (docs/architecture.md) -> the user's status, told as it is: an
+# impasse (no executable skill path; the problem solver may be working on it) is reported as
+# such, with the engine's note, and a failed goal as failed, with the reason.
 _FROM_ENGINE = {
     "satisfied": GoalState.ACHIEVED,
     "active": GoalState.ACTIVE,
     "suspended": GoalState.SUSPENDED,
-    "impasse": GoalState.ACTIVE,
+    "impasse": GoalState.IMPASSE,
     "pending": GoalState.PENDING,
     "failed": GoalState.FAILED,
 }
@@ -72,9 +86,18 @@ class GoalRecord:
                 "updated_cycle": self.updated_cycle, "note": self.note}
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> GoalRecord:
-        return cls(d["id"], d["agent"], d["goal"], int(d["priority"]), GoalState(d["status"]),
-                   int(d.get("posted_cycle", 0)), int(d.get("updated_cycle", 0)), d.get("note", ""))
+    def from_dict(cls, d: object, where: str = "goal") -> GoalRecord:
+        """Read one saved record; raises GoalStoreError naming `where` and the bad field."""
+        if not isinstance(d, dict):
+            raise GoalStoreError(f"{where}: expected an object, got {_kind(d)}")
+        status = _field(d, "status", str, where)
+        if status not in {s.value for s in GoalState}:
+            raise GoalStoreError(f"{where}: status {shorten(status)!r} is not one of "
+                                 f"{', '.join(s.value for s in GoalState)}")
+        return cls(_field(d, "id", str, where), _field(d, "agent", str, where),
+                   _field(d, "goal", str, where), _field(d, "priority", int, where),
+                   GoalState(status), _field(d, "posted_cycle", int, where, 0),
+                   _field(d, "updated_cycle", int, where, 0), _field(d, "note", str, where, ""))
 
     def brief(self) -> dict[str, Any]:
         """The GoalList entry form: {id, goal, priority, status} (docs/architecture.md)."""
@@ -89,24 +112,34 @@ class GoalStore:
     goals: tuple[GoalRecord, ...] = ()
     next_id: int = 1
     scripted_done: frozenset[int] = field(default_factory=frozenset)
+    incidents: tuple[str, ...] = ()  # what recovery from a damaged file did (goal_file.py)
 
     def get(self, goal_id: str) -> GoalRecord:
         for record in self.goals:
             if record.id == goal_id:
                 return record
-        raise GoalStoreError(f"no goal {goal_id!r} (known: {[g.id for g in self.goals]})")
+        known = [g.id for g in self.goals][-10:]
+        raise GoalStoreError(f"no goal {shorten(goal_id)!r} (latest known: {known})")
 
     def for_agent(self, agent: str | None = None) -> tuple[GoalRecord, ...]:
         return tuple(g for g in self.goals if agent is None or g.agent == agent)
 
     def post(self, agent: str, goal: str, priority: int, cycle: int,
              validate: Validator) -> tuple[GoalStore, GoalRecord]:
-        """Add a goal after the agent's program accepted it; raises GoalStoreError if refused."""
+        """Add a goal after the agent's program accepted it; raises GoalStoreError if refused
+        (too long, priority out of range, MAX_LIVE_GOALS reached, a duplicate, or the
+        program's reason)."""
+        if len(goal) > MAX_GOAL_CHARS:
+            raise GoalStoreError(f"goal {shorten(goal)!r}: longer than {MAX_GOAL_CHARS} "
+                                 "characters")
         text = " ".join(goal.split())
-        if priority < 1:
-            raise GoalStoreError(f"{text}: priority must be >= 1, got {priority}")
-        for other in self.for_agent(agent):
-            if other.goal == text and other.status not in _WITHDRAWN | {GoalState.ACHIEVED}:
+        _check_priority(text, priority)
+        live = [g for g in self.for_agent(agent) if g.status not in _WITHDRAWN]
+        if sum(g.status is not GoalState.ACHIEVED for g in live) >= MAX_LIVE_GOALS:
+            raise GoalStoreError(f"{text}: {agent} has {MAX_LIVE_GOALS} live goals, the limit; "
+                                 "cancel one first (teleo goal cancel ID)")
+        for other in live:
+            if other.goal == text and other.status is not GoalState.ACHIEVED:
                 raise GoalStoreError(f"{text}: already posted for {agent} as {other.id}")
         reason = validate(agent, text, priority)
         if reason:
@@ -125,8 +158,7 @@ class GoalStore:
     def set_priority(self, goal_id: str, priority: int, cycle: int) -> GoalStore:
         """Move a goal in the agent's goal list (lower number = more important)."""
         record = self.get(goal_id)
-        if priority < 1:
-            raise GoalStoreError(f"{goal_id}: priority must be >= 1, got {priority}")
+        _check_priority(goal_id, priority)
         if record.status in _WITHDRAWN:
             raise GoalStoreError(f"{goal_id}: is {record.status.value}, cannot reprioritise")
         return self._put(replace(record, priority=priority, updated_cycle=cycle))
@@ -138,15 +170,16 @@ class GoalStore:
     def update_from_intention(self, agent: str, decision: dict[str, Any],
                               cycle: int) -> GoalStore:
         """Mirror the statuses the executive reported in `decision` (Decision.to_dict())."""
-        reported = {g.get("id"): g.get("status") for g in decision.get("goals", ())}
+        reported = {g.get("id"): g for g in decision.get("goals", ())}
         store = self
         for record in self.for_agent(agent):
             if record.status in _WITHDRAWN or record.id not in reported:
                 continue
-            status = _FROM_ENGINE.get(str(reported[record.id]))
+            status = _FROM_ENGINE.get(str(reported[record.id].get("status")))
             if status is None or status is record.status:
                 continue
-            note = "impasse" if reported[record.id] == "impasse" else ""
+            note = str(reported[record.id].get("note", "")) \
+                if status in (GoalState.IMPASSE, GoalState.FAILED) else ""
             store = store._put(replace(record, status=status, updated_cycle=cycle, note=note))
         return store
 
@@ -154,37 +187,70 @@ class GoalStore:
         """Remember which scenario requests were applied, so a restart does not repeat them."""
         return replace(self, scripted_done=self.scripted_done | frozenset(indexes))
 
+    def noted(self, incident: str) -> GoalStore:
+        """The store with `incident` (what a recovery did) remembered for the run's summary."""
+        return replace(self, incidents=self.incidents + (incident,))
+
     def _put(self, record: GoalRecord) -> GoalStore:
         goals = tuple(record if g.id == record.id else g for g in self.goals)
-        return replace(self, goals=goals)
+        return replace(self, goals=_trimmed(goals, record.agent))
 
     def to_json(self) -> dict[str, Any]:
         return {"version": STORE_VERSION, "next_id": self.next_id,
                 "scripted_done": sorted(self.scripted_done),
-                "goals": [g.to_dict() for g in self.goals]}
+                "goals": [g.to_dict() for g in self.goals], "incidents": list(self.incidents)}
 
     @classmethod
-    def from_json(cls, doc: dict[str, Any]) -> GoalStore:
+    def from_json(cls, doc: object) -> GoalStore:
+        """Read a saved store; raises GoalStoreError saying what is wrong with its shape."""
+        if not isinstance(doc, dict):
+            raise GoalStoreError(f'expected an object {{"version": {STORE_VERSION}, "goals": '
+                                 f"[...]}}, got {_kind(doc)}")
         if doc.get("version") != STORE_VERSION:
-            raise GoalStoreError(f"goal store version: expected {STORE_VERSION}, "
-                                 f"got {doc.get('version')!r}")
-        return cls(tuple(GoalRecord.from_dict(g) for g in doc.get("goals", ())),
-                   int(doc.get("next_id", 1)), frozenset(doc.get("scripted_done", ())))
+            raise GoalStoreError(f"version: expected {STORE_VERSION}, "
+                                 f"got {shorten(repr(doc.get('version')))}")
+        goals = _field(doc, "goals", list, "store", [])
+        records = tuple(GoalRecord.from_dict(g, f"goals[{i}]") for i, g in enumerate(goals))
+        ids = [r.id for r in records]
+        if len(set(ids)) != len(ids):
+            raise GoalStoreError(f"goals: an id is used twice in {shorten(str(ids), 200)}")
+        next_id = _field(doc, "next_id", int, "store", len(records) + 1)
+        numbers = [int(i[1:]) for i in ids if i[:1] == "g" and i[1:].isdigit()]
+        if next_id <= max(numbers, default=0):
+            raise GoalStoreError(f"next_id {next_id} would give an id already used "
+                                 f"(g{max(numbers)})")
+        done = _field(doc, "scripted_done", list, "store", [])
+        incidents = _field(doc, "incidents", list, "store", [])
+        if not all(type(i) is int for i in done) or not all(isinstance(i, str) for i in incidents):
+            raise GoalStoreError("scripted_done must list integers and incidents strings")
+        return cls(records, next_id, frozenset(done), tuple(incidents))
 
 
-def save(store: GoalStore, path: Path) -> None:
-    """Write atomically (temp file + rename), so a crash never leaves half a file."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(json.dumps(store.to_json(), indent=1))
-    os.replace(tmp, path)
+def _check_priority(what: str, priority: int) -> None:
+    if type(priority) is not int or not 1 <= priority <= MAX_PRIORITY:
+        raise GoalStoreError(f"{what}: priority must be an integer in 1..{MAX_PRIORITY}, "
+                             f"got {shorten(repr(priority))}")
 
 
-def load(path: Path) -> GoalStore:
-    """The saved store, or an empty one when the file does not exist yet."""
-    if not path.exists():
-        return GoalStore()
-    try:
-        return GoalStore.from_json(json.loads(path.read_text()))
-    except (ValueError, KeyError) as exc:
-        raise GoalStoreError(f"{path}: unreadable goal store: {exc}") from exc
+def _trimmed(goals: tuple[GoalRecord, ...], agent: str) -> tuple[GoalRecord, ...]:
+    """`goals` without the oldest withdrawn goals of `agent` beyond MAX_KEPT_WITHDRAWN."""
+    withdrawn = [g.id for g in goals if g.agent == agent and g.status in _WITHDRAWN]
+    drop = set(withdrawn[:-MAX_KEPT_WITHDRAWN])
+    return tuple(g for g in goals if g.id not in drop) if drop else goals
+
+
+def _kind(value: object) -> str:
+    return "null" if value is None else type(value).__name__
+
+
+def _field(d: dict, name: str, kind: type, where: str, default: Any = ...) -> Any:
+    """d[name], checked to be a `kind` (bool is not an int); `default` when absent."""
+    if name not in d:
+        if default is ...:
+            raise GoalStoreError(f"{where}: lacks {name!r}")
+        return default
+    value = d[name]
+    if type(value) is not kind:
+        raise GoalStoreError(f"{where}.{name}: expected {kind.__name__}, got "
+                             f"{shorten(repr(value))}")
+    return value

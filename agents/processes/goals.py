@@ -7,9 +7,15 @@ any time, validating a post against the agent's program (Engine.add_goal: an unk
 or a wrong arity is refused with the engine's reason). When it sees the world state of cycle
 t it applies the scenario's scripted requests of cycle t and publishes each agent's goal list
 of t, the executive's goal input (a request received while running takes effect at the next
-cycle it publishes). It reads the executives' intentions to keep each goal's status, and
-saves the store after every change, so that a restart of any process loses no goal
+cycle it publishes). It reads the executives' intentions to keep each goal's status
 (ROGUE, seed 003: asynchronous requests with priorities).
+
+Requests are bounded (docs/bus.md, "Goal requests"): each client (the request envelope's
+sender) and all clients together are rate-limited (request_limits.py), and the store bounds a
+goal's length, the priority range and the live goals per agent (goal_store.py). A request
+that changes the store is saved durably before it is answered, so an acknowledged goal
+survives any crash; the statuses mirrored from intentions are saved at most every
+SAVE_PERIOD, and at the end. A damaged store file is recovered on start (goal_file.py).
 """
 
 from __future__ import annotations
@@ -21,16 +27,19 @@ from typing import Any
 
 import click
 
-from agents.processes import goal_store
+from agents.lang.limits import shorten
+from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_store import GoalStore, GoalStoreError
+from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError
+from agents.processes.request_limits import RequestLimiter
 from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
 from bus.node import Node, open_node
-from tools.scenario import Scenario, ScriptedGoal, load_scenario
+from world.run_scenario import Scenario, ScriptedGoal, load_scenario
 
 PROCESS = "goals"
+SAVE_PERIOD = 1.0  # [s] between saves of statuses mirrored from the executives' intentions
 
 
 def engine_validator(scenario: Scenario):
@@ -51,28 +60,63 @@ def engine_validator(scenario: Scenario):
 
 
 class GoalEntry:
-    """The process's state: the store, its file, and the last goal lists published."""
+    """The process's state: the store, its file, the limiter, the last goal lists published."""
 
-    def __init__(self, scenario: Scenario, store_path: Path, validate, log) -> None:
+    def __init__(self, scenario: Scenario, store_path: Path, validate, log,
+                 clock=time.monotonic) -> None:
         self.scenario = scenario
         self.path = store_path
         self.validate = validate
         self.log = log
-        self.store = goal_store.load(store_path)
+        self.clock = clock  # [s], monotonic: for the rate limits and the status saves
+        opened = goal_file.open_store(store_path)
+        if opened.incident:
+            log.error("%s", opened.incident)
+        self.store = opened.store
+        self.limiter = RequestLimiter()
         self.lock = threading.Lock()  # the query handler runs on zenoh's thread
         self.cycle = -1
         self.published: dict[str, tuple[dict[str, Any], ...]] = {}
         self.node: Node | None = None  # set once the session is open
+        self.unsaved = False  # statuses mirrored but not yet saved
+        self.saved_at = clock()
 
-    def _set(self, store: GoalStore) -> None:
-        if store != self.store:
-            self.store = store
-            goal_store.save(store, self.path)
+    def _commit(self, store: GoalStore) -> None:
+        """Make `store` current and save it before anyone is told (a request's change)."""
+        if store == self.store and not self.unsaved:
+            return
+        try:
+            goal_file.save(store, self.path)
+        except OSError as exc:
+            raise GoalStoreError(f"not done: the goal store {self.path} cannot be saved "
+                                 f"({exc})") from None
+        self.store, self.unsaved, self.saved_at = store, False, self.clock()
+
+    def flush(self, force: bool = False) -> None:
+        """Save mirrored statuses if SAVE_PERIOD has passed since the last save (or `force`)."""
+        if not self.unsaved:
+            return
+        with self.lock:
+            if not self.unsaved or not (force or self.clock() - self.saved_at >= SAVE_PERIOD):
+                return
+            try:
+                self._commit(self.store)
+            except GoalStoreError as exc:
+                self.log.error("%s", exc)
+                self.saved_at = self.clock()  # retry after another period
 
     def handle(self, request: GoalRequest) -> GoalReply:
         """Answer one request (called on zenoh's callback thread)."""
+        ok, reason, goals, cycle = self.answer(request)
+        return GoalReply(self.node.envelope(cycle), ok, reason, goals)
+
+    def answer(self, request: GoalRequest) -> tuple[bool, str, tuple[dict[str, Any], ...], int]:
+        """(ok, reason, the agent's goals, cycle) for one request; refusals say why."""
         with self.lock:
             try:
+                refusal = self.limiter.admit(request.env.sender, self.clock())
+                if refusal:
+                    raise GoalStoreError(refusal)
                 reason = self._apply(request.op, request.agent, request.goal, request.priority,
                                      request.goal_id, self.cycle + 1)
                 ok = True
@@ -80,29 +124,33 @@ class GoalEntry:
                 reason, ok = str(exc), False
             goals = tuple(g.to_dict() for g in self.store.for_agent(request.agent))
             cycle = self.cycle
-        self.log.info("%s %s %s -> %s", request.op, request.agent, request.goal or
-                      request.goal_id, reason)
-        return GoalReply(self.node.envelope(cycle), ok, reason, goals)
+        self.log.info("%s %s %s -> %s", shorten(request.op), shorten(request.agent),
+                      shorten(request.goal or request.goal_id), reason)
+        return ok, reason, goals, cycle
 
     def _apply(self, op: str, agent: str, goal: str, priority: int, goal_id: str,
                at: int) -> str:
         """Apply one request taking effect at cycle `at`; returns what was done."""
         if agent not in self.scenario.agent_ids:
-            raise GoalStoreError(f"no agent {agent!r} in this run "
+            raise GoalStoreError(f"no agent {shorten(agent)!r} in this run "
                                  f"(agents: {', '.join(self.scenario.agent_ids)})")
+        if len(goal_id) > MAX_ID_CHARS:
+            raise GoalStoreError(f"goal id {shorten(goal_id)!r}: longer than {MAX_ID_CHARS} "
+                                 "characters")
         if op == "post":
             store, record = self.store.post(agent, goal, priority, at, self.validate)
-            self._set(store)
+            self._commit(store)
             return f"posted {record.id} for {agent}: {record.goal} (from cycle {at})"
         if op == "cancel":
-            self._set(self.store.cancel(goal_id, at))
+            self._commit(self.store.cancel(goal_id, at))
             return f"cancelled {goal_id} (from cycle {at})"
         if op == "priority":
-            self._set(self.store.set_priority(goal_id, priority, at))
+            self._commit(self.store.set_priority(goal_id, priority, at))
             return f"{goal_id} now has priority {priority} (from cycle {at})"
         if op == "list":
             return ""
-        raise GoalStoreError(f"unknown op {op!r}: expected post, cancel, priority or list")
+        raise GoalStoreError(f"unknown op {shorten(op)!r}: expected post, cancel, priority or "
+                             "list")
 
     def on_world_state(self, node: Node, cycle: int) -> None:
         """Apply the scripted requests due, then publish every agent's goal list of `cycle`.
@@ -126,7 +174,10 @@ class GoalEntry:
                if g.at_cycle <= cycle and i not in self.store.scripted_done]
         for index, scripted in due:
             self._run_scripted(scripted)
-            self._set(self.store.mark_scripted([index]))
+            try:
+                self._commit(self.store.mark_scripted([index]))
+            except GoalStoreError as exc:
+                self.log.error("scripted request %d: %s", index, exc)
 
     def _run_scripted(self, g: ScriptedGoal) -> None:
         try:
@@ -136,8 +187,11 @@ class GoalEntry:
             self.log.warning("scripted request refused: %s", exc)
 
     def on_intention(self, msg: Intention) -> None:
+        """Mirror the statuses the executive reported; saved later (flush), not every cycle."""
         with self.lock:
-            self._set(self.store.update_from_intention(msg.agent, msg.decision, msg.env.cycle))
+            store = self.store.update_from_intention(msg.agent, msg.decision, msg.env.cycle)
+            if store is not self.store:
+                self.store, self.unsaved = store, True
 
 
 def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> None:
@@ -160,6 +214,8 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
                 entry.on_world_state(node, msg.env.cycle)
             elif isinstance(msg, Intention):
                 entry.on_intention(msg)
+            entry.flush()
+    entry.flush(force=True)
     log.info("stopped; %d goals saved in %s", len(entry.store.goals), store_path)
 
 

@@ -3,11 +3,14 @@
     python -m agents.processes.inference --run RUN --agent ME --program FILE [bus flags]
 
 Beliefs are every concept instance that holds, inferred bottom-up to fixpoint from the
-percepts (seed 000, Inference and Execution Mechanisms). Sorted, so the bytes on the bus are
-the same for the same percepts.
+percepts and the agent's world model (facts its SCS bodies asserted, which come back in the
+percepts message's memory; seed 000, Inference and Execution Mechanisms; seed 002). Sorted,
+so the bytes on the bus are the same for the same percepts.
 """
 
 from __future__ import annotations
+
+import logging
 
 from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
@@ -15,15 +18,22 @@ from bus.config import BusConfig
 from bus.messages import Beliefs, Envelope, Message
 
 
-def make_step(run: str, agent: str, process: str, program_path: str):
+def make_step(run: str, agent: str, process: str, program_path: str,
+              log: logging.Logger | None = None):
     """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]."""
-    from agents.lang import Engine, load_program
+    from agents.lang import Engine, LangError, load_program
 
     engine = Engine(load_program(program_path))
     in_key, out_key = keys.percepts(run, agent), keys.beliefs(run, agent)
+    log = log or logging.getLogger(process)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        beliefs = engine.infer(inputs[in_key].percepts)
+        seen = inputs[in_key]
+        try:
+            beliefs = engine.infer(seen.percepts, seen.memory.get("model") or ())
+        except LangError as exc:   # a malformed model: logged, inferred without it
+            log.warning("cycle %d: world model dropped: %s", cycle, exc)
+            beliefs = engine.infer(seen.percepts)
         lists = tuple(sorted((b.to_list() for b in beliefs), key=repr))
         return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent, lists))]
 
@@ -35,7 +45,7 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig) -> None:
     """Belief inference of one agent."""
     process = f"{agent}.inference"
     log = setup_logging(process)
-    step = make_step(run, agent, process, program)
+    step = make_step(run, agent, process, program, log)
     run_stage(bus_config, run, process, [keys.percepts(run, agent)], [keys.beliefs(run, agent)],
               step, log)
 

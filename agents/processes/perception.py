@@ -3,7 +3,9 @@
     python -m agents.processes.perception --run RUN --agent ME [bus flags]
 
 Percepts are agent-centred and limited in range (seed 000, Table 3); the mapping is the
-world's pure `world.perception.perceive`.
+pure `perceive` of the domain the snapshot names (world/domain.py). The agent's action
+outcomes of t-1 and its memory (world-model facts, SCS state), which the world state of t
+carries, travel on with the percepts.
 """
 
 from __future__ import annotations
@@ -16,15 +18,18 @@ from bus.messages import Envelope, Message, Percepts
 
 def make_step(run: str, agent: str, process: str):
     """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]."""
-    from world.perception import perceive
-    from world.snapshot import WorldSnapshot
+    from world.domain import domain_of
 
     state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        snapshot = WorldSnapshot.from_dict(inputs[state_key].snapshot)
-        percepts = tuple(list(p) for p in perceive(snapshot, agent))
-        return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts))]
+        state = inputs[state_key]
+        percepts = tuple(list(p) for p in domain_of(state.snapshot).perceive(state.snapshot,
+                                                                             agent))
+        outcomes = tuple(state.outcomes.get(agent, ()))
+        memory = state.memory.get(agent) or {}
+        return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts,
+                                   outcomes, memory if isinstance(memory, dict) else {}))]
 
     return step
 

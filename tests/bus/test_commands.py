@@ -3,39 +3,64 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
+import sys
 
-from bus_helpers import python
+from bus_helpers import ROOT, python
 
 from bus import keys
-from bus.messages import Percepts, WorldEvent
+from bus.messages import Percepts, WorldEvent, WorldState
 from bus.node import open_node
-from bus.record import read_recording
+from tools.records import RunRecord
 
 TELEO = ("-c", "from tools.cli import main; main()")
 
 
 def test_record_then_replay_gives_back_the_same_messages(cfg, run_id, tmp_path):
-    path = tmp_path / "run.rec"
-    key = keys.percepts(run_id, "A")
+    path = tmp_path / "run.mcap"
+    state, key = keys.world_state(run_id), keys.percepts(run_id, "A")
     sent = []
     with open_node(cfg, run_id, "test") as node:
-        recorder = python(*TELEO, "record", str(path), "--run", run_id, "--count", "3",
+        recorder = python(*TELEO, "record", str(path), "--run", run_id, "--count", "6",
                           *cfg.to_args())
         assert node.presence.wait_for(lambda alive: "record" in alive, 30)
         for t in range(3):
+            sent.append(WorldState(node.envelope(t), {"time": t * 0.1}, {}, []))
+            node.publish(state, sent[-1])
             sent.append(Percepts(node.envelope(t), "A", (["self", "A", "speed", float(t)],)))
             node.publish(key, sent[-1])
         assert recorder.wait(30) == 0
-        header, samples = read_recording(str(path))
-        assert header["run"] == run_id and [s.key for s in samples] == [key] * 3
+        rec = RunRecord(path)
+        assert rec.run == run_id and [k for k, _ in rec.records()] == [state, key] * 3
+        # MCAP log time is the cycle's world time [ns]; percepts carry their derived self
+        assert [r["self"] for _, r in rec.kinds("percepts")] == [{"speed": float(t)}
+                                                                 for t in range(3)]
 
-        inbox = node.subscribe(key)
+        inbox = node.subscribe(keys.run_all(run_id))
         replayer = python(*TELEO, "replay", str(path), "--speed", "0", "--wait", "30",
-                          *cfg.to_args())
-        got = [inbox.get(timeout=30) for _ in range(3)]
-        assert replayer.wait(30) == 0
+                          *cfg.to_args(), stderr=subprocess.PIPE, text=True)
+        got = [inbox.get(timeout=30) for _ in range(6)]
+        _, said = replayer.communicate(timeout=30)
+        assert replayer.returncode == 0, said
     assert got == sent
+    assert f"replayed 6 messages of run {run_id} to router {cfg.connect[0]}" in said
+
+
+def test_replay_without_a_launch_or_router_says_so(tmp_path, run_id):
+    from tools.records import RecordWriter
+
+    path = tmp_path / "empty.mcap"
+    RecordWriter(path, run_id).close()
+    env = dict(os.environ, PYTHONPATH=str(ROOT), TELEO_RUN_DIR=str(tmp_path / "no-runs"))
+    nobody = subprocess.run([sys.executable, *TELEO, "replay", str(path)], cwd=ROOT, env=env,
+                            capture_output=True, text=True, timeout=60)
+    said = nobody.stderr
+    assert nobody.returncode == 1 and "no running teleo launch found" in said, said
+    dead_port = python(*TELEO, "replay", str(path), "--connect", "tcp/127.0.0.1:9",
+                       stderr=subprocess.PIPE, text=True)
+    _, said = dead_port.communicate(timeout=60)
+    assert dead_port.returncode == 1 and "no router answers at tcp/127.0.0.1:9" in said, said
 
 
 def test_echo_prints_decoded_json_lines(cfg, run_id):

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from tools.scenario import Scenario, scenario_from_dict
+from world.run_scenario import Scenario, scenario_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = str(ROOT / "programs" / "driving.tlp")

@@ -6,9 +6,10 @@ from __future__ import annotations
 from agents.lang import Engine, load_program
 from tests.driving.scenarios import PROGRAM, scenario
 from tools.simulate import simulate
-from world.perception import perceive
-from world.scenario import load_world_config
-from world.simulation import Simulation
+from world.driving.config import load_world_config
+from world.driving.perception import perceive
+from world.driving.simulation import Simulation
+from world.driving.snapshot import WorldSnapshot
 
 
 def _goal(text: str, at: int = 0, priority: int = 6) -> dict:
@@ -27,10 +28,10 @@ def test_moves_off_with_the_seed_table_1_skill_and_keeps_its_lane() -> None:
     run = simulate(scenario(packages=[{"id": "P1", "address": 10, "street": "B"}]), cycles=150)
     first = run.records[0]["ME"]
     assert ["*gas", 6.25] in first["actions"]          # seed 000, Table 1: stopped -> (*gas 6.25)
-    car = run.final.car("ME")
+    car = WorldSnapshot.from_dict(run.final).car("ME")
     assert 7.0 < car.speed <= 10.0                       # within the Table 2 law, near cruising
     assert abs(car.x - 102.0) < 0.5 and car.y > 100.0    # straight up street B, right lane
-    assert run.final.counters["ME"]["off_road"] == 0
+    assert run.final["counters"]["ME"]["off_road"] == 0
 
 
 def test_delivers_a_package_ahead_and_one_round_a_corner() -> None:
@@ -39,11 +40,12 @@ def test_delivers_a_package_ahead_and_one_round_a_corner() -> None:
                   goals=[_goal("(package-delivered P1)"), _goal("(package-delivered P2)", at=150)],
                   pedestrians=8, cycles=600)
     run = simulate(sc)
-    counters = run.final.counters["ME"]
-    assert [p.id for p in run.final.packages if p.delivered] == ["P1", "P2"]
+    counters = run.final["counters"]["ME"]
+    assert [p["id"] for p in run.final["packages"] if p["delivered"]] == ["P1", "P2"]
     assert counters["pedestrian_hits"] == 0
     assert counters["off_road"] == counters["yellow_crossings"] == 0
-    assert run.final.car("ME").speed < 0.5            # no errands left: it waits, stopped
+    # no errands left: it waits, stopped
+    assert WorldSnapshot.from_dict(run.final).car("ME").speed < 0.5
 
 
 def test_a_pedestrian_stepping_out_suspends_the_errand_and_brakes() -> None:

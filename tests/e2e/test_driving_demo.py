@@ -46,7 +46,7 @@ def deliver_two(teleo, scenario: Path, post_after: int, timeout: float) -> dict:
 
 def test_a_small_program_delivers_a_package_posted_mid_run(teleo):
     summary = deliver_two(teleo, FIXTURES / "deliver_ahead.toml", post_after=50, timeout=120)
-    assert summary["goals_achieved"] == 2 and summary["deliveries"] == {"ME": 2}
+    assert summary["goals_achieved"] == 2 and summary["achievements"] == {"ME": {"deliveries": 2}}
     assert summary["law_violations"]["ME"]["pedestrian_hits"] == 0
 
 
@@ -64,5 +64,5 @@ def demo_without_scripted_packet2(folder: Path) -> Path:
 def test_the_driving_demo_delivers_both_packages_and_hits_no_pedestrian(teleo, tmp_path):
     scenario = demo_without_scripted_packet2(tmp_path)
     summary = deliver_two(teleo, scenario, post_after=100, timeout=400)
-    assert summary["goals_achieved"] == 2 and summary["deliveries"]["ME"] >= 2
+    assert summary["goals_achieved"] == 2 and summary["achievements"]["ME"]["deliveries"] >= 2
     assert summary["law_violations"]["ME"]["pedestrian_hits"] == 0

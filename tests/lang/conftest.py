@@ -22,12 +22,15 @@ def table3():
 
 @pytest.fixture(scope="session")
 def blocks():
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    """The Blocks World with the nonprimitive skills written by hand (the program before the
+    problem solver learned them), for the executive's tests; no problem solver."""
+    return Engine(load_program(FIX / "blocks_handwritten.tlp"), solver=None)
 
 
 @pytest.fixture(scope="session")
 def minidrive():
-    return Engine(load_program(PROGRAMS / "minidrive.tlp"))
+    """The executive alone (no problem solver): an impasse stays an impasse."""
+    return Engine(load_program(PROGRAMS / "minidrive.tlp"), solver=None)
 
 
 @pytest.fixture(scope="session")

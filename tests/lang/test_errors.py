@@ -98,14 +98,11 @@ def test_keywords_operators_and_actions_are_checked_together():
 def test_skill_needs_actions_or_subgoals_and_a_known_head():
     text = GOOD + "(skills ((fast ?c) :percepts ((car ?c))) ((quick ?c) :actions ((*gas 1))))"
     found = errors(text)
-    assert any("needs :actions (primitive) or :subgoals" in e for e in found)
+    assert any("needs :actions (primitive), :subgoals (nonprimitive) or :body" in e
+               for e in found)
     assert any("undefined concept 'quick' in (quick ?c) (head of skill quick#1)" in e
                for e in found)
 
-
-def test_scs_body_is_reserved_with_a_clear_message():
-    text = GOOD + "(skills ((fast ?c) :body (do (*gas 1))))"
-    assert any(":body (seed 002 SCS constructs) is not supported yet" in e for e in errors(text))
 
 
 def test_bad_percepts_are_located():

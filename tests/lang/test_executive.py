@@ -76,8 +76,9 @@ def test_violated_higher_goal_suspends_and_the_lower_goal_resumes_its_path(minid
         GoalStatus.SATISFIED]
     assert [(s.skill, s.mode) for s in d[0].path] == [
         ("package-delivered#2", "entered"), ("at-address#1", "entered")]
+    # back from the suspension: every skill on the path could be started now, so it resumes
     assert [(s.skill, s.mode) for s in d[2].path] == [
-        ("package-delivered#2", "continued"), ("at-address#1", "continued")]
+        ("package-delivered#2", "resumed"), ("at-address#1", "resumed")]
     # only the broken part is replaced: the top skill continues, a new primitive is entered
     assert [(s.skill, s.mode) for s in d[3].path] == [
         ("package-delivered#2", "continued"), ("package-delivered#1", "entered")]
@@ -175,7 +176,7 @@ def _plain(x) -> bool:
 def test_bad_state_dicts_are_rejected_with_the_reason(minidrive):
     from agents.lang import StateError
     good = minidrive.initial_state().to_dict()
-    with pytest.raises(StateError, match="version 7, expected 1"):
+    with pytest.raises(StateError, match="version 7, expected 2"):
         EngineState.from_dict({**good, "version": 7})
     with pytest.raises(StateError, match="bad shape"):
         EngineState.from_dict({**good, "goals": [{"id": "p1"}]})

@@ -6,7 +6,20 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from agents.processes.goal_store import GoalState, GoalStore, GoalStoreError, load, save
+from agents.processes.goal_file import open_store, save
+from agents.processes.goal_store import (
+    MAX_KEPT_WITHDRAWN,
+    MAX_LIVE_GOALS,
+    MAX_PRIORITY,
+    GoalState,
+    GoalStore,
+    GoalStoreError,
+)
+
+
+def load(path):
+    """The store a goals process would start with from `path`."""
+    return open_store(path).store
 
 
 def accept_all(agent: str, goal: str, priority: int) -> str:
@@ -32,7 +45,7 @@ def test_post_assigns_ids_in_order_and_starts_pending():
 def test_refused_goal_names_the_reason_and_is_not_stored():
     with pytest.raises(GoalStoreError, match="unknown concept flying"):
         GoalStore().post("ME", "(flying ME)", 1, 0, known_concepts)
-    with pytest.raises(GoalStoreError, match="priority must be >= 1"):
+    with pytest.raises(GoalStoreError, match=r"priority must be an integer in 1\.\.1000000"):
         GoalStore().post("ME", "(package-delivered P1)", 0, 0, accept_all)
 
 
@@ -109,3 +122,86 @@ def test_any_history_survives_a_restart(history):
         assert load(path) == store
     ids = [g.id for g in store.goals]
     assert len(ids) == len(set(ids))
+
+
+def test_impasse_and_failure_are_reported_as_they_are_with_the_engines_note():
+    store, _ = GoalStore().post("ME", "(clear A)", 3, 0, accept_all)
+    store = store.update_from_intention("ME", {"goals": [
+        {"id": "g1", "status": "impasse", "note": "no executable skill path"}]}, 4)
+    assert (store.get("g1").status, store.get("g1").note) == (GoalState.IMPASSE,
+                                                               "no executable skill path")
+    store = store.update_from_intention("ME", {"goals": [
+        {"id": "g1", "status": "failed", "note": "every alternative failed"}]}, 9)
+    assert (store.get("g1").status, store.get("g1").note) == (GoalState.FAILED,
+                                                               "every alternative failed")
+    assert store.goal_list("ME") == ()     # a failed goal is no longer pursued
+
+
+# -- bounds on requests (fault drill O5) ---------------------------------------------------
+
+def test_a_goal_over_the_length_limit_is_refused_before_it_is_read():
+    with pytest.raises(GoalStoreError, match=r"longer than 512 characters"):
+        GoalStore().post("ME", "(package-delivered " + "X" * 1_000_000 + ")", 5, 0, accept_all)
+
+
+@pytest.mark.parametrize("priority", [0, -3, MAX_PRIORITY + 1, 2**64 - 1])
+def test_priorities_outside_the_range_are_refused(priority):
+    in_range = rf"priority must be an integer in 1\.\.{MAX_PRIORITY}"
+    with pytest.raises(GoalStoreError, match=in_range):
+        GoalStore().post("ME", "(package-delivered P1)", priority, 0, accept_all)
+    store, _ = GoalStore().post("ME", "(package-delivered P1)", MAX_PRIORITY, 0, accept_all)
+    with pytest.raises(GoalStoreError, match="priority must be"):
+        store.set_priority("g1", priority, 1)
+
+
+def test_live_goals_per_agent_are_bounded_and_a_cancel_frees_a_place():
+    store = GoalStore()
+    for n in range(MAX_LIVE_GOALS):
+        store, _ = store.post("ME", f"(package-delivered P{n})", 5, 0, accept_all)
+    with pytest.raises(GoalStoreError, match=f"ME has {MAX_LIVE_GOALS} live goals, the limit"):
+        store.post("ME", "(package-delivered EXTRA)", 5, 0, accept_all)
+    store.post("OTHER", "(package-delivered EXTRA)", 5, 0, accept_all)  # per agent
+    store = store.cancel("g1", 1)
+    store, record = store.post("ME", "(package-delivered EXTRA)", 5, 0, accept_all)
+    assert record.id == f"g{MAX_LIVE_GOALS + 1}"
+
+
+def test_an_achieved_goal_frees_a_place():
+    store = GoalStore()
+    for n in range(MAX_LIVE_GOALS):
+        store, _ = store.post("ME", f"(package-delivered P{n})", 5, 0, accept_all)
+    decision = {"goals": [{"id": "g3", "status": "satisfied"}]}
+    store = store.update_from_intention("ME", decision, 7)
+    store, record = store.post("ME", "(package-delivered EXTRA)", 5, 8, accept_all)
+    assert record.id == f"g{MAX_LIVE_GOALS + 1}" and store.get("g3").status.value == "achieved"
+    with pytest.raises(GoalStoreError, match=f"ME has {MAX_LIVE_GOALS} live goals, the limit"):
+        store.post("ME", "(package-delivered MORE)", 5, 8, accept_all)
+
+
+def test_only_the_latest_withdrawn_goals_are_kept():
+    store = GoalStore()
+    for n in range(MAX_KEPT_WITHDRAWN + 5):
+        store, record = store.post("ME", f"(package-delivered P{n})", 5, 0, accept_all)
+        store = store.cancel(record.id, n)
+    ids = [g.id for g in store.goals]
+    assert len(ids) == MAX_KEPT_WITHDRAWN and ids[0] == "g6"
+    assert store.next_id == MAX_KEPT_WITHDRAWN + 6  # ids are never given twice
+
+
+@pytest.mark.parametrize("doc, message", [
+    ([], "expected an object"),
+    (None, "expected an object .* got null"),
+    ({"version": 1, "goals": [1]}, r"goals\[0\]: expected an object, got int"),
+    ({"version": 1, "goals": {}}, r"store.goals: expected list, got \{\}"),
+    ({"version": 2, "goals": []}, "version: expected 1, got 2"),
+    ({"version": 1, "goals": [{"id": "g1", "agent": "ME", "goal": "(x)", "priority": 1,
+                               "status": "flying"}]}, r"goals\[0\]: status 'flying' is not one"),
+    ({"version": 1, "goals": [{"id": "g1", "agent": "ME", "goal": "(x)", "priority": "1",
+                               "status": "active"}]}, r"goals\[0\].priority: expected int"),
+    ({"version": 1, "next_id": 1, "goals": [{"id": "g1", "agent": "ME", "goal": "(x)",
+                                             "priority": 1, "status": "active"}]},
+     "next_id 1 would give an id already used"),
+])
+def test_a_store_of_the_wrong_shape_says_what_is_wrong(doc, message):
+    with pytest.raises(GoalStoreError, match=message):
+        GoalStore.from_json(doc)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tools.scenario import Mode, ScenarioError, load_scenario, scenario_from_dict
+from world.run_scenario import Mode, ScenarioError, load_scenario, scenario_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 

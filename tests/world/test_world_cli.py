@@ -9,8 +9,8 @@ from click.testing import CliRunner
 from PIL import Image
 
 from tools.world_commands import render
-from world.scenario import WorldConfig
-from world.simulation import Simulation
+from world.driving.config import WorldConfig
+from world.driving.simulation import Simulation
 
 SCENARIO = """
 [world]
@@ -48,20 +48,19 @@ def test_render_saved_snapshots_to_gif_and_one_cycle(tmp_path: Path) -> None:
     assert missing.exit_code != 0 and "no snapshot of cycle 99" in missing.output
 
 
-def test_render_a_bus_recording(tmp_path: Path) -> None:
+def test_render_a_run_record(tmp_path: Path) -> None:
     from bus import keys
-    from bus.codec import encode
     from bus.messages import Envelope, WorldState
-    from bus.record import Recorder
+    from bus.record import message_record
+    from tools.records import RecordWriter
 
     sim = Simulation(WorldConfig(pedestrians=2, traffic=1), seed=1, agents=["ME"])
-    with (tmp_path / "run.rec").open("wb") as f:
-        rec = Recorder(f, "r1")
+    with RecordWriter(tmp_path / "run.mcap", "r1") as rec:
         for t in range(3):
             sim.step()
             msg = WorldState(Envelope(1, "r1", t, "world", 0), sim.snapshot().to_dict(), {}, [])
-            rec.write(keys.world_state("r1"), 0, encode(msg))
-    result = CliRunner().invoke(render, [str(tmp_path / "run.rec"), "--out",
+            rec.add(keys.world_state("r1"), message_record(keys.world_state("r1"), msg))
+    result = CliRunner().invoke(render, [str(tmp_path / "run.mcap"), "--out",
                                          str(tmp_path / "last.png"), "--scale", "1"])
     assert result.exit_code == 0, result.output
     assert "cycle 3" in result.output

@@ -4,9 +4,9 @@ delivers a package. It is the shape of the teleoreactive driving program, writte
 
 from __future__ import annotations
 
-from world.perception import perceive
-from world.scenario import load_world_config
-from world.simulation import Simulation
+from world.driving.config import load_world_config
+from world.driving.perception import perceive
+from world.driving.simulation import Simulation
 
 
 def attrs(percepts: list[list], kind: str) -> list[dict]:

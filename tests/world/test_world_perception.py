@@ -11,9 +11,9 @@ import math
 import pytest
 from world_helpers import QUIET, car, snapshot
 
+from world.driving.perception import perceive
+from world.driving.snapshot import PackageState, PedState
 from world.errors import WorldError
-from world.perception import perceive
-from world.snapshot import PackageState, PedState
 
 
 def by_type(percepts: list[list], kind: str) -> dict[str, dict]:

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import json
 
-from world.perception import perceive
-from world.scenario import CarStart, WorldConfig, load_world_config
-from world.simulation import Simulation
-from world.snapshot import WorldSnapshot
+from world.driving.config import CarStart, WorldConfig, load_world_config
+from world.driving.perception import perceive
+from world.driving.simulation import Simulation
+from world.driving.snapshot import WorldSnapshot
 
 
 def quiet_world(*starts: CarStart, **extra) -> Simulation:
@@ -182,7 +182,7 @@ def test_snapshot_round_trips_exactly_through_plain_data() -> None:
 
 
 def test_traffic_keeps_to_the_road_and_to_the_limit() -> None:
-    from world.city import build_city
+    from world.driving.city import build_city
     config = WorldConfig(pedestrians=10, traffic=10)
     sim, city = Simulation(config, seed=9, agents=[]), build_city(config)
     moved = set()

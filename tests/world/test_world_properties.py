@@ -7,12 +7,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from world_helpers import car, snapshot
 
-from world.city import build_city
-from world.navigation import guide
-from world.perception import perceive
-from world.scenario import WorldConfig
-from world.snapshot import PackageState
-from world.vehicle import Controls, apply_action
+from world.driving.city import build_city
+from world.driving.config import WorldConfig
+from world.driving.navigation import guide
+from world.driving.perception import perceive
+from world.driving.snapshot import PackageState
+from world.driving.vehicle import Controls, apply_action
 
 values = st.one_of(st.none(), st.booleans(), st.integers(-1000, 1000),
                    st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=4))

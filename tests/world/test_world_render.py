@@ -7,10 +7,10 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
+from world.driving.config import WorldConfig
+from world.driving.render import COLORS, LEGEND_W, render_gif, render_png
+from world.driving.simulation import Simulation
 from world.errors import WorldError
-from world.render import COLORS, LEGEND_W, render_gif, render_png
-from world.scenario import WorldConfig
-from world.simulation import Simulation
 
 
 def short_run(steps: int) -> list:

@@ -6,9 +6,9 @@ import tomllib
 
 import pytest
 
-from world.city import build_city
+from world.driving.city import build_city
+from world.driving.config import WorldConfig, load_world_config
 from world.errors import ConfigError
-from world.scenario import WorldConfig, load_world_config
 
 SCENARIO = """
 [world]

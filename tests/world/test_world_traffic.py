@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 
-from world.perception import perceive
-from world.scenario import CarStart, WorldConfig
-from world.simulation import Simulation
+from world.driving.config import CarStart, WorldConfig
+from world.driving.perception import perceive
+from world.driving.simulation import Simulation
 
 
 def test_traffic_stops_for_a_pedestrian_in_its_lane() -> None:
@@ -38,7 +38,7 @@ def test_traffic_yields_to_a_car_inside_the_intersection() -> None:
 
 
 def test_pedestrians_walk_the_sidewalks_and_cross_the_road() -> None:
-    from world.city import build_city
+    from world.driving.city import build_city
     config = WorldConfig(pedestrians=30, traffic=0, crossing_rate=0.5)
     sim, city = Simulation(config, seed=8, agents=[]), build_city(config)
     modes = set()

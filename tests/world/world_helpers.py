@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from world.scenario import WorldConfig
-from world.snapshot import CarState, PackageState, PedState, WorldSnapshot
+from world.driving.config import WorldConfig
+from world.driving.snapshot import CarState, PackageState, PedState, WorldSnapshot
 
 QUIET = WorldConfig(pedestrians=0, traffic=0, perception_range=50.0)
 

@@ -1,0 +1,142 @@
+"""Skill learning from the goal stack (seed 000, "Problem Solving and Skill Learning"): when
+an entry of a goal stack is achieved, a new skill is made from the decision recorded for it.
+
+* The head is the entry's goal, generalised: every constant that is the id of a percept
+  becomes a variable (the same constant the same variable), bound by a :percepts pattern of
+  that percept's type. Other constants (numbers, names no percept carries) stay as written.
+* Skill chaining (off skill S, whose start was false): the subgoals are the start conditions
+  of S that had to be achieved, in the order achieved (in the seed, the head of the skill that
+  achieved S's start), then S's head (the goal); the start is the start of the skill that
+  achieved the first of them, plus the conditions of S that held throughout.
+* Concept chaining: the subgoals are the subconcepts that were achieved, in the order
+  achieved; the start is the subconcepts that held initially. A subconcept that held
+  initially, became false and was achieved again (Figure 3: ``(hand-empty)`` after
+  ``(unstack C B)``) counts as achieved: it is a subgoal, in the order achieved, and not part
+  of the start. Otherwise the skill could not work: its start would demand a condition its
+  own first subgoal undoes, and nothing would restore it (the seed's learned
+  ``(unstackable ?b ?from)`` skill has ``(hand-empty)`` as its last subgoal).
+* An entry achieved by executing an existing skill directly (no decision) teaches nothing;
+  a skill equal to one the program has (up to variable names, :percepts aside) is not added.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..program import Skill
+from ..terms import Expr, Literal, PerceptPattern, Test, Var
+from .state import CONCEPT, StackEntry
+from .task import Task, condition, literal
+
+
+@dataclass(frozen=True, slots=True)
+class Learned:
+    """A skill learned from one stack entry: ``skill`` (generalised), ``text`` (program
+    syntax, with a comment saying when and from which problem), ``start`` (its start, ground,
+    for the parent entry's skill), ``duplicate`` (the name of an equal skill already known,
+    in which case nothing is added)."""
+
+    skill: Skill
+    text: str
+    start: tuple[str, ...]
+    duplicate: str = ""
+
+
+def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
+          ) -> Learned | None:
+    """The skill ``entry``'s decision teaches now that its goal holds, or None when there is
+    none (no decision, nothing was achieved through it, or the goal holds through another
+    definition than the one chained on).
+    ``known``: canonical key -> skill name of every skill known (extended with this one)."""
+    way = entry.decision
+    if way is None or (way.kind == CONCEPT and not all(task.holds(c)
+                                                       for c in way.conditions)):
+        return None   # (a skill's start may well be false once the skill has run)
+    achieved = [c for c in entry.order if c in way.conditions]
+    if not achieved:
+        return None
+    held = [c for c in way.conditions if c in entry.initial and c not in achieved]
+    if way.kind == CONCEPT:
+        subgoals, start = achieved, held
+    else:
+        first = dict(entry.starts).get(achieved[0], ())
+        subgoals, start = [*achieved, entry.goal], [*first, *held]
+    start = list(dict.fromkeys(start))
+    skill = generalise(task, literal(entry.goal), [condition(c) for c in start],
+                       [literal(c) for c in subgoals])
+    key = canonical(skill)
+    duplicate = known.get(key, "")
+    if not duplicate:
+        known[key] = f"learned {skill.head.pred}"
+    return Learned(skill, f"; {comment}\n{skill_text(skill)}", tuple(start), duplicate)
+
+
+def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) -> Skill:
+    """A skill with every percept id among the constants replaced by a variable named after
+    its percept type (``?b1`` for the first block), consistently."""
+    names: dict[object, Var] = {}
+    taken = {v.name for c in (head, *start, *subgoals) for v in c.variables()}
+    types: list[tuple[Var, str]] = []
+
+    def var(x: object) -> object:
+        if isinstance(x, Var) or x in names:
+            return names.get(x, x)
+        kind = task.type_of(x) if isinstance(x, str) else None
+        if kind is None:
+            return x
+        n = 1
+        while f"{kind[0]}{n}" in taken:
+            n += 1
+        taken.add(f"{kind[0]}{n}")
+        names[x] = Var(f"{kind[0]}{n}")
+        types.append((names[x], kind))
+        return names[x]
+
+    def lit(c: Literal) -> Literal:
+        return Literal(c.pred, tuple(var(a) for a in c.args), c.negated)
+
+    def expr(e: object) -> object:
+        return Expr(e.op, tuple(expr(a) for a in e.args)) if isinstance(e, Expr) else var(e)
+
+    new_head = lit(head)
+    new_subgoals = tuple(lit(g) for g in subgoals)
+    new_start = tuple(lit(c) if isinstance(c, Literal) else Test(expr(c.expr)) for c in start)
+    percepts = tuple(PerceptPattern(kind, v, ()) for v, kind in types)
+    return Skill(new_head, percepts, new_start, (), new_subgoals)
+
+
+def canonical(skill: Skill) -> str:
+    """The skill with its variables renamed in order of appearance (head, subgoals, actions,
+    start, requires): equal keys mean the same skill up to variable names and :percepts."""
+    names: dict[Var, str] = {}
+
+    def term(x: object) -> str:
+        if isinstance(x, Var):
+            return names.setdefault(x, f"?v{len(names)}")
+        if isinstance(x, Expr):
+            return "(" + " ".join([x.op, *(term(a) for a in x.args)]) + ")"
+        return repr(x)
+
+    def cond(c: object) -> str:
+        if isinstance(c, Test):
+            return term(c.expr)
+        core = "(" + " ".join([c.pred, *(term(a) for a in c.args)]) + ")"
+        return f"(not {core})" if c.negated else core
+
+    parts = [cond(skill.head), " ".join(cond(g) for g in skill.subgoals),
+             " ".join("(" + " ".join([a.name, *(term(x) for x in a.args)]) + ")"
+                      for a in skill.actions)]
+    parts += [" ".join(sorted(cond(c) for c in skill.start)),
+              " ".join(sorted(cond(c) for c in skill.requires))]
+    return " | ".join(parts)
+
+
+def skill_text(skill: Skill) -> str:
+    """A learned skill in program syntax (seed 000, Table 1 layout)."""
+    lines = [f"({skill.head}"]
+    if skill.percepts:
+        lines.append(" :percepts (" + " ".join(map(str, skill.percepts)) + ")")
+    if skill.start:
+        lines.append(" :start (" + " ".join(map(str, skill.start)) + ")")
+    lines.append(" :subgoals (" + " ".join(map(str, skill.subgoals)) + "))")
+    return "\n".join(lines)

@@ -1,0 +1,150 @@
+"""Means-ends search over a goal stack, one decision per cycle (seed 000, "Problem Solving and
+Skill Learning", Figure 3).
+
+``advance`` takes the goal stack as the cycle found it (achieved subgoals already popped) and
+returns a ``Step``: a path to execute as soon as the top subgoal has one (interleaving problem
+solving with execution), or the stack after one chaining decision, or a failure with its
+reason. A decision pushes one unsatisfied condition of the chosen way to chain off the top
+entry; a way that cannot go on (its next condition is already on the stack, or was achieved
+MAX_PUSHES times and undone each time: a loop; the stack is MAX_STACK deep; its conditions
+hold but the skill is still not executable; its subgoal failed, or its path ran MAX_EXECUTE
+cycles in vain) is abandoned for the entry's next alternative, and an entry with none left is
+popped, failing its parent's way in turn (backtracking). When the bottom entry, the goal,
+runs out of alternatives, the problem has failed."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from ..paths import Found
+from ..terms import Literal
+from .state import SKILL, Alternative, GoalStack, StackEntry
+from .task import Task, condition, literal, pushable
+
+MAX_STACK = 24      # deepest goal stack [entries]
+MAX_EXECUTE = 50    # cycles a subgoal's path may run without achieving it [cycles]
+MAX_PUSHES = 2      # times one condition of a way may be pushed (achieved, undone, again)
+
+Probe = Callable[[Literal], "Found | None"]
+"""An executable path for a subgoal in the current situation, or None."""
+
+
+@dataclass(frozen=True, slots=True)
+class Step:
+    """The result of one cycle of search: ``stack`` (None once the problem failed), ``found``
+    (a path to execute now), ``failed`` (why the goal cannot be achieved), ``events`` (what
+    was done, for the explanation) and ``note`` (one line for the goal's report)."""
+
+    stack: GoalStack | None
+    found: Found | None = None
+    failed: str = ""
+    events: tuple[str, ...] = ()
+    note: str = ""
+
+
+def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
+    """One cycle of means-ends search on ``stack`` (see the module docstring)."""
+    entries = list(stack.entries)
+    events: list[str] = []
+    decided = False
+    while True:
+        top = entries[-1]
+        # (the goal itself, at the bottom, is what the executive has just found no path for)
+        found = probe(literal(top.goal)) if len(entries) > 1 else None
+        if found is not None and top.executed < MAX_EXECUTE:
+            first = found[2][0]
+            entries[-1] = replace(top, executed=top.executed + 1,
+                                  done=(first.skill, first.bindings))
+            events.append(f"executing {top.goal} by {first.skill_name}")
+            return Step(replace(stack, entries=tuple(entries)), found, "", tuple(events),
+                        f"problem solving: executing {top.goal}")
+        if found is not None:
+            reason = f"its path ran {MAX_EXECUTE} cycles without achieving it"
+        elif decided:
+            return Step(replace(stack, entries=tuple(entries)), None, "", tuple(events),
+                        f"problem solving: pushed {top.goal}")
+        else:
+            entry, child, reason = decide(task, top, [e.goal for e in entries])
+            entries[-1] = entry
+            if child is not None:
+                entries.append(child)
+                events.append(f"pushed {child.goal}: {child.why}")
+                decided = True
+                continue
+        events.append(f"backtracked: {top.goal} cannot be achieved: {reason}")
+        entries.pop()
+        if not entries:
+            return Step(None, failed=f"{top.goal} cannot be achieved: {reason}",
+                        events=tuple(events))
+        entries[-1] = entries[-1].give_up(f"its subgoal {top.goal} cannot be achieved: "
+                                          f"{_short(reason)}")
+
+
+def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = False
+           ) -> tuple[StackEntry, StackEntry | None, str]:
+    """One chaining decision for ``entry``: (entry updated, the child to push, "") or, when
+    no way is left, (entry, None, why): the chosen way goes on with its next unsatisfied
+    condition; failing that, the next alternative is chosen afresh. With ``ready`` (the
+    planner's back-chainer, agents/lang/planning/backchain.py), a chosen way whose
+    conditions all hold is answered (entry, None, ""): apply it."""
+    if not entry.alternatives and entry.chosen == -1 and entry.tried == 0:
+        entry = replace(entry, alternatives=task.alternatives(literal(entry.goal)))
+        if not entry.alternatives:
+            return entry, None, _nothing(task, entry.goal)
+    while True:
+        if entry.chosen == -1:
+            if entry.tried >= len(entry.alternatives):
+                return entry, None, "every alternative failed (" + \
+                    "; ".join(entry.failures) + ")"
+            way = entry.alternatives[entry.tried]
+            entry = entry.choose(entry.tried, tuple(c for c in way.conditions
+                                                     if task.holds(c)))
+        if ready and all(task.holds(c) for c in entry.decision.conditions):
+            return entry, None, ""
+        child, why = _push(task, entry, entry.decision, on_stack)
+        if child is not None:
+            return replace(entry, pushes=entry.pushes + (child.goal,)), child, ""
+        entry = entry.give_up(why)
+
+
+def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
+          ) -> tuple[StackEntry | None, str]:
+    """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none."""
+    cond = next((c for c in way.conditions if not task.holds(c)), None)
+    if cond is None:
+        return None, ("its start holds but it is still not executable" if way.kind == SKILL
+                      else "every subconcept holds but the goal does not")
+    if not pushable(condition(cond)):
+        return None, f"{cond} does not hold and cannot become a subgoal"
+    if cond in on_stack:
+        return None, f"loop: {cond} is already on the goal stack"
+    if entry.pushes.count(cond) >= MAX_PUSHES:
+        others = " ".join(dict.fromkeys(c for c in entry.pushes if c != cond))
+        return None, (f"loop: {cond} was achieved {MAX_PUSHES} times and undone each time "
+                      f"while achieving {others or 'the rest'}")
+    if len(on_stack) >= MAX_STACK:
+        return None, f"depth bound: the goal stack already holds {MAX_STACK} (sub)goals"
+    if way.kind == SKILL:
+        why = f"chained off skill {way.shows} because its start {cond} is false"
+    else:
+        why = (f"decomposed {entry.goal} through {way.shows} into "
+               f"{' '.join(way.conditions)}; {cond} does not hold")
+    return StackEntry(cond, why), ""
+
+
+def _short(reason: str, limit: int = 400) -> str:
+    """A nested reason, cut to ``limit`` characters (the full chain is in the events)."""
+    return reason if len(reason) <= limit else reason[:limit - 3] + "..."
+
+
+def _nothing(task: Task, goal: str) -> str:
+    pred = literal(goal).pred
+    skills = f"no primitive skill achieves {pred}" if not any(
+        s.kind == "primitive" for s in task.program.skills_for(pred)) else \
+        f"no primitive skill for {pred} applies here (its :percepts do not match, or its " \
+        "start could not become subgoals)"
+    concept = "its definition cannot be decomposed here" \
+        if any(c.relations for c in task.program.concepts.get(pred, ())) else \
+        f"{pred} is a primitive concept, with no subconcepts to decompose into"
+    return f"nothing to chain off: {skills}; {concept}"

@@ -1,0 +1,165 @@
+"""The means-ends problem solver as the executive's impasse handler (seed 000, "Problem Solving
+and Skill Learning"; agents/lang/executive.py, ImpasseHandler).
+
+Every cycle, before the goal walk (``begin``), each goal stack is brought up to date: what the
+conditions of each chosen way did since (achieved, lost, achieved again) is recorded; the
+lowest entry that holds now is popped with everything above it, and each popped entry that
+holds teaches a skill (agents/lang/solving/learner.py), added to EngineState.learned and used
+from the next cycle on. A stack whose goal was removed is dropped. When the walk reaches a goal
+with no executable path (``solve``), its stack (a new one if none) takes one cycle of search
+(agents/lang/solving/search.py).
+
+Priorities: problem solving runs only for the first unsatisfied goal the walk reaches in
+impasse; a violated higher goal takes the cycle first. The stack of a pre-empted goal is
+**kept and resumed**, not rebuilt: it is brought up to date every cycle like any other (what
+the higher goal's actions achieve is popped and learned from, what they undo is noted as
+lost), and solving continues from its top when the goal is reached again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..executive import Impasse
+from ..goals import GoalEntry
+from ..paths import NOTHING, PathFinder, Remembered, Walk
+from ..terms import Literal
+from .learner import canonical, learn
+from .search import advance
+from .section import SolverSection
+from .state import GoalStack, SolverState, StackEntry
+from .task import Task
+
+
+class MeansEndsSolver:
+    """Stateless: everything it keeps between cycles is in EngineState.solver (goal stacks)
+    and EngineState.learned (learned skills), so one instance serves every agent."""
+
+    def begin(self, finder: PathFinder, walk: Walk) -> None:
+        state: SolverState = walk.current("solver")
+        if not state.stacks:
+            return
+        task = Task(finder.program, walk.pidx, walk.store)
+        live = {e.id for e in walk.state.goals}
+        known = _known(finder)
+        stacks, events, learned = [], [], []
+        for stack in state.stacks:
+            if stack.goal_id not in live:
+                events.append(f"{stack.goal_id}: goal removed: its goal stack is dropped")
+                continue
+            stack = replace(stack, entries=tuple(_observe(task, e) for e in stack.entries))
+            stack, ev, new = _settle(task, stack, walk.state.cycle, known)
+            events += [f"{stack.goal_id}: {e}" for e in ev]
+            learned += new
+            if stack.entries:
+                stacks.append(stack)
+        _publish(walk, tuple(stacks), tuple(events), (), tuple(learned))
+
+    def solve(self, finder: PathFinder, walk: Walk, entry: GoalEntry,
+              unsatisfied: list[Literal]) -> Impasse:
+        state: SolverState = walk.current("solver")
+        stack = state.stack_of(entry.id)
+        insts = [str(u) for u in unsatisfied]
+        events: list[str] = []
+        if stack is None or stack.entries[0].goal not in insts:
+            stack = GoalStack(entry.id, (StackEntry(insts[0], f"goal {entry.id} in impasse"),),
+                              walk.state.cycle)
+            events.append(f"{entry.id}: impasse on {insts[0]}: problem solving begins")
+        task = Task(finder.program, walk.pidx, walk.store)
+        prev = walk.state.path_of(entry.id)
+
+        def probe(goal: Literal):
+            memory = Remembered(prev, entry.id not in walk.state.active) \
+                if prev and prev[0].goal == str(goal) else NOTHING
+            return finder.achieve(walk, goal, memory, 0, frozenset())
+
+        step = advance(task, stack, probe)
+        events += [f"{entry.id}: {e}" for e in step.events]
+        others = tuple(s for s in state.stacks if s.goal_id != entry.id)
+        stacks = tuple(sorted(others + ((step.stack,) if step.stack else ()),
+                              key=lambda s: s.goal_id))
+        if step.failed:
+            events.append(f"{entry.id}: failed: {step.failed}")
+        _publish(walk, stacks, tuple(events), (entry.id,), ())
+        return Impasse(step.found, step.failed, step.note)
+
+
+def _observe(task: Task, e: StackEntry) -> StackEntry:
+    """Record what the conditions of ``e``'s chosen way did since last cycle: one that
+    became true (false at the choice, or lost since) goes to the end of ``order``; one that
+    held and became false goes to ``lost``."""
+    way = e.decision
+    if way is None:
+        return e
+    order, lost = list(e.order), list(e.lost)
+    for c in way.conditions:
+        now = task.holds(c)
+        if now and (c in lost or (c not in e.initial and c not in order)):
+            lost = [x for x in lost if x != c]
+            order = [x for x in order if x != c] + [c]
+        elif not now and (c in e.initial or c in order) and c not in lost:
+            lost.append(c)
+    return replace(e, order=tuple(order), lost=tuple(lost))
+
+
+def _settle(task: Task, stack: GoalStack, cycle: int, known: dict[str, str]
+            ) -> tuple[GoalStack, list[str], list[str]]:
+    """Pop the lowest entry that holds and everything above it, learning from each popped
+    entry that holds. Returns (stack, events, clauses learned)."""
+    entries = list(stack.entries)
+    low = next((i for i, e in enumerate(entries) if task.holds(e.goal)), None)
+    if low is None:
+        return stack, [], []
+    events, learned = [], []
+    for k in range(len(entries) - 1, low - 1, -1):
+        e = entries[k]
+        if not task.holds(e.goal):
+            events.append(f"dropped {e.goal}: {entries[low].goal} below it holds")
+            continue
+        way = e.decision
+        how = "" if way is None else f"concept chaining on {way.name}" \
+            if way.kind == "concept" else f"skill chaining off {way.shows}"
+        comment = (f"learned at cycle {cycle} from problem {entries[0].goal} (goal "
+                   f"{stack.goal_id}): {e.goal} by {how}")
+        new = learn(task, e, comment, known)
+        start: tuple[str, ...] | None = None
+        if new is not None:
+            start = new.start
+            if new.duplicate:
+                events.append(f"achieved {e.goal}: learned nothing new (same as "
+                              f"{new.duplicate})")
+            else:
+                learned.append(new.text)
+                events.append(f"achieved {e.goal}: learned skill {new.skill.head}")
+        else:
+            events.append(f"achieved {e.goal}")
+            if e.done is not None:
+                start = task.start_of(*e.done)
+        if k > 0 and start is not None:
+            parent = entries[k - 1]
+            if e.goal not in dict(parent.starts):
+                entries[k - 1] = replace(parent, starts=parent.starts + ((e.goal, start),))
+    if low == 0:
+        events.append(f"solved {entries[0].goal} (problem solving since cycle {stack.started})")
+    return replace(stack, entries=tuple(entries[:low])), events, learned
+
+
+def _known(finder: PathFinder) -> dict[str, str]:
+    return {canonical(s): s.name for s in reversed(finder.program.skills)}
+
+
+def _publish(walk: Walk, stacks: tuple[GoalStack, ...], events: tuple[str, ...],
+             solving: tuple[str, ...], learned: tuple[str, ...]) -> None:
+    """Write the solver's state for the next cycle (and new skills into EngineState.learned)
+    and this cycle's section of the Decision (merged with what ``begin`` put there)."""
+    walk.updates["solver"] = SolverState(stacks)
+    old = next((s for s in walk.sections if s.name == "solver"), None)
+    if learned:
+        walk.updates["learned"] = tuple(walk.current("learned")) + learned
+    if old is not None:
+        walk.sections.remove(old)
+        events, solving, learned = (old.events + events, old.solving + solving,
+                                    old.learned + learned)
+    if stacks or events or learned:
+        walk.sections.append(SolverSection(stacks, events, solving, learned))
+

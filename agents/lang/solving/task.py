@@ -1,0 +1,202 @@
+"""The means-ends problem as data (seed 000, "Problem Solving and Skill Learning"): one
+program and one cycle's percepts and beliefs, asked which (sub)goals hold and in which ways a
+goal can be chained off: skill chaining (a skill clause whose head matches the goal and whose
+start does not hold yet) before concept chaining (the goal's concept definition, decomposed
+into its subconcepts). Pure; it decides nothing (agents/lang/solving/search.py does)."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from itertools import islice
+
+from ..arith import evaluate
+from ..errors import EvalError
+from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
+from ..parser import Parser, Parts
+from ..paths import btuple, show
+from ..program import ConceptClause, Program, Skill
+from ..sexpr import read
+from ..store import FactStore, PerceptIndex
+from ..terms import Literal, Test, Var, fmt
+from .state import CONCEPT, SKILL, Alternative
+
+MAX_BINDINGS = 64      # candidate bindings examined per clause
+MAX_PER_CLAUSE = 3     # alternatives kept per clause (the best-ranked bindings)
+
+
+@lru_cache(maxsize=4096)
+def condition(text: str) -> Literal | Test:
+    """A condition (literal, ``(not ...)`` or test) read back from its program text."""
+    forms, _ = read(f"({text})", "<solver>")
+    parts = Parts()
+    found = Parser("<solver>", parts).conditions(forms[0] if forms else None)
+    if len(found) != 1 or parts.diags:
+        raise ValueError(f"solver state: cannot read the condition {text!r}")
+    return found[0]
+
+
+def literal(text: str) -> Literal:
+    """A (sub)goal read back from its text."""
+    cond = condition(text)
+    if not isinstance(cond, Literal):
+        raise ValueError(f"solver state: {text!r} is not a literal")
+    return cond
+
+
+def pushable(cond: Literal | Test) -> bool:
+    """Only a positive, ground literal can become a subgoal (no skill achieves a negation or
+    a test; a variable would leave the subgoal open)."""
+    return isinstance(cond, Literal) and not cond.negated and not cond.variables()
+
+
+class Task:
+    """One cycle's view of the problem: ``program`` (with the skills learned so far), the
+    percepts and the beliefs."""
+
+    def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore):
+        self.program = program
+        self.pidx = pidx
+        self.store = store
+
+    # -- what holds ------------------------------------------------------------------------
+    def holds(self, cond: str | Literal | Test) -> bool:
+        """True if the condition holds now (variables in a literal are existential)."""
+        c = condition(cond) if isinstance(cond, str) else cond
+        if isinstance(c, Test):
+            return not c.variables() and test_holds(c, {})
+        found = holds(c, {}, self.store)
+        return not found if c.negated else found
+
+    def skill(self, number: int) -> Skill:
+        return self.program.skills[number]
+
+    def start_of(self, number: int, bindings: tuple) -> tuple[str, ...]:
+        """The :start of skill ``number`` under ``bindings`` (text, bound variables replaced)."""
+        b = {Var(k): v for k, v in bindings}
+        return tuple(show(c, b) for c in self.skill(number).start)
+
+    def type_of(self, value: object) -> str | None:
+        """The type of the percept whose id is ``value`` (first in name order), if any."""
+        types = sorted(t for (t, pid) in self.pidx.by_id if pid == value)
+        return types[0] if types else None
+
+    # -- ways to chain off a goal ----------------------------------------------------------
+    def alternatives(self, goal: Literal, applicable: bool = False,
+                     concepts: bool = True) -> tuple[Alternative, ...]:
+        """Skill chaining first, then concept chaining (seed 000: "chaining backwards off
+        either conceptual clauses or primitive skills, with a priority on the latter"): the
+        primitive skills for the goal in program order, then its concept clauses; within a
+        clause the best-ranked bindings (``rank``), at most MAX_PER_CLAUSE of them. Skills
+        with subgoals (learned or written) are not chained off: the executive already found
+        none of them executable, and their starts are compound.
+        ``applicable``: also the skills whose conditions all hold already (a planner that
+        projects operators ahead of execution applies them; the solver never needs them, the
+        executive would have executed such a skill); ``concepts``: concept chaining too
+        (PRODIGY's back-chainer, agents/lang/planning, chains on operators only)."""
+        out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
+               for a in self._by_skill(s, goal, applicable)]
+        for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
+            out += self._by_concept(clause, goal)
+        return tuple(out)
+
+    def _by_skill(self, s: Skill, goal: Literal, applicable: bool = False
+                  ) -> list[Alternative]:
+        b0 = unify_head(s.head, goal, {})
+        if b0 is None:
+            return []
+        conds = [*s.start, *s.requires]
+        ranked = []
+        for b in self._candidates(list(s.percepts), conds, b0):
+            ground = [condition(show(c, b)) for c in conds]
+            if self._chainable(ground, applicable):
+                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
+                            self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
+
+    def _by_concept(self, clause: ConceptClause, goal: Literal) -> list[Alternative]:
+        b0 = unify_head(clause.head, goal, {})
+        if b0 is None or not clause.relations:
+            return []
+        ranked = []
+        for b in self._candidates(list(clause.percepts), list(clause.relations), b0):
+            if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
+                    None) is None:
+                continue
+            ground = [condition(show(c, b)) for c in clause.relations]
+            if self._chainable(ground):
+                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        name = f"{clause.head.pred}#{clause.index}"
+        return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
+                            f"concept {name}") for _, _, b, ground in self._best(ranked)]
+
+    def _chainable(self, ground: list, applicable: bool = False) -> bool:
+        """Something is left to achieve (or, ``applicable``, nothing), and all of it can
+        become a subgoal."""
+        unsat = [c for c in ground if not self.holds(c)]
+        return (applicable or bool(unsat)) and all(pushable(c) for c in unsat)
+
+    @staticmethod
+    def _best(ranked: list) -> list:
+        ranked.sort(key=lambda r: (r[0], r[1]))
+        return ranked[:MAX_PER_CLAUSE]
+
+    def rank(self, conds: list) -> tuple:
+        """Sort key of a way to chain off (smaller first): the most conditions holding,
+        counting for a false literal the subconcepts of its definition that hold; ties go to
+        the one whose earlier conditions hold (seed 000, Figure 3: (unstack B A), since
+        (on B A) holds, before (unstack C A))."""
+        bits: list[int] = []
+        for c in conds:
+            ok = self.holds(c)
+            bits.append(int(ok))
+            if not ok and isinstance(c, Literal) and not c.negated:
+                bits += self._sub_bits(c)
+        return (-sum(bits), tuple(-x for x in bits))
+
+    def _sub_bits(self, lit: Literal) -> list[int]:
+        best: list[int] = []
+        for clause in self.program.concepts.get(lit.pred, ()):
+            b = unify_head(clause.head, lit, {})
+            if b is None or not clause.relations:
+                continue
+            bits = [int(self.holds(condition(show(r, b)))) for r in clause.relations]
+            if (sum(bits), bits) > (sum(best), best):
+                best = bits
+        return best
+
+    def _candidates(self, percepts: list, conds: list, b0: dict) -> list[dict]:
+        """Bindings of the clause's variables: its :percepts matched, then any variable left
+        taken from beliefs matching a positive condition (in written order). A variable the
+        goal does not fix names an object of its own: one the goal or another such variable
+        names is not taken (no (unstack B B) to clear B)."""
+        sols = list(islice(solve(percepts, b0, self.pidx, self.store), MAX_BINDINGS)) \
+            if percepts else [b0]
+        lits = [c for c in conds if isinstance(c, Literal) and not c.negated]
+        out: dict = {}
+        fixed = set(b0.values())
+        for b in sols:
+            for nb in self._bind_rest(lits, b):
+                extra = [v for k, v in nb.items() if k not in b0]
+                if len(set(extra)) == len(extra) and not fixed & set(extra):
+                    out.setdefault(binding_key(nb), nb)
+        return [out[k] for k in sorted(out)][:MAX_BINDINGS]
+
+    def _bind_rest(self, lits: list[Literal], b: dict) -> list[dict]:
+        for i, lit in enumerate(lits):
+            if all(v in b for v in lit.variables()):
+                continue
+            matches = list(islice(match_fact(lit, b, self.store), MAX_BINDINGS))
+            if matches:
+                return [x for m in matches for x in self._bind_rest(lits[i + 1:], m)]
+        return [b]
+
+    @staticmethod
+    def _shows(s: Skill, b: dict) -> str:
+        if s.kind != "primitive":
+            return f"{s.name} {show(s.head, b)}"
+        try:
+            return " ".join("(" + " ".join([a.name.lstrip("*"),
+                                            *(fmt(evaluate(x, b)) for x in a.args)]) + ")"
+                            for a in s.actions)
+        except EvalError:
+            return f"{s.name} {show(s.head, b)}"

@@ -1,0 +1,102 @@
+"""What the executive process keeps on disk so a restart loses nothing (DESIGN.md: "the goal
+stack, SCS threads, discount factors, learned skills and plans all live in EngineState,
+serialisable, so a restarted executive loses none of them"): the engine state as JSON, and the
+learned skills in program syntax (agents/lang/solving/learned.py).
+
+The state is written every cycle, so it goes to a file kept open, in one ``pwrite`` system
+call at offset 0 (padded with spaces, which JSON ignores, to the length of the longest version
+so far): a process killed by a signal either made that call or did not, so the file holds one
+whole version (creating a file costs milliseconds here, the write microseconds; this is not
+a guard against power loss). The learned file changes rarely and is replaced by a rename."""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+
+def write_atomically(path: Path, text: str) -> None:
+    """Replace ``path`` by ``text`` in one rename (same folder, so the same file system)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
+@dataclass(frozen=True)
+class Saved:
+    """What the executive wrote after deciding bus cycle ``cycle``: the engine state for the
+    next cycle, and the intention (Decision.to_dict()) and actions it published for this one,
+    so that a restarted executive the clock sends ``cycle`` again re-emits them instead of
+    deciding twice (a decision is not idempotent: it advances the state)."""
+
+    cycle: int
+    state: Any
+    intention: dict[str, Any]
+    actions: list[list[Any]]
+
+
+class StateFile:
+    """An executive's state file: ``load`` at start (None when there is none), ``save`` after
+    every decision, before its outputs are published."""
+
+    def __init__(self, path: str | Path, log: logging.Logger) -> None:
+        self.path = Path(path)
+        self.log = log
+        self.fd: int | None = None
+        self.size = 0
+
+    def load(self) -> Saved | None:
+        """What was last written, or None (no file yet, or one that cannot be read: then it is
+        kept beside as ``.bad`` and the run starts afresh, logged, never a crash)."""
+        from agents.lang import EngineState, LangError
+
+        try:
+            text = self.path.read_text(encoding="utf-8")
+        except FileNotFoundError:
+            return None
+        try:
+            doc = json.loads(text)
+            saved = Saved(int(doc["cycle"]), EngineState.from_dict(doc["state"]),
+                          dict(doc["intention"]), list(doc["actions"]))
+        except (ValueError, KeyError, TypeError, LangError) as exc:
+            bad = self.path.with_suffix(self.path.suffix + ".bad")
+            os.replace(self.path, bad)
+            self.log.error("engine state %s: cannot be read (%s); kept as %s, starting afresh",
+                           self.path, exc, bad)
+            return None
+        state = saved.state
+        self.log.info("engine state %s read back (bus cycle %d): %d goal(s), %d goal stack(s), "
+                      "%d learned skill(s)", self.path, saved.cycle, len(state.goals),
+                      len(state.solver.stacks), len(state.learned))
+        return saved
+
+    def save(self, saved: Saved) -> None:
+        data = json.dumps({"cycle": saved.cycle, "state": saved.state.to_dict(),
+                           "intention": saved.intention, "actions": saved.actions}).encode()
+        if self.fd is None:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+            self.size = os.fstat(self.fd).st_size
+        os.pwrite(self.fd, data + b" " * (self.size - len(data)), 0)
+        self.size = max(self.size, len(data))
+
+
+class LearnedFile:
+    """The learned-skills file of one agent, rewritten whenever a skill is learned."""
+
+    def __init__(self, path: str | Path, program: str) -> None:
+        self.path = Path(path)
+        self.program = program
+        self.written: tuple[str, ...] | None = None
+
+    def save(self, learned: tuple[str, ...]) -> None:
+        from agents.lang.solving.learned import learned_text
+
+        if learned != self.written:
+            write_atomically(self.path, learned_text(learned, self.program))
+            self.written = learned

@@ -1,0 +1,139 @@
+"""Means-ends search (agents/lang/solving/search.py): on a toy task first, then in the Blocks
+World: backtracking to the next alternative when a chain cannot succeed (a loop, a start that
+cannot be achieved, a depth bound), and failure, with the reason, when none is left."""
+
+from __future__ import annotations
+
+import pytest
+
+from agents.lang import Engine, GoalStatus, load_program_text
+from agents.lang.solving.search import MAX_STACK
+
+from ..test_blocks import run
+
+
+def _deep(n: int) -> Engine:
+    """A toy program: (p0 ?x) is (p1 ?x), ..., (p<n> ?x) is (ready ?x), a percept no skill
+    changes: concept chaining goes down one level a cycle."""
+    concepts = [f"((p{i} ?x) :percepts ((thing ?x)) :relations ((p{i + 1} ?x)))"
+                for i in range(n)]
+    text = f"""(concepts ((ready ?x) :percepts ((thing ?x ready yes)))
+                          ((p{n} ?x) :percepts ((thing ?x)) :relations ((ready ?x)))
+                          {' '.join(concepts)})"""
+    return Engine(load_program_text(text, "deep.tlp"))
+
+
+def _solve(engine: Engine, goal: str, percepts: list, cycles: int):
+    state = engine.add_goal(engine.initial_state(), goal, goal_id="g1")
+    out = []
+    for _ in range(cycles):
+        result = engine.cycle(state, percepts)
+        out.append(result.decision)
+        state = result.state
+    return out, state
+
+
+def test_toy_task_one_push_per_cycle_then_nothing_to_chain_off():
+    decisions, state = _solve(_deep(3), "(p0 A)", [["thing", "A", "ready", "no"]], 6)
+    assert [d.section("solver").stack("g1") for d in decisions[:5]] == [
+        ["(p0 A)", "(p1 A)"], ["(p0 A)", "(p1 A)", "(p2 A)"],
+        ["(p0 A)", "(p1 A)", "(p2 A)", "(p3 A)"],
+        ["(p0 A)", "(p1 A)", "(p2 A)", "(p3 A)", "(ready A)"],
+        []]   # nothing achieves (ready A): every level fails in turn, the goal too
+    assert [d.status_of("g1") for d in decisions] == [GoalStatus.IMPASSE] * 4 + \
+        [GoalStatus.FAILED] * 2
+    events = decisions[4].section("solver").events
+    assert events[0] == ("g1: backtracked: (ready A) cannot be achieved: nothing to chain off: "
+                         "no primitive skill achieves ready; ready is a primitive concept, "
+                         "with no subconcepts to decompose into")
+    assert events[-1] == f"g1: failed: {state.failure_of('g1')}"
+    assert state.failure_of("g1").startswith(
+        "(p0 A) cannot be achieved: every alternative failed (concept p0#1: its subgoal (p1 A) "
+        "cannot be achieved: every alternative failed (concept p1#1: its subgoal (p2 A)")
+    assert state.solver.stacks == ()
+
+
+def test_toy_task_depth_bound():
+    decisions, state = _solve(_deep(MAX_STACK + 5), "(p0 A)", [["thing", "A", "ready", "no"]],
+                              MAX_STACK + 2)
+    assert len(decisions[MAX_STACK - 2].section("solver").stack("g1")) == MAX_STACK
+    failed = [d for d in decisions if d.status_of("g1") is GoalStatus.FAILED]
+    assert failed and f"depth bound: the goal stack already holds {MAX_STACK} (sub)goals" in \
+        "\n".join(failed[0].section("solver").events)
+
+
+@pytest.fixture(scope="module")
+def blocks():
+    from agents.lang import load_program
+
+    from ..conftest import ROOT
+    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+
+
+def _goal(engine, goal):
+    return engine.add_goal(engine.remove_goal(engine.initial_state(), "p1"), goal, goal_id="g1")
+
+
+def test_backtrack_the_first_chain_fails_by_a_loop_the_second_succeeds(blocks):
+    """(holding A) with C on A on B: skill chaining tries (pickup A T) first (program order);
+    its start needs (ontable A T), which needs A put down, which needs (holding A): a loop.
+    The search backtracks to the second alternative, (unstack A B), and succeeds."""
+    trace, support, holding, state = run(blocks, _goal(blocks, "(holding A)"),
+                                         {"B": "T", "A": "B", "C": "A"}, cycles=8)
+    stacks = [d.section("solver").stack("g1") for d, _ in trace[:4]]
+    assert stacks == [
+        ["(holding A)", "(pickupable A T)"],
+        ["(holding A)", "(pickupable A T)", "(ontable A T)"],
+        ["(holding A)", "(pickupable A T)", "(ontable A T)", "(putdownable A T)"],
+        ["(holding A)", "(unstackable A B)"]]
+    events = trace[3][0].section("solver").events
+    assert events == (
+        "g1: backtracked: (putdownable A T) cannot be achieved: every alternative failed "
+        "(concept putdownable#1: loop: (holding A) is already on the goal stack)",
+        "g1: backtracked: (ontable A T) cannot be achieved: every alternative failed ((putdown A"
+        " T): its subgoal (putdownable A T) cannot be achieved: every alternative failed "
+        "(concept putdownable#1: loop: (holding A) is already on the goal stack))",
+        "g1: backtracked: (pickupable A T) cannot be achieved: every alternative failed "
+        "(concept pickupable#1: its subgoal (ontable A T) cannot be achieved: every alternative"
+        " failed ((putdown A T): its subgoal (putdownable A T) cannot be achieved: every "
+        "alternative failed (concept putdownable#1: loop: (holding A) is already on the goal "
+        "stack)))",
+        "g1: pushed (unstackable A B): chained off skill (unstack A B) because its start "
+        "(unstackable A B) is false")
+    entry = trace[3][0].section("solver").to_dict()["stacks"][0]["entries"][0]
+    assert entry["decision"]["alternative"] == 2 and entry["failures"][0].startswith(
+        "(pickup A T): its subgoal (pickupable A T) cannot be achieved")
+    assert [a for _, acts in trace for a in acts] == [
+        ["*unstack", "C", "A"], ["*putdown", "C", "T"], ["*unstack", "A", "B"]]
+    assert holding == "A" and trace[-1][0].status_of("g1") is GoalStatus.SATISFIED
+
+
+def test_an_impossible_problem_ends_failed_with_the_reason(blocks):
+    """(on A A): (stackable A A) needs (clear A) and (holding A), and achieving either undoes
+    the other; after the second round the way is abandoned, and with it the goal."""
+    trace, *_, state = run(blocks, _goal(blocks, "(on A A)"), {"A": "T", "B": "A"}, cycles=12)
+    statuses = [d.status_of("g1") for d, _ in trace]
+    assert GoalStatus.FAILED in statuses
+    first = statuses.index(GoalStatus.FAILED)
+    assert set(statuses[first:]) == {GoalStatus.FAILED}
+    assert state.failure_of("g1") == (
+        "(on A A) cannot be achieved: every alternative failed ((stack A A): its subgoal "
+        "(stackable A A) cannot be achieved: every alternative failed (concept stackable#1: "
+        "loop: (clear A) was achieved 2 times and undone each time while achieving "
+        "(holding A)))")
+    assert trace[first][0].goals[0].note == state.failure_of("g1")
+    assert state.solver.stacks == () and all(acts == [] for _, acts in trace[first:])
+
+
+def test_a_failed_goal_no_longer_blocks_the_goals_after_it(blocks):
+    """An unknown block: nothing to chain off; the program's goal (clear A) is solved next."""
+    state = blocks.add_goal(blocks.initial_state(), "(clear Q)", priority=0, goal_id="g1")
+    trace, *_ = run(blocks, state, {"A": "T", "B": "A", "C": "B"}, cycles=1)
+    decision = trace[0][0]
+    assert decision.status_of("g1") is GoalStatus.FAILED
+    assert decision.goals[0].note == (
+        "(clear Q) cannot be achieved: nothing to chain off: no primitive skill for clear "
+        "applies here (its :percepts do not match, or its start could not become subgoals); "
+        "its definition cannot be decomposed here")
+    assert decision.status_of("p1") is GoalStatus.IMPASSE
+    assert decision.section("solver").stack("p1") == ["(clear A)", "(unstackable B A)"]

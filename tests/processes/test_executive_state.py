@@ -1,0 +1,73 @@
+"""The executive process's state file (agents/processes/persist.py) with the real engine and
+the Blocks World program: a restarted executive (a new make_step on the same file) goes on
+with the goal stack and learned skills, re-emits a decision it had made before it died instead
+of deciding again, and a file that cannot be read is kept aside, never a crash."""
+
+from __future__ import annotations
+
+import json
+import logging
+from pathlib import Path
+
+from agents.lang import Engine, load_program
+from agents.processes.executive import make_step
+from agents.processes.persist import Saved, StateFile
+from bus import keys
+from bus.messages import Beliefs, Envelope, GoalList, Percepts
+
+ROOT = Path(__file__).resolve().parents[2]
+PROGRAM = str(ROOT / "programs" / "blocks.tlp")
+LOG = logging.getLogger("test")
+TOWER = [["table", "T", "xpos", 0, "ypos", 0, "height", 2], ["hand", "H1", "status", "empty"],
+         ["block", "A", "xpos", 0, "ypos", 2, "height", 2],
+         ["block", "B", "xpos", 0, "ypos", 4, "height", 2],
+         ["block", "C", "xpos", 0, "ypos", 6, "height", 2]]
+
+
+def _inputs(cycle: int, percepts: list) -> dict:
+    env = Envelope.now("r", cycle, "test")
+    beliefs = tuple(b.to_list() for b in Engine(load_program(PROGRAM)).infer(percepts))
+    return {keys.percepts("r", "ME"): Percepts(env, "ME", tuple(percepts)),
+            keys.beliefs("r", "ME"): Beliefs(env, "ME", beliefs),
+            keys.goal_list("r", "ME"): GoalList(env, "ME", ())}
+
+
+def _decision(outs) -> dict:
+    return next(msg.decision for key, msg in outs if key.endswith("/intention"))
+
+
+def test_a_restarted_executive_goes_on_with_its_goal_stack(tmp_path):
+    path = tmp_path / "state-ME.json"
+    step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+    first = _decision(step(0, _inputs(0, TOWER)))
+    assert first["solver"]["stacks"][0]["entries"][1]["goal"] == "(unstackable B A)"
+    # the process dies after deciding cycle 0; the clock sends cycle 0 again to the new one
+    again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+    repeated = again(0, _inputs(0, TOWER))
+    assert _decision(repeated) == first                       # re-emitted, not decided twice
+    second = _decision(again(1, _inputs(1, TOWER)))
+    assert [e["goal"] for e in second["solver"]["stacks"][0]["entries"]] == [
+        "(clear A)", "(unstackable B A)", "(clear B)"]        # the stack went on: one deeper
+    assert second["actions"] == [["*unstack", "C", "B"]]
+    saved = StateFile(path, LOG).load()
+    assert saved.cycle == 1 and saved.state.solver.stacks[0].goals()[-1] == "(clear B)"
+
+
+def test_a_shorter_state_after_a_longer_one_reads_back(tmp_path):
+    path = tmp_path / "s.json"
+    engine = Engine(load_program(PROGRAM))
+    file = StateFile(path, LOG)
+    long_state = engine.add_goal(engine.initial_state(), "(ontable ?b T)")
+    file.save(Saved(3, long_state, {"why": ["x" * 500]}, []))
+    file.save(Saved(4, engine.initial_state(), {}, [["*putdown", "C", "T"]]))
+    back = StateFile(path, LOG).load()
+    assert (back.cycle, back.state, back.actions) == (4, engine.initial_state(),
+                                                      [["*putdown", "C", "T"]])
+
+
+def test_an_unreadable_state_file_is_kept_aside_and_the_run_starts_afresh(tmp_path, caplog):
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps({"cycle": 2, "state": {"version": 99}}))
+    assert StateFile(path, LOG).load() is None
+    assert (tmp_path / "s.json.bad").exists() and not path.exists()
+    assert "cannot be read" in caplog.text and "engine state version 99" in caplog.text

@@ -1,0 +1,143 @@
+"""Run records without the bus: the writer's timing rules, `teleo simulate`'s record of
+seed 000's Figure 3, finding a run, and `teleo plot` of a domain other than driving."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from bus import keys
+from bus.messages import Envelope, Percepts, WorldEvent, WorldState
+from bus.record import message_record
+from tools.cli import cli
+from tools.records import RecordError, RecordWriter, RunRecord, locate
+
+ROOT = Path(__file__).resolve().parents[2]
+FIGURE3 = ROOT / "scenarios" / "blocks_figure3.toml"
+
+
+def _add(rec: RecordWriter, key: str, msg) -> None:
+    rec.add(key, message_record(key, msg))
+
+
+def test_a_record_waits_for_its_cycles_world_state_to_take_its_time(tmp_path) -> None:
+    path = tmp_path / "r.mcap"
+    env = lambda c: Envelope(1, "r1", c, "t", 99)  # noqa: E731
+    with RecordWriter(path, "r1") as rec:
+        _add(rec, keys.percepts("r1", "A"), Percepts(env(0), "A", ()))   # before its state
+        _add(rec, keys.world_state("r1"), WorldState(env(0), {"time": 1.5}, {}, []))
+        _add(rec, keys.world_events("r1"), WorldEvent(env(-1), {"kind": "x"}))  # no cycle
+        _add(rec, keys.world_state("r1"), WorldState(env(1), {"time": 1.6}, {}, []))
+        _add(rec, keys.percepts("r1", "A"), Percepts(env(3), "A", ()))   # state never came
+    from mcap.reader import make_reader
+
+    with path.open("rb") as f:
+        got = [(json.loads(m.data)["kind"], json.loads(m.data)["env"]["cycle"], m.log_time,
+                m.publish_time) for _, _, m in make_reader(f).iter_messages()]
+    assert got == [("WorldState", 0, 1_500_000_000, 99), ("Percepts", 0, 1_500_000_000, 99),
+                   ("WorldEvent", -1, 1_500_000_000, 99), ("WorldState", 1, 1_600_000_000, 99),
+                   ("Percepts", 3, 1_800_000_000, 99)]   # extrapolated with the last step
+
+
+def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatch) -> None:
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    done = CliRunner().invoke(cli, ["simulate", str(FIGURE3)])
+    assert done.exit_code == 0, done.output
+    out = json.loads(done.output)
+    rec = RunRecord(locate(out["record"]))
+    assert rec.meta["teleo.run"]["source"] == "simulate"
+    run = rec.run
+    counts: dict[str, int] = {}
+    for key, _ in rec.records():
+        counts[key] = counts.get(key, 0) + 1
+    stages = [keys.stats(run, p) for p in ("world", "ME.perception", "ME.inference",
+                                           "ME.executive")]
+    assert counts == {k: out["cycles"] for k in (
+        keys.world_state(run), keys.percepts(run, "ME"), keys.beliefs(run, "ME"),
+        keys.intention(run, "ME"), keys.actions(run, "ME"), *stages)}
+    # Figure 3: unstack C from B, put C down, unstack B from A (cycles that act)
+    actions = [r["actions"] for _, r in sorted(rec.by_cycle("actions", "ME").items())]
+    assert [a for a in actions if a] == [[["*unstack", "C", "B"]], [["*putdown", "C", "T"]],
+                                         [["*unstack", "B", "A"]]]
+    assert rec.goal_history()["ME"]["s1"][-1]["status"] == "satisfied"
+    assert locate(run) == locate(Path(out["record"]).parent) == Path(out["record"])
+
+
+def test_simulate_without_a_record(tmp_path, monkeypatch) -> None:
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    done = CliRunner().invoke(cli, ["simulate", str(FIGURE3), "--no-record"])
+    assert done.exit_code == 0 and json.loads(done.output)["record"] is None
+    assert not list(tmp_path.rglob("*.mcap"))
+
+
+def test_a_run_that_is_not_there_is_named_with_the_places_looked_at(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    with pytest.raises(RecordError, match="nope: no run record here .*no run in .* has a record"):
+        locate("nope")
+    bad = tmp_path / "bad.mcap"
+    bad.write_text("not an mcap file")
+    with pytest.raises(RecordError, match="bad.mcap: not a readable run record"):
+        RunRecord(bad)
+    shown = CliRunner().invoke(cli, ["explain", "nope"])
+    assert shown.exit_code == 1 and "no run record here" in shown.output
+    assert "Traceback" not in shown.output
+
+
+def test_plot_of_a_blocks_run_and_explain_of_its_goals(tmp_path, monkeypatch) -> None:
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    runner = CliRunner()
+    out = json.loads(runner.invoke(cli, ["simulate", str(FIGURE3)]).output)
+    drawn = runner.invoke(cli, ["plot", out["record"], "--out", str(tmp_path / "p.png")])
+    assert drawn.exit_code == 0, drawn.output
+    assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+    told = runner.invoke(cli, ["explain", out["record"], "--goal", "p1"])
+    assert told.exit_code == 0, told.output
+    lines = told.output.splitlines()
+    assert lines[0].startswith("goal p1 of ME: (clear A), priority 1")
+    rows = [(int(ln.split()[1]), ln.split()[2]) for ln in lines[1:]]  # "cycle N status"
+    intentions = RunRecord(locate(out["record"])).by_cycle("intention", "ME")
+    for cycle, status in rows:  # each change is the status the decision of that cycle gave
+        assert status == next(g["status"] for g in intentions[cycle]["decision"]["goals"]
+                              if g["id"] == "p1")
+    assert rows[0][0] == 0 and rows[-1][1] == "satisfied" and len(rows) >= 2
+    wrong = runner.invoke(cli, ["explain", out["record"], "--agent", "YOU"])
+    assert wrong.exit_code == 2 and "no agent 'YOU'; agents: ME" in wrong.output
+
+
+def test_simulate_times_the_stages_apart_yet_decides_as_engine_cycle(tmp_path) -> None:
+    """simulate splits Engine.cycle into infer and decide to time them; with an SCS body that
+    asserts facts into the world model (programs/errands.tlp) the actions must stay the same."""
+    from agents.lang import Engine, load_program
+    from tools.recorder import SimRecorder
+    from tools.scenario_check import load_checked
+    from tools.simulate import simulate
+    from world.domain import get_domain
+
+    scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
+    with RecordWriter(tmp_path / "r.mcap", "e1") as writer:
+        split = simulate(scenario, cycles=120, recorder=SimRecorder(writer, "e1"))
+    beliefs = RunRecord(tmp_path / "r.mcap").by_cycle("beliefs", "ME")
+    domain = get_domain(scenario.domain)
+    world = domain.create(scenario.world_table, scenario.run.seed, ["ME"])
+    agent = scenario.agents[0]
+    engine = Engine(load_program(agent.program), solver="means-ends" if agent.solver else None)
+    state, outcomes, modelled = engine.initial_state(), [], 0
+    for k, g in enumerate(scenario.goals):
+        assert g.at_cycle == 0 and g.op == "post"
+        state = engine.add_goal(state, g.goal, priority=g.priority, goal_id=g.goal_id or f"s{k+1}")
+    for cycle in range(120):
+        for event in scenario.events:
+            if event.at_cycle == cycle:
+                world.inject(event.event)
+        result = engine.cycle(state, domain.perceive(world.snapshot_dict(), "ME"), outcomes)
+        state, modelled = result.state, modelled + bool(result.state.scs.model)
+        actions = [a.to_list() for a in result.decision.actions]
+        assert actions == split.records[cycle]["ME"]["actions"], cycle
+        assert sorted(b.to_list() for b in result.beliefs) == sorted(
+            beliefs[cycle]["beliefs"]), cycle  # world-model facts included
+        outcomes = world.apply_actions("ME", actions)
+        world.step()
+    assert modelled > 0  # the world model took part

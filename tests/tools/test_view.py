@@ -1,0 +1,147 @@
+"""The web view's server and model on a run record (no bus): the page and its scripts come
+from the package (nothing from the internet), frames and status are served as JSON and as
+server-sent events, past cycles can be asked for, and a domain the page cannot draw gets
+the domain's own PNG."""
+
+from __future__ import annotations
+
+import json
+import threading
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+from tools.recorder import SimRecorder
+from tools.records import RecordWriter, RunRecord
+from tools.scenario_check import load_checked
+from tools.simulate import simulate
+from tools.tree import decision_tree, to_json
+from tools.view import scene
+from tools.view.feeds import load_file
+from tools.view.model import ViewModel
+from tools.view.server import STATIC, ViewServer
+
+ROOT = Path(__file__).resolve().parents[2]
+HOLD_SPEED = ROOT / "tests" / "e2e" / "fixtures" / "hold_speed.toml"
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory) -> Path:
+    """A 30-cycle driving run recorded by simulate."""
+    path = tmp_path_factory.mktemp("view") / "record.mcap"
+    scenario, _ = load_checked(HOLD_SPEED)
+    with RecordWriter(path, "hold-1") as writer:
+        simulate(scenario, recorder=SimRecorder(writer, "hold-1"))
+    return path
+
+
+@pytest.fixture
+def served(record):
+    model = ViewModel()
+    load_file(model, record)
+    server = ViewServer(model, 0)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        yield server.url, model
+    finally:
+        server.closing = True
+        server.shutdown()
+        server.server_close()
+
+
+def _get(url: str) -> tuple[str, bytes]:
+    with urllib.request.urlopen(url, timeout=30) as r:
+        return r.headers["Content-Type"], r.read()
+
+
+def test_the_page_is_served_from_the_package_with_nothing_from_the_internet(served):
+    url, _ = served
+    ctype, html = _get(url)
+    assert ctype.startswith("text/html") and b'<script src="/view.js">' in html
+    for name in ("view.js", "world.js", "view.css"):
+        _, body = _get(url + name)
+        assert body == (STATIC / name).read_bytes()
+    for path in STATIC.iterdir():
+        text = path.read_text()
+        assert "http://" not in text and "https://" not in text and "//cdn" not in text, path
+
+
+def test_frames_hold_the_world_and_each_agents_decision_tree(served, record):
+    url, model = served
+    _, body = _get(url + "api/frame?cycle=12")
+    frame = json.loads(body)
+    decision = RunRecord(record).by_cycle("intention", "ME")[12]["decision"]
+    assert frame["cycle"] == 12 and frame["world"]["cycle"] == 12
+    assert "config" not in frame["world"]                      # the static part is in the map
+    me = frame["agents"]["ME"]
+    assert me["goals"] == decision["goals"] and me["actions"] == decision["actions"]
+    assert me["tree"] == to_json(decision_tree(decision, "ME, cycle 12"))
+    assert me["self"]["speed"] == pytest.approx(frame["world"]["cars"][0]["speed"], abs=0.01)
+    car = frame["world"]["cars"][0]
+    trail = frame["trails"]["ME"]   # a point each time the car has moved 0.5 m
+    assert abs(trail[-1][0] - car["x"]) + abs(trail[-1][1] - car["y"]) < 0.5
+    newest = json.loads(_get(url + "api/frame")[1])
+    assert newest["cycle"] == 29
+    with pytest.raises(urllib.error.HTTPError, match="404"):
+        _get(url + "api/frame?cycle=999")
+    for bad in ("api/frame?cycle=x", "api/render.png?cycle=x"):
+        with pytest.raises(urllib.error.HTTPError, match="400"):
+            _get(url + bad)
+
+
+def test_the_map_and_status(served):
+    url, _ = served
+    city = json.loads(_get(url + "api/map")[1])
+    assert city["domain"] == "driving" and city["drawn"]
+    assert len(city["segments"]) == 12 and city["buildings"]           # a 3 x 3 grid
+    status = json.loads(_get(url + "api/status")[1])
+    assert (status["first"], status["last"]) == (0, 29)
+    assert {p["name"] for p in status["processes"]} == {"world", "ME.perception",
+                                                         "ME.inference", "ME.executive"}
+    assert status["goals"]["ME"]["s1"][0]["cycle"] == 0
+
+
+def test_events_push_a_frame_and_the_status(served):
+    url, _ = served
+    with urllib.request.urlopen(url + "events", timeout=30) as stream:
+        assert stream.headers["Content-Type"] == "text/event-stream"
+        names, datas = [], []
+        while len(datas) < 2:
+            line = stream.readline().decode().strip()
+            if line.startswith("event: "):
+                names.append(line[7:])
+            elif line.startswith("data: "):
+                datas.append(json.loads(line[6:]))
+    assert names == ["frame", "status"]
+    assert datas[0]["cycle"] == 29 and datas[1]["last"] == 29
+
+
+def test_a_domain_the_page_cannot_draw_gets_its_own_picture(served):
+    url, model = served
+    png = _get(url + "api/render.png?cycle=20")
+    assert png[0] == "image/png" and png[1][:4] == b"\x89PNG"
+    snap = {"domain": "blocks", "cycle": 0, "time": 0.0, "table": {"columns": 3}, "blocks": []}
+    static, moving = scene.split(snap)
+    assert static == {"table": {"columns": 3}} and "table" not in moving
+    assert scene.map_of(snap)["drawn"] and not scene.map_of({**snap, "domain": "office"})["drawn"]
+
+
+def test_a_model_follows_one_run_only(record):
+    model = ViewModel(run="someone-else")
+    load_file(model, record)
+    assert model.frame() is None and model.status(0)["last"] is None
+
+
+def test_the_office_floor_is_the_domains_own_picture(tmp_path) -> None:
+    scenario, _ = load_checked(ROOT / "scenarios" / "office_errand.toml")
+    path = tmp_path / "office.mcap"
+    with RecordWriter(path, "office-1") as writer:
+        simulate(scenario, cycles=12, recorder=SimRecorder(writer, "office-1"))
+    model = ViewModel()
+    load_file(model, path)
+    assert model.map["domain"] == "office" and not model.map["drawn"]
+    assert "config" not in model.frame(11)["world"]
+    assert scene.render_png(model.snapshots_for_render(11), "ME")[:4] == b"\x89PNG"

@@ -1,0 +1,158 @@
+"""`teleo explain RUN`: why an agent did what it did, from a run record (tools/records.py).
+
+    teleo explain RUN [--agent A] [--cycle N]       the decision of cycle N as a tree
+    teleo explain RUN --goal g2                     when g2 became active, suspended, achieved
+    teleo explain RUN --percepts --cycle N > f.txt  cycle N's percepts, as `teleo step` reads them
+
+RUN is a run folder, a run id under the runs folder, or an .mcap file.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from typing import Any
+
+import click
+
+from tools.records import RecordError, RunRecord, locate
+from tools.tree import decision_tree, fold, render_text, to_json
+
+PROGRAM_GOAL = re.compile(r"p\d+")  # the engine's ids of program goals (Engine.initial_state)
+
+
+def _open(run: str, agent: str | None) -> tuple[RunRecord, str]:
+    try:
+        rec = RunRecord(locate(run))
+        agents = rec.agents()
+    except RecordError as exc:
+        raise click.ClickException(str(exc)) from exc
+    if agent is None:
+        if len(agents) != 1:
+            raise click.UsageError(f"run {rec.run} has agents {', '.join(agents) or 'none'}: "
+                                   "choose one with --agent")
+        agent = agents[0]
+    elif agent not in agents:
+        raise click.UsageError(f"run {rec.run} has no agent {agent!r}; agents: "
+                               f"{', '.join(agents)}")
+    return rec, agent
+
+
+def _of_cycle(rec: RunRecord, kind: str, agent: str, cycle: int | None) -> tuple[int, dict]:
+    """The record of `kind` of `cycle` (default: the last recorded); UsageError if absent."""
+    by_cycle = rec.by_cycle(kind, agent)
+    if not by_cycle:
+        raise click.ClickException(f"run {rec.run}: no {kind} of {agent} recorded")
+    cycle = max(by_cycle) if cycle is None else cycle
+    if cycle not in by_cycle:
+        raise click.UsageError(f"run {rec.run}: no {kind} of {agent} at cycle {cycle}; "
+                               f"recorded cycles {min(by_cycle)}..{max(by_cycle)}")
+    return cycle, by_cycle[cycle]
+
+
+def goal_history(rec: RunRecord, agent: str, goal_id: str) -> list[dict[str, Any]]:
+    """Every status change of one goal, from the intentions (with the engine's notes)."""
+    changes: list[dict[str, Any]] = []
+    for cycle, intention in sorted(rec.by_cycle("intention", agent).items()):
+        for g in intention["decision"].get("goals", ()):
+            if g.get("id") == goal_id and (not changes or changes[-1]["status"] != g["status"]):
+                changes.append({"cycle": cycle, "status": g["status"], "goal": g.get("goal"),
+                                "priority": g.get("priority"), "note": g.get("note", "")})
+    return changes
+
+
+def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None) -> str:
+    """The percepts of a cycle as a file for `teleo step` (s-expressions when they read back
+    exactly, else JSON lists), headed by comments saying how to replay the decision."""
+    from agents.lang import LangError, parse_percepts
+
+    percepts = rec.by_cycle("percepts", agent)[cycle]["percepts"]
+    goals = [g for g in (intention or {}).get("decision", {}).get("goals", ())
+             if not PROGRAM_GOAL.fullmatch(str(g.get("id")))]
+    flags = " ".join(f"--goal '{g['goal']}:{g['priority']}'" for g in goals)
+    head = [f"; percepts of {agent} at cycle {cycle} of run {rec.run}",
+            f"; replay the decision: teleo step {_program(rec, agent)} --percepts FILE "
+            f"{flags}".rstrip(),
+            "; (user goals as listed that cycle; remembered paths and action outcomes are "
+            "not in this file)"]
+    text = "\n".join(head + ["(" + " ".join(_atom(v) for v in p) + ")" for p in percepts])
+    try:
+        if [p.to_list() for p in parse_percepts(text)] == percepts:
+            return text + "\n"
+    except LangError:
+        pass
+    return json.dumps(percepts) + "\n"
+
+
+def _program(rec: RunRecord, agent: str) -> str:
+    """The agent's program file, from the run's scenario when it can still be read."""
+    from world.errors import WorldError
+    from world.run_scenario import load_scenario
+
+    try:
+        scenario = load_scenario(rec.meta.get("teleo.run", {}).get("scenario", ""))
+        return str(next(a.program for a in scenario.agents if a.id == agent))
+    except (WorldError, OSError, StopIteration):
+        return "PROGRAM"
+
+
+def _atom(v: Any) -> str:
+    return repr(v) if isinstance(v, float) else str(v)
+
+
+def _history_text(rec: RunRecord, agent: str, goal_id: str, changes: list[dict]) -> str:
+    first = changes[0]
+    lines = [f"goal {goal_id} of {agent}: {first['goal']}, priority {first['priority']} "
+             f"(run {rec.run})"]
+    for c in changes:
+        note = f"  -- {c['note']}" if c["note"] else ""
+        lines.append(f"  cycle {c['cycle']:>6}  {c['status']:<9}{note}")
+    return "\n".join(lines)
+
+
+@click.command()
+@click.argument("run", metavar="RUN")
+@click.option("--agent", default=None, help="Whose decisions (default: the only agent).")
+@click.option("--cycle", type=int, default=None, help="Which cycle (default: the last).")
+@click.option("--goal", "goal_id", default=None, help="Show this goal's history instead.")
+@click.option("--percepts", "percepts", is_flag=True,
+              help="Print the cycle's percepts as a file `teleo step --percepts` reads.")
+@click.option("--brief", is_flag=True,
+              help="Fold the skills passed over for goals that do not act into one line.")
+@click.option("--json", "as_json", is_flag=True, help="One JSON object, for scripts.")
+def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
+            percepts: bool, brief: bool, as_json: bool) -> None:
+    """Explain a recorded decision: goals with statuses, the skill path with bindings, the
+    skills passed over and why (RUN: a run folder, a run id or an .mcap file)."""
+    if goal_id is not None and (cycle is not None or percepts):
+        raise click.UsageError("--goal shows a goal's whole history: leave out --cycle/--percepts")
+    rec, agent = _open(run, agent)
+    if goal_id is not None:
+        changes = goal_history(rec, agent, goal_id)
+        if not changes:
+            known = sorted({g["id"] for i in rec.by_cycle("intention", agent).values()
+                            for g in i["decision"].get("goals", ())})
+            raise click.UsageError(f"run {rec.run}: {agent} never had a goal {goal_id!r}; "
+                                   f"goals: {', '.join(known)}")
+        click.echo(json.dumps({"run": rec.run, "agent": agent, "goal_id": goal_id,
+                               "history": changes}, indent=1) if as_json
+                   else _history_text(rec, agent, goal_id, changes))
+        return
+    if percepts:
+        cycle, _ = _of_cycle(rec, "percepts", agent, cycle)
+        intention = rec.by_cycle("intention", agent).get(cycle)
+        click.echo(percept_file(rec, agent, cycle, intention), nl=False)
+        return
+    cycle, intention = _of_cycle(rec, "intention", agent, cycle)
+    tree = decision_tree(intention["decision"], f"goals of {agent} at cycle {cycle} "
+                                                f"(run {rec.run})")
+    tree = fold(tree) if brief else tree
+    if as_json:
+        click.echo(json.dumps({"run": rec.run, "agent": agent, "cycle": cycle,
+                               "decision": intention["decision"], "tree": to_json(tree)},
+                              indent=1))
+    else:
+        click.echo(render_text(tree))
+
+
+commands = [explain]

@@ -1,0 +1,187 @@
+"""Who writes run records: `BusRecorder` takes every message of a run off the bus (the launcher
+starts one before any process, so cycle 0 is in; `teleo record` runs one in the foreground),
+and `SimRecorder` writes the same channels from `teleo simulate`'s in-process loop.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import secrets
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+from bus import keys
+from bus.config import BusConfig
+from bus.errors import BusError, CodecError
+from bus.messages import (
+    Actions,
+    Beliefs,
+    Envelope,
+    Intention,
+    Message,
+    Percepts,
+    ProcessStats,
+    WorldState,
+)
+from bus.node import open_node
+from bus.record import message_record, to_record
+from tools import runfile
+from tools.records import RECORD_FILE, RecordWriter
+
+log = logging.getLogger(__name__)
+NICE = 10  # the recording thread yields the CPU to the run's processes (it catches up later)
+RECORDER_META = "teleo.recorder"
+
+
+class BusRecorder:
+    """Records `teleo/<run>/**` into a RecordWriter on a thread of its own.
+
+    `start()` returns once the subscription is declared; `stop()` takes what is still in
+    flight (until the bus has been quiet for `quiet_s`) and closes the record.
+    """
+
+    def __init__(self, cfg: BusConfig, run: str, path: Path, meta: dict[str, str] | None = None,
+                 process: str = "record") -> None:
+        self.cfg, self.run, self.process = cfg, run, process
+        self.writer = RecordWriter(path, run, meta)
+        self.received = 0
+        self.dropped = 0
+        self.cpu_s = 0.0
+        self._announce, self._quiet_s = False, 0.3
+        self.error: BaseException | None = None
+        self._ready = threading.Event()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._main, name="teleo-record", daemon=True)
+
+    def start(self, timeout: float = 30.0, announce: bool = False) -> BusRecorder:
+        """Subscribe (and, with `announce`, declare the liveliness token `process` after it)."""
+        self._announce = announce
+        self._thread.start()
+        if not self._ready.wait(timeout) or self.error is not None:
+            raise BusError(f"recorder of run {self.run}: could not subscribe: {self.error}")
+        return self
+
+    def stop(self, quiet_s: float = 0.3, timeout: float = 30.0) -> RecordWriter:
+        """Finish: drain until quiet, close the record (with this recorder's own costs in
+        its metadata `teleo.recorder`); returns the writer (its counts)."""
+        self._quiet_s = quiet_s
+        self._stop.set()
+        self._thread.join(timeout)
+        if self._thread.is_alive():
+            log.warning("recorder of run %s still draining after %.0f s", self.run, timeout)
+        self.writer.meta(RECORDER_META, {"received": str(self.received),
+                                         "dropped": str(self.dropped),
+                                         "cpu_ms": f"{self.cpu_s * 1e3:.1f}"})
+        self.writer.close()
+        return self.writer
+
+    def _main(self) -> None:
+        _lower_priority()
+        try:
+            with open_node(self.cfg, self.run, self.process) as node:
+                inbox = node.subscribe(keys.run_all(self.run), raw=True)
+                if self._announce:
+                    node.announce()
+                self._ready.set()
+                self._pump(inbox)
+                self.cpu_s = time.thread_time()  # this thread's CPU time [s]
+        except Exception as exc:  # reported by start()/the launcher, never a silent stop
+            self.error = exc
+            self._ready.set()
+            log.error("recorder of run %s stopped: %s", self.run, exc)
+
+    def _pump(self, inbox: Any) -> None:
+        quiet_since = None
+        while True:
+            item = inbox.receive(0.05)
+            if item is None:
+                if self._stop.is_set():
+                    quiet_since = quiet_since or time.monotonic()
+                    if time.monotonic() - quiet_since >= self._quiet_s:
+                        return
+                continue
+            quiet_since = None
+            self.received += 1
+            try:
+                self.writer.add(item.key, to_record(item.key, item.payload))
+            except (CodecError, KeyError, TypeError, ValueError) as exc:
+                self.dropped += 1
+                log.warning("not recorded: %s", exc)
+
+
+def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
+                       scenario: Any) -> BusRecorder | None:
+    """The launcher's recorder of `run`, subscribed before any process starts (so the
+    record holds cycle 0), writing run_dir/record.mcap; None (said on the log) when it
+    cannot subscribe: the run goes on unrecorded."""
+    meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain}
+    client = BusConfig(mode="client", connect=cfg.connect, listen=())
+    recorder = BusRecorder(client, run, run_dir / RECORD_FILE, meta, process="launch.record")
+    try:
+        return recorder.start()
+    except BusError as exc:
+        log.error("run %s is not recorded: %s", run, exc)
+        recorder.writer.close()
+        return None
+
+
+def _lower_priority() -> None:
+    """Nice this thread only (Linux threads are tasks): the run's processes come first."""
+    try:
+        os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), NICE)
+    except (AttributeError, OSError) as exc:
+        log.debug("recorder thread keeps its priority: %s", exc)
+
+
+class SimRecorder:
+    """The channels of a launch, written from `teleo simulate`'s loop (no goal-list: there is
+    no goal-entry process; stats carry the in-process compute time of each stage)."""
+
+    def __init__(self, writer: RecordWriter, run: str) -> None:
+        self.writer, self.run = writer, run
+
+    @classmethod
+    def create(cls, scenario: Any) -> SimRecorder:
+        """A recorder writing runs/<name>-sim-<hex>/record.mcap under the runs folder."""
+        run = f"{scenario.run.name}-sim-{secrets.token_hex(3)}"
+        path = runfile.base_dir() / "runs" / run / RECORD_FILE
+        meta = {"source": "simulate", "scenario": str(scenario.path), "domain": scenario.domain}
+        return cls(RecordWriter(path, run, meta), run)
+
+    def _add(self, key: str, msg: Message) -> None:
+        self.writer.add(key, message_record(key, msg))
+
+    def _env(self, cycle: int, sender: str) -> Envelope:
+        return Envelope.now(self.run, cycle, sender)
+
+    def world(self, cycle: int, snap: dict[str, Any], outcomes: dict[str, list],
+              injected: list[dict[str, Any]]) -> None:
+        """The world state of `cycle` (outcomes: each agent's of the previous cycle)."""
+        self._add(keys.world_state(self.run),
+                  WorldState(self._env(cycle, "world"), snap, outcomes, injected))
+
+    def agent(self, cycle: int, agent: str, seen: Any) -> None:
+        """One agent's percepts, beliefs, intention, actions and stage stats of `cycle`;
+        `seen` has percepts, outcomes, beliefs, decision and ms (stage -> compute time)."""
+        run = self.run
+        for stage, ms in seen.ms.items():
+            process = f"{agent}.{stage}"
+            self._add(keys.stats(run, process),
+                      ProcessStats(self._env(cycle, process), process, ms, 0))
+        self._add(keys.percepts(run, agent), Percepts(
+            self._env(cycle, f"{agent}.perception"), agent, tuple(seen.percepts),
+            tuple(seen.outcomes)))
+        self._add(keys.beliefs(run, agent), Beliefs(
+            self._env(cycle, f"{agent}.inference"), agent,
+            tuple(b.to_list() for b in seen.beliefs)))
+        env = self._env(cycle, f"{agent}.executive")
+        self._add(keys.intention(run, agent), Intention(env, agent, seen.decision.to_dict()))
+        self._add(keys.actions(run, agent), Actions(
+            env, agent, tuple(a.to_list() for a in seen.decision.actions)))
+
+    def world_stats(self, cycle: int, ms: float) -> None:
+        self._add(keys.stats(self.run, "world"),
+                  ProcessStats(self._env(cycle, "world"), "world", ms, 0))

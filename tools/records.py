@@ -1,0 +1,283 @@
+"""Run records: every launch and simulate writes `record.mcap` in its run folder, the source of
+`teleo explain`, `teleo plot`, `teleo replay` and the web view (docs/records.md).
+
+MCAP (mcap.dev), zstd-compressed chunks, one channel per bus key (topic = the key), each
+message the JSON record of bus/record.py with a JSON Schema per kind, so Foxglove decodes it.
+Log time is the world time of the message's cycle [s -> ns]; publish time is when it was sent
+(wall clock [ns]). Metadata `teleo.run` holds the run id and where it came from, and
+`teleo.goals` each agent's goal history (status changes of every goal), for summaries.
+
+    with RecordWriter(path, run, {"source": "launch"}) as rec:
+        rec.add(key, record)                 # a record from bus.record.to_record
+    record = RunRecord(locate("driving-demo-ab12cd"))
+    record.by_cycle("intention", "ME")[213]  # the intention record of cycle 213
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+from collections import defaultdict
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import orjson
+from mcap.exceptions import McapError
+from mcap.reader import NonSeekingReader, make_reader
+from mcap.well_known import MessageEncoding, SchemaEncoding
+from mcap.writer import CompressionType, Writer
+
+from bus import keys
+from bus.record import json_schema
+from tools import runfile
+
+log = logging.getLogger(__name__)
+RECORD_FILE = "record.mcap"
+MCAP_MAGIC = b"\x89MCAP0\r\n"
+RUN_META = "teleo.run"
+GOALS_META = "teleo.goals"
+_KEEP_TIMES = 4096  # cycles whose world time is remembered (a forever run must not grow)
+
+
+class RecordError(Exception):
+    """A run record that cannot be found or read; the message names the file and why."""
+
+
+class GoalHistory:
+    """Each agent's goals' status changes, fed with intention records: agent -> goal id ->
+    [{"cycle", "status", "goal", "note"}] (one entry per change, first sighting included)."""
+
+    def __init__(self) -> None:
+        self.changes: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
+        self._last: dict[tuple[str, str], str] = {}
+
+    def feed(self, record: dict[str, Any]) -> None:
+        agent, cycle = record.get("agent", ""), record["env"]["cycle"]
+        for goal in record.get("decision", {}).get("goals", ()):
+            status, gid = goal.get("status"), goal.get("id")
+            if self._last.get((agent, gid)) != status:
+                self._last[(agent, gid)] = status
+                self.changes[agent].setdefault(gid, []).append(
+                    {"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
+                     "note": goal.get("note", "")})
+
+    def to_meta(self) -> dict[str, str]:
+        return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
+
+
+class RecordWriter:
+    """Writes one run record. Records of a cycle whose world state has not been seen yet are
+    held until it arrives (their log time is that state's world time)."""
+
+    def __init__(self, path: Path, run: str, meta: dict[str, str] | None = None) -> None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        self.path = path
+        self._file = path.open("wb")
+        self._mcap = Writer(self._file, compression=CompressionType.ZSTD)
+        self._mcap.start(profile="", library="teleo")
+        self._meta = {"run": run, **(meta or {})}
+        self._schemas: dict[str, int] = {}
+        self._channels: dict[str, int] = {}
+        self._times: dict[int, int] = {}  # cycle -> world time [ns]
+        self._pending: dict[int, list[tuple[str, dict[str, Any], int]]] = defaultdict(list)
+        self.history = GoalHistory()
+        self._extra_meta: dict[str, dict[str, str]] = {}
+        self.messages = 0
+        self.cycles = 0
+        self._closed = False
+
+    def __enter__(self) -> RecordWriter:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def add(self, key: str, record: dict[str, Any], publish_ns: int | None = None) -> None:
+        """Add one record received (or produced) on `key`."""
+        env = record["env"]
+        cycle, sent = int(env["cycle"]), int(env["sent_ns"] if publish_ns is None else publish_ns)
+        if record["kind"] == "WorldState":
+            self._times[cycle] = round(float(record["snapshot"].get("time", 0.0)) * 1e9)
+            self.cycles = max(self.cycles, cycle + 1)
+            self._write(key, record, self._times[cycle], sent)
+            for k, r, s in self._pending.pop(cycle, ()):
+                self._write(k, r, self._times[cycle], s)
+            if len(self._times) > _KEEP_TIMES:
+                del self._times[min(self._times)]
+        elif cycle in self._times:
+            self._write(key, record, self._times[cycle], sent)
+        elif cycle < 0:
+            self._write(key, record, self._latest(), sent)
+        else:
+            self._pending[cycle].append((key, record, sent))
+
+    def meta(self, name: str, data: dict[str, str]) -> None:
+        """Add a metadata record (written when the record closes)."""
+        self._extra_meta[name] = dict(data)
+
+    def _latest(self) -> int:
+        return self._times[max(self._times)] if self._times else 0
+
+    def _estimate(self, cycle: int) -> int:
+        """The world time of a cycle never seen: extrapolated with the last step [ns]."""
+        known = sorted(self._times)[-2:]
+        if not known:
+            return 0
+        step = (self._times[known[1]] - self._times[known[0]]) // (known[1] - known[0]) \
+            if len(known) == 2 else 0
+        return self._times[known[-1]] + (cycle - known[-1]) * step
+
+    def _write(self, key: str, record: dict[str, Any], log_ns: int, sent_ns: int) -> None:
+        channel = self._channels.get(key)
+        if channel is None:
+            channel = self._channels[key] = self._mcap.register_channel(
+                topic=key, message_encoding=MessageEncoding.JSON,
+                schema_id=self._schema(record["kind"]))
+        if record["kind"] == "Intention":
+            self.history.feed(record)
+        self._mcap.add_message(channel_id=channel, log_time=max(0, log_ns),
+                               data=orjson.dumps(record),
+                               publish_time=max(0, sent_ns))
+        self.messages += 1
+
+    def _schema(self, kind: str) -> int:
+        if kind not in self._schemas:
+            self._schemas[kind] = self._mcap.register_schema(
+                name=f"teleo.{kind}", encoding=SchemaEncoding.JSONSchema,
+                data=json.dumps(json_schema(kind)).encode())
+        return self._schemas[kind]
+
+    def close(self) -> None:
+        """Write what is held, the metadata and the summary section; close the file."""
+        if self._closed:
+            return
+        self._closed = True
+        for cycle in sorted(self._pending):
+            for k, r, s in self._pending[cycle]:
+                self._write(k, r, self._estimate(cycle), s)
+        self._pending.clear()
+        self._mcap.add_metadata(RUN_META, {**self._meta, "cycles": str(self.cycles)})
+        self._mcap.add_metadata(GOALS_META, self.history.to_meta())
+        for name, data in self._extra_meta.items():
+            self._mcap.add_metadata(name, data)
+        self._mcap.finish()
+        self._file.close()
+
+
+def locate(run: str | Path) -> Path:
+    """The record of RUN: an .mcap file, a run folder holding record.mcap, or a run id under
+    the runs folder ($TELEO_RUN_DIR/runs, default out/runs). Raises RecordError."""
+    path = Path(run)
+    candidates = list(dict.fromkeys([path, path / RECORD_FILE,
+                                     runfile.base_dir() / "runs" / str(run) / RECORD_FILE]))
+    for c in candidates:
+        if c.is_file():
+            return c
+    runs = runfile.base_dir() / "runs"
+    known = sorted(p.name for p in runs.iterdir() if (p / RECORD_FILE).is_file()) \
+        if runs.is_dir() else []
+    hint = f"; runs with a record in {runs}: {', '.join(known[-5:])}" if known else \
+        f"; no run in {runs} has a record"
+    raise RecordError(f"{run}: no run record here (looked for "
+                      f"{', '.join(str(c) for c in candidates)}){hint}")
+
+
+class RunRecord:
+    """A run record opened for reading (the whole file is read once, lazily)."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = Path(path)
+        self._records: list[tuple[str, dict[str, Any]]] | None = None
+        self.meta: dict[str, dict[str, str]] = {}
+        self.truncated = False  # never closed (its writer was killed): read as far as it goes
+        try:
+            with self.path.open("rb") as f:
+                if f.read(len(MCAP_MAGIC)) != MCAP_MAGIC:
+                    raise RecordError(f"{self.path}: not a readable run record (not MCAP)")
+                f.seek(0)
+                self.meta = {m.name: dict(m.metadata) for m in make_reader(f).iter_metadata()}
+        except (McapError, ValueError) as exc:
+            self.truncated = True
+            log.warning("%s: no summary section (%s); reading it as far as it goes",
+                        self.path, exc)
+        except OSError as exc:
+            raise RecordError(f"{self.path}: not a readable run record ({exc})") from exc
+
+    @property
+    def run(self) -> str:
+        return self.meta.get(RUN_META, {}).get("run", self.path.parent.name)
+
+    def records(self) -> list[tuple[str, dict[str, Any]]]:
+        """Every (key, record) in log-time order (within a cycle, in the order written)."""
+        if self._records is None:
+            self._records = []
+            try:
+                with self.path.open("rb") as f:
+                    reader = NonSeekingReader(f) if self.truncated else make_reader(f)
+                    for _, ch, msg in reader.iter_messages(log_time_order=not self.truncated):
+                        self._records.append((ch.topic, orjson.loads(msg.data)))
+            except (McapError, ValueError, orjson.JSONDecodeError) as exc:
+                if not self.truncated:
+                    raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
+            except OSError as exc:
+                raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
+        return self._records
+
+    def kinds(self, kind: str) -> Iterator[tuple[str, dict[str, Any]]]:
+        """Records whose key is of `kind` (keys.kind_of_key: "percepts", "intention", ...)."""
+        for key, rec in self.records():
+            if key.rsplit("/", 1)[-1] == kind or _stats_kind(key) == kind:
+                yield key, rec
+
+    def agents(self) -> list[str]:
+        return sorted({a for key, _ in self.records() if (a := keys.agent_of_key(key))})
+
+    def by_cycle(self, kind: str, agent: str | None = None) -> dict[int, dict[str, Any]]:
+        """cycle -> the record of `kind` (for `agent`) of that cycle (the last one if several)."""
+        return {rec["env"]["cycle"]: rec for key, rec in self.kinds(kind)
+                if agent is None or keys.agent_of_key(key) == agent}
+
+    def goal_history(self) -> dict[str, dict[str, list[dict[str, Any]]]]:
+        """agent -> goal id -> status changes (from the metadata, else from the intentions)."""
+        meta = self.meta.get(GOALS_META)
+        if meta is not None:
+            return {agent: json.loads(text) for agent, text in meta.items()}
+        history = GoalHistory()
+        for _, rec in self.kinds("intention"):
+            history.feed(rec)
+        return dict(history.changes)
+
+
+def _stats_kind(key: str) -> str:
+    parts = key.split("/")
+    return "stats" if len(parts) >= 3 and parts[2] == "stats" else ""
+
+
+USER_STATUS = {"satisfied": "achieved"}
+"""The engine's status words as the goal-entry process reports user goals (goal_store.py)."""
+
+
+def with_history(goals: list[dict[str, Any]], run_dir: Path) -> list[dict[str, Any]]:
+    """The summary's goals, each with "history": [{"cycle", "status"}] of its status changes
+    in the run record (statuses as users see them: satisfied -> achieved); [] without one."""
+    path = Path(run_dir) / RECORD_FILE
+    try:
+        history = RunRecord(path).goal_history() if path.is_file() else {}
+    except RecordError as exc:
+        log.warning("no goal history: %s", exc)
+        history = {}
+    return [{**g, "history": [{"cycle": c["cycle"], "status": USER_STATUS.get(c["status"],
+                                                                               c["status"])}
+                              for c in history.get(g.get("agent"), {}).get(g.get("id"), [])]}
+            for g in goals]
+
+
+def history_text(history: list[dict[str, Any]], most: int = 8) -> str:
+    """" (active 0, achieved 213)": a goal's status changes for a one-line summary."""
+    if not history:
+        return ""
+    parts = [f"{h['status']} {h['cycle']}" for h in history]
+    if len(parts) > most:
+        parts = parts[:most - 1] + [f"... {len(parts) - most} more", parts[-1]]
+    return " (" + ", ".join(parts) + ")"

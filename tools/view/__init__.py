@@ -1,0 +1,76 @@
+"""`teleo view`: a live web view of a running launch, a replayed run, or a run record file,
+served on 127.0.0.1 (docs/view.md).
+
+One subscriber (tools/view/feeds.py) reads the bus into a model (model.py); the server
+(server.py) pushes the newest cycle to the page as server-sent events and answers the page's
+requests for past cycles; the page (static/) draws the world and each agent's goals, decision
+tree and actions, with a timeline to step back, and the processes with their rates.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import click
+
+from bus.config import BusConfig, bus_options
+from bus.errors import BusError
+from bus.stage import stop_on_signals
+
+DEFAULT_PORT = 8470
+
+
+@click.command()
+@click.argument("record", metavar="[RECORD]", required=False)
+@click.option("--run", "run_id", default=None,
+              help="Which run to follow (default: the running launch's; with --connect, the "
+                   "first run seen, e.g. one `teleo replay` plays).")
+@click.option("--port", type=click.IntRange(0, 65535), default=DEFAULT_PORT, show_default=True,
+              help="Port on 127.0.0.1 (0: any free port).")
+@click.option("--history", type=click.IntRange(min=10), default=5000, show_default=True,
+              help="Cycles kept for stepping back.")
+@bus_options
+def view(record: str | None, run_id: str | None, port: int, history: int,
+         bus_config: BusConfig) -> None:
+    """Serve a web page showing the running launch live (or RECORD: a run folder, run id or
+    .mcap file): the world, each agent's goals and decision tree, processes and rates."""
+    from tools.records import RecordError, locate
+    from tools.target import find_target
+    from tools.view.feeds import BusFeed, load_file
+    from tools.view.model import ViewModel
+    from tools.view.server import ViewServer
+
+    model = ViewModel(run_id, history)
+    feed = None
+    try:
+        if record is not None:
+            load_file(model, locate(record))
+        else:
+            target = find_target(bus_config)
+            model.run = run_id or target.run
+            feed = BusFeed(model, target).start()
+        server = ViewServer(model, port)
+    except RecordError as exc:
+        raise click.ClickException(str(exc)) from exc
+    except BusError as exc:
+        raise click.ClickException(f"cannot follow the bus: {exc}") from exc
+    except OSError as exc:
+        raise click.ClickException(f"cannot serve on 127.0.0.1:{port}: {exc.strerror}; "
+                                   "give another --port (0: any free port)") from exc
+    stop = stop_on_signals()
+    thread = threading.Thread(target=server.serve_forever, name="teleo-view-http", daemon=True)
+    thread.start()
+    following = f"run {model.run}" if model.run else "the first run seen"
+    click.echo(f"teleo view of {following} ({model.source}) at {server.url}  (Ctrl-C stops)")
+    try:
+        while not stop.wait(0.5):
+            pass
+    finally:
+        server.closing = True
+        server.shutdown()
+        server.server_close()
+        if feed is not None:
+            feed.close()
+
+
+commands = [view]

@@ -1,0 +1,84 @@
+"""Where the web view's records come from: the bus (one subscriber for the whole page, and
+the run's liveliness tokens for the process list), or a run record file read at once."""
+
+from __future__ import annotations
+
+import logging
+import os
+import threading
+import time
+from pathlib import Path
+
+from bus import keys
+from bus.errors import BusError, CodecError
+from bus.node import open_node
+from bus.presence import Presence
+from bus.record import to_record
+from tools.records import RunRecord
+from tools.target import Target
+from tools.view.model import ViewModel
+
+log = logging.getLogger(__name__)
+LEARN_RUN_S = 30.0  # [s] a view of a named router waits this long for a first message
+
+
+def load_file(model: ViewModel, path: Path) -> None:
+    """Feed every record of a run record file (the page can then step through all of it)."""
+    rec = RunRecord(path)
+    model.source = f"record {path}"
+    for key, record in rec.records():
+        model.add(key, record)
+
+
+class BusFeed:
+    """Subscribes to the followed run (or, when none is named, to teleo/** until the first
+    message names one) and feeds the model on a thread of its own."""
+
+    def __init__(self, model: ViewModel, target: Target) -> None:
+        self.model, self.target = model, target
+        self.error: str | None = None
+        self.stop = threading.Event()
+        self.ready = threading.Event()
+        self._thread = threading.Thread(target=self._main, name="teleo-view-feed", daemon=True)
+
+    def start(self, timeout: float = 30.0) -> BusFeed:
+        self.model.source = f"live: {self.target.who}"
+        self._thread.start()
+        self.ready.wait(timeout)
+        if self.error:
+            raise BusError(self.error)
+        return self
+
+    def close(self) -> None:
+        self.stop.set()
+        self._thread.join(5.0)
+
+    def _main(self) -> None:
+        run = self.model.run or self.target.run
+        try:
+            with open_node(self.target.cfg, run or "view", f"view-{os.getpid()}") as node:
+                inbox = node.subscribe(keys.run_all(run) if run else f"{keys.ROOT}/**", raw=True)
+                self.ready.set()
+                presence = Presence(node.session, run) if run else None
+                while not self.stop.is_set():
+                    self._pump(inbox, 0.2)
+                    if presence is None and self.model.run:
+                        presence = Presence(node.session, self.model.run)
+                    if presence is not None and presence.incarnations():  # a replay has none
+                        self.model.set_presence(presence.snapshot(), presence.incarnations())
+        except BusError as exc:
+            self.error = str(exc)
+            self.ready.set()
+            log.error("view feed stopped: %s", exc)
+
+    def _pump(self, inbox, seconds: float) -> None:
+        end = time.monotonic() + seconds
+        while (left := end - time.monotonic()) > 0:
+            item = inbox.receive(min(left, 0.05))
+            if item is None:
+                continue
+            try:
+                self.model.add(item.key, to_record(item.key, item.payload), len(item.payload),
+                               item.t_ns)
+            except (CodecError, KeyError, TypeError) as exc:
+                log.warning("view: dropped %s", exc)

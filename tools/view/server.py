@@ -1,0 +1,139 @@
+"""The web view's HTTP server: the standard library's ThreadingHTTPServer, on 127.0.0.1 only.
+
+    GET /                  the page (static/: index.html, view.js, world.js, view.css; no CDN)
+    GET /events            server-sent events: "frame" (newest cycle, at most `FRAME_HZ` a second)
+                           and "status" (processes, rates, goal history; once a second)
+    GET /api/frame?cycle=N one past cycle (the timeline), /api/frame for the newest
+    GET /api/status        as the "status" event
+    GET /api/map           the world's static map (tools/view/scene.py)
+    GET /api/render.png?cycle=N   the domain's own picture, for domains the page cannot draw
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import time
+from http import HTTPStatus
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from pathlib import Path
+from typing import Any
+from urllib.parse import parse_qs, urlparse
+
+from tools.view import scene
+from tools.view.model import ViewModel
+
+log = logging.getLogger(__name__)
+STATIC = Path(__file__).with_name("static")
+FILES = {"/": ("index.html", "text/html; charset=utf-8"),
+         "/view.js": ("view.js", "text/javascript; charset=utf-8"),
+         "/world.js": ("world.js", "text/javascript; charset=utf-8"),
+         "/view.css": ("view.css", "text/css; charset=utf-8")}
+FRAME_HZ = 10.0     # frames pushed per second at most (the page cannot use more)
+STATUS_S = 1.0      # [s] between status events
+
+
+class ViewServer(ThreadingHTTPServer):
+    """Serves one model; `daemon_threads` so an open event stream never blocks shutdown."""
+
+    daemon_threads = True
+
+    def __init__(self, model: ViewModel, port: int = 0) -> None:
+        super().__init__(("127.0.0.1", port), _Handler)
+        self.model = model
+        self.closing = False
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.server_address[1]}/"
+
+
+class _Handler(BaseHTTPRequestHandler):
+    server: ViewServer
+
+    def log_message(self, fmt: str, *args: Any) -> None:  # requests go to debug logging
+        log.debug("%s " + fmt, self.address_string(), *args)
+
+    def do_GET(self) -> None:  # noqa: N802 (the name http.server calls)
+        url = urlparse(self.path)
+        query = {k: v[-1] for k, v in parse_qs(url.query).items()}
+        model = self.server.model
+        if url.path in FILES:
+            name, ctype = FILES[url.path]
+            self._send(HTTPStatus.OK, (STATIC / name).read_bytes(), ctype)
+        elif url.path == "/events":
+            self._events(model)
+        elif url.path == "/api/status":
+            self._json(model.status(time.time_ns()))
+        elif url.path == "/api/map":
+            self._json(model.map or {})
+        elif url.path == "/api/frame":
+            self._frame(model, query.get("cycle"))
+        elif url.path == "/api/render.png":
+            self._render(model, query.get("cycle"))
+        else:
+            self._send(HTTPStatus.NOT_FOUND, f"no page {url.path}\n".encode(), "text/plain")
+
+    def _frame(self, model: ViewModel, cycle: str | None) -> None:
+        try:
+            frame = model.frame(None if cycle is None else int(cycle))
+        except ValueError:
+            return self._send(HTTPStatus.BAD_REQUEST, b"cycle: expected an integer\n",
+                              "text/plain")
+        if frame is None:
+            return self._send(HTTPStatus.NOT_FOUND, f"no cycle {cycle} held\n".encode(),
+                              "text/plain")
+        self._json(frame)
+
+    def _render(self, model: ViewModel, cycle: str | None) -> None:
+        try:
+            shown = int(cycle) if cycle else (model.newest() or 0)
+        except ValueError:
+            return self._send(HTTPStatus.BAD_REQUEST, b"cycle: expected an integer\n",
+                              "text/plain")
+        snaps = model.snapshots_for_render(shown)
+        if not snaps:
+            return self._send(HTTPStatus.NOT_FOUND, b"no snapshot yet\n", "text/plain")
+        agent = next(iter(sorted(model.agents)), None)
+        self._send(HTTPStatus.OK, scene.render_png(snaps, agent), "image/png")
+
+    def _events(self, model: ViewModel) -> None:
+        """Push frames and status until the page goes away (or the server closes)."""
+        self.send_response(HTTPStatus.OK)
+        self.send_header("Content-Type", "text/event-stream")
+        self.send_header("Cache-Control", "no-cache")
+        self.end_headers()
+        seen, next_status = -1, 0.0
+        try:
+            while not self.server.closing:
+                with model.changed:
+                    if model.version == seen:
+                        model.changed.wait(STATUS_S)
+                    version = model.version
+                now = time.monotonic()
+                if version != seen:
+                    seen = version
+                    frame = model.frame()
+                    if frame is not None:
+                        self._event("frame", frame)
+                if now >= next_status:
+                    next_status = now + STATUS_S
+                    self._event("status", model.status(time.time_ns()))
+                time.sleep(1.0 / FRAME_HZ)
+        except (BrokenPipeError, ConnectionResetError):
+            log.debug("event stream closed by the page")
+
+    def _event(self, name: str, data: dict[str, Any]) -> None:
+        self.wfile.write(f"event: {name}\ndata: {json.dumps(data)}\n\n".encode())
+        self.wfile.flush()
+
+    def _json(self, data: Any) -> None:
+        self._send(HTTPStatus.OK, json.dumps(data).encode(), "application/json")
+
+    def _send(self, status: HTTPStatus, body: bytes, ctype: str) -> None:
+        self.send_response(status)
+        self.send_header("Content-Type", ctype)
+        self.send_header("Content-Length", str(len(body)))
+        self.send_header("Cache-Control", "no-store")
+        self.end_headers()
+        self.wfile.write(body)

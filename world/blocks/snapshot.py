@@ -1,0 +1,101 @@
+"""The observable Blocks World of one cycle as frozen dataclasses with an exact plain-data round
+trip (`to_dict` / `from_dict`: str/int/float/list/dict only, msgpack- and JSON-able).
+
+Units: positions [m] (x to the right, y up, the floor at y = 0), angles [deg] counter-clockwise,
+time [s]. A block's (x, y) is its centre; a held block is where the gripper holds it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+from world.blocks.config import TableSpec
+from world.errors import WorldError
+
+DOMAIN_NAME = "blocks"
+COUNTERS = ("actions_done", "actions_failed", "blocks_moved", "blocks_dropped")
+
+
+@dataclass(frozen=True)
+class BlockState:
+    """A block: centre (x, y) [m], angle [deg], size [m]; `held_by` names the agent whose
+    gripper holds it ("" when it stands or lies somewhere)."""
+
+    name: str
+    x: float
+    y: float
+    angle: float
+    width: float
+    height: float
+    held_by: str = ""
+
+
+@dataclass(frozen=True)
+class HandState:
+    """An agent's gripper: its hand id (H1, H2, ... in agent order), where it is [m] and the
+    block it holds ("" when empty)."""
+
+    agent: str
+    hand: str
+    x: float
+    y: float
+    holding: str = ""
+
+
+@dataclass(frozen=True)
+class BlocksSnapshot:
+    """The state of cycle `cycle`; `events` are what happened during the step into it."""
+
+    cycle: int
+    time: float
+    table: TableSpec
+    resolution: float
+    blocks: tuple[BlockState, ...] = ()
+    hands: tuple[HandState, ...] = ()
+    counters: dict[str, dict[str, int]] = field(default_factory=dict)
+    events: tuple[dict[str, Any], ...] = ()
+
+    def hand(self, agent: str) -> HandState:
+        """The agent's gripper; raises WorldError naming the agents there are."""
+        for h in self.hands:
+            if h.agent == agent:
+                return h
+        raise WorldError(f"blocks snapshot of cycle {self.cycle}: no agent {agent!r}; "
+                         f"agents: {[h.agent for h in self.hands]}")
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "domain": DOMAIN_NAME, "cycle": self.cycle, "time": self.time,
+            "table": asdict(self.table), "resolution": self.resolution,
+            "blocks": [asdict(b) for b in self.blocks],
+            "hands": [asdict(h) for h in self.hands],
+            "counters": {a: dict(c) for a, c in self.counters.items()},
+            "events": [dict(e) for e in self.events],
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> BlocksSnapshot:
+        """Rebuild a snapshot from `to_dict` output; raises WorldError naming what is wrong."""
+        if not isinstance(d, dict) or d.get("domain") != DOMAIN_NAME:
+            raise WorldError(f"BlocksSnapshot.from_dict: expected a dict with domain "
+                             f"{DOMAIN_NAME!r}, got {str(d)[:80]}")
+        try:
+            return cls(
+                cycle=int(d["cycle"]), time=float(d["time"]),
+                table=_record(TableSpec, d["table"]), resolution=float(d["resolution"]),
+                blocks=tuple(_record(BlockState, b) for b in d["blocks"]),
+                hands=tuple(_record(HandState, h) for h in d["hands"]),
+                counters={a: dict(c) for a, c in d["counters"].items()},
+                events=tuple(dict(e) for e in d["events"]),
+            )
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise WorldError(f"BlocksSnapshot.from_dict: malformed snapshot dict "
+                             f"({exc!r})") from exc
+
+
+def _record(kind: type, d: dict[str, Any]) -> Any:
+    names = {f.name for f in fields(kind)}
+    if set(d) - names:
+        raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
+    return kind(**d)

@@ -1,0 +1,93 @@
+"""The contract every domain meets, and the registry the world process picks a domain from.
+
+A domain (urban driving, Blocks World, office delivery) is a simulation in HighwayEnv's
+fixed-loop-plus-hooks shape: the world process owns the loop of one cycle (inject the events
+due, publish the state, collect actions, apply them, step) and each domain fills in the hooks
+below. Perception and rendering are pure functions of a snapshot dict, so an agent's
+perception process and the tools need nothing but the snapshot and the domain's name, which
+every snapshot carries under "domain".
+
+    domain = get_domain(scenario.world_domain)
+    world = domain.create(scenario.world, seed, ["ME"])      # raises ConfigError naming the key
+    outcomes = world.apply_actions("ME", [["*gas", 30]])     # never raises
+    world.step()
+    snap = world.snapshot_dict()                              # plain data: msgpack/JSON-able
+    percepts = domain.perceive(snap, "ME")                    # neutral percept lists
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+from world.errors import ConfigError
+
+Outcome = dict[str, Any]
+"""{"action": [...], "status": "done" | "failed", "reason": str} (docs/architecture.md)."""
+
+
+@runtime_checkable
+class World(Protocol):
+    """A running simulation of one domain. Every method is deterministic given the seed."""
+
+    cycle: int
+
+    def apply_actions(self, agent: str, actions: list[list[Any]]) -> list[Outcome]:
+        """Apply one agent's actions of this cycle; one outcome per action. Never raises: an
+        unknown agent or action gets a failed outcome naming it."""
+
+    def safe_actions(self, agent: str) -> list[list[Any]]:
+        """What an agent whose actions did not arrive gets this cycle (brake and hold; stop)."""
+
+    def inject(self, event: dict[str, Any]) -> dict[str, Any]:
+        """Apply a scenario event or fault: {"event", "status": "done"|"failed", "reason"}."""
+
+    def step(self) -> None:
+        """Advance one fixed dt [s]."""
+
+    def snapshot_dict(self) -> dict[str, Any]:
+        """The observable state of the current cycle as plain data, with at least "domain",
+        "cycle", "time" [s] and "counters" ({agent: {name: int}})."""
+
+
+@dataclass(frozen=True)
+class Domain:
+    """A domain's hooks. ``violations`` names the counters that are breaches of a law or a
+    safety rule (a run's summary lists them); ``event_kinds`` the events ``inject`` knows."""
+
+    name: str
+    summary: str
+    create: Callable[[dict[str, Any], int, list[str]], World]
+    perceive: Callable[[dict[str, Any], str], list[list[Any]]]
+    render: Callable[[Sequence[dict[str, Any]], Path, str | None], int]
+    check_config: Callable[[dict[str, Any], list[str]], None]
+    violations: tuple[str, ...] = ()
+    event_kinds: tuple[str, ...] = ()
+    achievements: tuple[str, ...] = field(default=())  # counters of work done (deliveries)
+
+
+# name -> module whose DOMAIN attribute is the Domain (imported on first use, so a process
+# that runs one domain never imports the others' physics).
+_MODULES = {
+    "driving": "world.driving",
+    "blocks": "world.blocks",
+    "office": "world.office",
+}
+DOMAINS: tuple[str, ...] = tuple(_MODULES)
+DEFAULT_DOMAIN = "driving"
+
+
+def get_domain(name: str) -> Domain:
+    """The Domain called ``name``; raises ConfigError listing the known ones."""
+    module = _MODULES.get(name)
+    if module is None:
+        raise ConfigError(f"[world] domain: unknown domain {name!r}; known: {', '.join(DOMAINS)}")
+    return importlib.import_module(module).DOMAIN
+
+
+def domain_of(snapshot: dict[str, Any]) -> Domain:
+    """The Domain a snapshot dict belongs to (its "domain" key; driving if absent)."""
+    return get_domain(str(snapshot.get("domain", DEFAULT_DOMAIN)))

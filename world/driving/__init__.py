@@ -1,0 +1,73 @@
+"""The urban driving world of seed 000 ("An Illustrative Domain", Tables 3 and 4).
+
+config      WorldConfig and load_world_config (the `[world]` table of a driving scenario)
+city        static geometry: streets, segments, intersections, lane lines, buildings
+simulation  Simulation: pymunk bodies, the agent cars' actions, traffic, pedestrians, events
+snapshot    WorldSnapshot: the frozen state of a cycle, plain-data round trip
+perception  perceive(snapshot, agent): the agent's percepts (documented in percepts.md)
+navigation  route guidance for carried packages
+render      render_png / render_gif for people
+
+``DOMAIN`` is this package's entry in the world's domain registry (world/domain.py).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from world.domain import Domain
+from world.errors import ConfigError
+
+VIOLATIONS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
+              "speeding_cycles")
+EVENT_KINDS = ("pedestrian", "block", "unblock", "package")
+
+
+def create(table: dict[str, Any], seed: int, agents: list[str]):
+    """A Simulation of the `[world]` table for these agent cars (raises ConfigError)."""
+    from world.driving.config import load_world_config
+    from world.driving.simulation import Simulation
+
+    return Simulation(load_world_config(table), seed, agents)
+
+
+def check_config(table: dict[str, Any], agents: list[str]) -> None:
+    """Everything about the table that can be checked before a run starts: keys, streets,
+    package addresses (a building must exist), car starts."""
+    from world.driving.city import build_city
+    from world.driving.config import load_world_config
+
+    config = load_world_config(table)
+    build_city(config)
+    for p in config.packages:
+        if p.owner not in agents:
+            raise ConfigError(f"[world] package {p.id}: owner {p.owner!r} is not an agent of "
+                              f"this run (agents: {', '.join(agents)})")
+
+
+def perceive(snapshot: dict[str, Any], agent: str) -> list[list[Any]]:
+    """The agent's percepts (Table 3's form) from a snapshot dict."""
+    from world.driving.perception import perceive as from_snapshot
+    from world.driving.snapshot import WorldSnapshot
+
+    return from_snapshot(WorldSnapshot.from_dict(snapshot), agent)
+
+
+def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = None) -> int:
+    """A PNG of the last snapshot with the agent's path, or a GIF of them all (by suffix);
+    returns the frames drawn."""
+    from world.driving.render import agent_trail, render_gif, render_png
+    from world.driving.snapshot import WorldSnapshot
+
+    snaps = [WorldSnapshot.from_dict(s) for s in snapshots]
+    if path.suffix.lower() == ".gif":
+        render_gif(snaps, path, agent=agent)
+        return len(snaps)
+    render_png(snaps[-1], path, agent=agent, trail=agent_trail(snaps, agent))
+    return 1
+
+
+DOMAIN = Domain("driving", "urban driving (seed 000): a city, traffic, pedestrians, packages",
+                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",))

@@ -1,0 +1,140 @@
+"""Perception: a pure function from a world snapshot and one agent to that agent's percepts in
+the seed's Table 3 form (seed 000), flattened to neutral lists `[type, id, attr, value, ...]`.
+
+Agent-centred polar coordinates: `dist` [m] from the car's centre, `angle` [deg] relative to the
+car's heading, in (-180, 180], positive = to the car's left. Only objects within the
+configured perception range appear, except the car itself and the packages it carries (its
+navigation system). Every attribute and unit is documented in world/driving/percepts.md.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from world.angles import wrap
+from world.driving.city import LINES, City, Segment, build_city
+from world.driving.navigation import aligned_segment, current_edge, guide
+from world.driving.snapshot import CarState, WorldSnapshot
+
+Percept = list[Any]
+
+
+def _r(value: float) -> float:
+    return round(float(value), 3) + 0.0   # + 0.0 turns -0.0 into 0.0
+
+
+def polar(me: CarState, x: float, y: float) -> tuple[float, float]:
+    """(dist [m], angle [deg], + = left of the heading) of a point seen from the car."""
+    dx, dy = x - me.x, y - me.y
+    return math.hypot(dx, dy), wrap(math.degrees(math.atan2(dy, dx)) - me.heading)
+
+
+def axis_distance(seg: Segment, x: float, y: float) -> float:
+    """Distance [m] from a point to a segment's axis (centre to centre)."""
+    along, lat = seg.local(x, y)
+    return math.hypot(max(0.0, -along, along - seg.length), lat)
+
+
+def _self(city: City, snap: WorldSnapshot, me: CarState,
+          aligned: tuple[Segment, int] | None) -> tuple[Percept, str]:
+    kind, where, _, _ = city.locate(me.x, me.y)
+    if kind == "segment":
+        street = city.segment(where).street
+    else:
+        if kind == "off":
+            where = min(city.segments, key=lambda s: (axis_distance(s, me.x, me.y), s.id)).id
+            street = city.segment(where).street
+        else:
+            street = aligned[0].street if aligned else city.intersection(where).ew
+    return ["self", me.id, "speed", _r(me.speed), "heading", _r(wrap(me.heading)),
+            "wheel-angle", _r(me.wheel), "throttle", _r(me.throttle),
+            "limit", _r(snap.config.speed_limit), "breakthrottle", _r(me.brake),
+            "segment", where, "street", street], street
+
+
+def _lane_lines(me: CarState, seg: Segment) -> list[Percept]:
+    h = math.radians(me.heading)
+    left = (-math.sin(h), math.cos(h))
+    normal = (-seg.uy, seg.ux)
+    flip = 1.0 if normal[0] * left[0] + normal[1] * left[1] >= 0 else -1.0
+    rel = wrap(seg.heading - me.heading)
+    if rel > 90.0:
+        rel -= 180.0
+    elif rel <= -90.0:
+        rel += 180.0
+    _, car_lat = seg.local(me.x, me.y)
+    out = []
+    for name, color, offset in LINES:
+        toward_left = (offset - car_lat) * flip
+        out.append(["lane-line", f"{seg.id}-{name}", "color", color, "dist", _r(-toward_left),
+                    "angle", _r(rel), "segment", seg.id])
+    return out
+
+
+def _buildings(city: City, me: CarState, reach: float) -> list[Percept]:
+    out = []
+    for b in city.buildings:
+        corners = sorted((polar(me, x, y) for x, y in b.corners))
+        (d1, a1), (d2, a2) = corners[0], corners[1]
+        if d1 <= reach:
+            out.append(["building", b.id, "address", b.address, "street", b.street,
+                        "c1angle", _r(a1), "c1dist", _r(d1), "c2angle", _r(a2), "c2dist", _r(d2)])
+    return out
+
+
+def _packages(city: City, snap: WorldSnapshot, me: CarState) -> list[Percept]:
+    out = []
+    blocked = frozenset(snap.blocked)
+    edge = current_edge(city, me.x, me.y, me.heading)
+    for p in snap.packages:
+        if p.owner != me.id:
+            continue
+        b = city.building(p.street, p.address)
+        dist, angle = polar(me, *b.curb)
+        turn, turn_dist = "NONE", 0.0
+        if edge is not None:
+            seg, d = edge
+            g = guide(city, seg, d, seg.local(me.x, me.y)[0], b, blocked)
+            turn, turn_dist = g.turn, g.dist
+        out.append(["package", p.id, "address", p.address, "street", p.street,
+                    "delivered", "T" if p.delivered else "NIL", "dist", _r(dist),
+                    "angle", _r(angle), "next-turn", turn, "turn-dist", _r(turn_dist)])
+    return out
+
+
+def perceive(snap: WorldSnapshot, agent: str) -> list[Percept]:
+    """The percepts of `agent` in `snap` (pure; raises WorldError for an unknown agent)."""
+    city = build_city(snap.config)
+    me = snap.car(agent)
+    reach = snap.config.perception_range
+    aligned = aligned_segment(city, me.x, me.y, me.heading)
+    self_percept, my_street = _self(city, snap, me, aligned)
+    segs = [(s, axis_distance(s, me.x, me.y)) for s in city.segments]
+    segs = [(s, d) for s, d in segs if d <= reach]
+    streets = sorted({s.street for s, _ in segs} | {my_street})
+    out: list[Percept] = [["street", name] for name in streets]
+    out.append(self_percept)
+    blocked = set(snap.blocked)
+    out += [["segment", s.id, "street", s.street, "dist", _r(d),
+             "blocked", "T" if s.id in blocked else "NIL"] for s, d in segs]
+    for n in city.intersections:
+        dist, angle = polar(me, n.x, n.y)
+        if dist <= reach:
+            out.append(["intersection", n.id, "street", n.ew, "cross", n.ns, "dist", _r(dist),
+                        "angle", _r(angle)])
+    if aligned is not None:
+        out += _lane_lines(me, aligned[0])
+    out += _buildings(city, me, reach)
+    for p in snap.pedestrians:
+        dist, angle = polar(me, p.x, p.y)
+        if dist <= reach:
+            out.append(["man", p.id, "angle", _r(angle), "dist", _r(dist)])
+    for c in snap.cars:
+        if c.id != me.id:
+            dist, angle = polar(me, c.x, c.y)
+            if dist <= reach:
+                out.append(["car", c.id, "angle", _r(angle), "dist", _r(dist),
+                            "speed", _r(c.speed)])
+    out += _packages(city, snap, me)
+    return out

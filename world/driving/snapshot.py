@@ -1,0 +1,110 @@
+"""The observable world state of one cycle, as frozen dataclasses with an exact plain-data round
+trip (`to_dict` / `from_dict`: str/int/float/bool/list/dict only, msgpack-able).
+
+Units: positions [m] in the city frame (x east, y north), headings [deg] (0 = east,
+counter-clockwise positive, in (-180, 180]), speeds [m/s], wheel angle [deg] (+ = left),
+pedals [%], time [s].
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+from world.driving.config import WorldConfig, load_world_config
+from world.errors import WorldError
+
+COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
+            "speeding_cycles", "deliveries")
+
+
+@dataclass(frozen=True)
+class CarState:
+    """A vehicle: kind "agent" (driven by an agent through actions) or "traffic"."""
+
+    id: str
+    kind: str
+    x: float
+    y: float
+    heading: float
+    speed: float
+    wheel: float = 0.0
+    throttle: float = 0.0
+    brake: float = 0.0
+
+
+@dataclass(frozen=True)
+class PedState:
+    """A pedestrian; mode "walk" (sidewalk), "cross" (crossing the road), "stand", or "down"
+    (hit by a car: stays where it fell)."""
+
+    id: str
+    x: float
+    y: float
+    heading: float
+    speed: float
+    mode: str
+
+
+@dataclass(frozen=True)
+class PackageState:
+    id: str
+    address: int
+    street: str
+    owner: str
+    delivered: bool = False
+
+
+@dataclass(frozen=True)
+class WorldSnapshot:
+    cycle: int
+    time: float
+    config: WorldConfig
+    cars: tuple[CarState, ...] = ()
+    pedestrians: tuple[PedState, ...] = ()
+    packages: tuple[PackageState, ...] = ()
+    counters: dict[str, dict[str, int]] = field(default_factory=dict)
+    events: tuple[dict[str, Any], ...] = ()     # what happened during the step into this cycle
+    blocked: tuple[str, ...] = ()               # segment ids closed by injected events
+
+    def car(self, car_id: str) -> CarState:
+        for c in self.cars:
+            if c.id == car_id:
+                return c
+        raise WorldError(f"snapshot of cycle {self.cycle}: no car {car_id!r}; "
+                         f"cars: {[c.id for c in self.cars]}")
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "domain": "driving", "cycle": self.cycle, "time": self.time,
+            "config": self.config.to_dict(),
+            "cars": [asdict(c) for c in self.cars],
+            "pedestrians": [asdict(p) for p in self.pedestrians],
+            "packages": [asdict(p) for p in self.packages],
+            "counters": {a: dict(c) for a, c in self.counters.items()},
+            "events": [dict(e) for e in self.events],
+            "blocked": list(self.blocked),
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> WorldSnapshot:
+        """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong."""
+        try:
+            return cls(
+                cycle=int(d["cycle"]), time=d["time"], config=load_world_config(d["config"]),
+                cars=tuple(_record(CarState, c) for c in d["cars"]),
+                pedestrians=tuple(_record(PedState, p) for p in d["pedestrians"]),
+                packages=tuple(_record(PackageState, p) for p in d["packages"]),
+                counters={a: dict(c) for a, c in d["counters"].items()},
+                events=tuple(dict(e) for e in d["events"]),
+                blocked=tuple(d["blocked"]),
+            )
+        except (KeyError, TypeError, AttributeError) as exc:
+            raise WorldError(f"WorldSnapshot.from_dict: malformed snapshot dict ({exc!r})") from exc
+
+
+def _record(kind: type, d: dict[str, Any]) -> Any:
+    names = {f.name for f in fields(kind)}
+    if set(d) - names:
+        raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
+    return kind(**d)

@@ -1,0 +1,137 @@
+"""The observable state of the office world in one cycle, as frozen dataclasses with an exact
+plain-data round trip (`to_dict` / `from_dict`: str/int/float/bool/list/dict only).
+
+A robot's `known_*` fields are its navigator's memory (door states, where people were last
+seen, obstacles it bumped into): what perception reports, as opposed to the truth in
+`doors`, `people` and `obstacles`. Units: [m], [deg] (0 = east, counter-clockwise), [m/s],
+[s], [C].
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+from world.errors import WorldError
+from world.office.config import OfficeConfig, load_office_config
+
+COUNTERS = ("travel_cm", "deliveries", "acquisitions", "observations", "utterances", "failures",
+            "bumps", "reroutes", "false_successes")
+
+
+@dataclass(frozen=True)
+class RobotState:
+    id: str
+    x: float
+    y: float
+    heading: float
+    speed: float
+    place: str                        # the room or corridor it is in
+    carrying: tuple[str, ...] = ()
+    travelled: float = 0.0            # [m] along its actual motion
+    operation: dict[str, Any] = field(default_factory=dict)   # current or last (robot.py)
+    route: tuple[tuple[float, float], ...] = ()               # waypoints still ahead [m]
+    known_doors: dict[str, list] = field(default_factory=dict)    # door -> [state, cycle seen]
+    known_people: dict[str, list] = field(default_factory=dict)   # person -> [room, cycle seen]
+    known_obstacles: dict[str, list] = field(default_factory=dict)  # id -> [x, y, radius]
+    observations: dict[str, list] = field(default_factory=dict)   # room -> [result, cycle]
+
+
+@dataclass(frozen=True)
+class PersonState:
+    id: str
+    room: str
+    office: str
+    x: float
+    y: float
+
+
+@dataclass(frozen=True)
+class ItemState:
+    id: str
+    kind: str
+    holder: str                       # a person, room or robot id
+    to: str = ""                      # addressee ("" = none)
+    temperature: float = 0.0          # [C]; coffee only (0.0 for other kinds)
+
+
+@dataclass(frozen=True)
+class ObstacleState:
+    id: str
+    x: float
+    y: float
+    radius: float
+
+
+@dataclass(frozen=True)
+class OfficeSnapshot:
+    cycle: int
+    time: float
+    config: OfficeConfig
+    robots: tuple[RobotState, ...] = ()
+    people: tuple[PersonState, ...] = ()
+    items: tuple[ItemState, ...] = ()
+    doors: dict[str, str] = field(default_factory=dict)       # door -> open|closed|blocked
+    occupants: dict[str, int] = field(default_factory=dict)   # room -> anonymous people
+    obstacles: tuple[ObstacleState, ...] = ()
+    counters: dict[str, dict[str, int]] = field(default_factory=dict)
+    events: tuple[dict[str, Any], ...] = ()     # what happened during the step into this cycle
+
+    def robot(self, agent: str) -> RobotState:
+        for r in self.robots:
+            if r.id == agent:
+                return r
+        raise WorldError(f"office snapshot of cycle {self.cycle}: no robot {agent!r}; "
+                         f"robots: {[r.id for r in self.robots]}")
+
+    def item(self, item_id: str) -> ItemState | None:
+        return next((i for i in self.items if i.id == item_id), None)
+
+    def to_dict(self) -> dict[str, Any]:
+        robots = []
+        for r in self.robots:
+            d = asdict(r)
+            d["carrying"] = list(r.carrying)
+            d["route"] = [list(p) for p in r.route]
+            robots.append(d)
+        return {
+            "domain": "office", "cycle": self.cycle, "time": self.time,
+            "config": self.config.to_dict(), "robots": robots,
+            "people": [asdict(p) for p in self.people],
+            "items": [asdict(i) for i in self.items],
+            "doors": dict(self.doors), "occupants": dict(self.occupants),
+            "obstacles": [asdict(o) for o in self.obstacles],
+            "counters": {a: dict(c) for a, c in self.counters.items()},
+            "events": [dict(e) for e in self.events],
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> OfficeSnapshot:
+        """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong."""
+        try:
+            robots = []
+            for r in d["robots"]:
+                r = dict(r)
+                r["carrying"] = tuple(r["carrying"])
+                r["route"] = tuple(tuple(p) for p in r["route"])
+                robots.append(_record(RobotState, r))
+            return cls(
+                cycle=int(d["cycle"]), time=d["time"], config=load_office_config(d["config"]),
+                robots=tuple(robots),
+                people=tuple(_record(PersonState, p) for p in d["people"]),
+                items=tuple(_record(ItemState, i) for i in d["items"]),
+                doors=dict(d["doors"]), occupants=dict(d["occupants"]),
+                obstacles=tuple(_record(ObstacleState, o) for o in d["obstacles"]),
+                counters={a: dict(c) for a, c in d["counters"].items()},
+                events=tuple(dict(e) for e in d["events"]),
+            )
+        except (KeyError, TypeError, AttributeError, ValueError) as exc:
+            raise WorldError(f"OfficeSnapshot.from_dict: malformed snapshot dict ({exc!r})") \
+                from exc
+
+
+def _record(kind: type, d: dict[str, Any]) -> Any:
+    names = {f.name for f in fields(kind)}
+    if set(d) - names:
+        raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
+    return kind(**d)
