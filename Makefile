@@ -3,7 +3,7 @@ PY ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: setup browser demo test lint bench clean
+.PHONY: setup browser demo test lint bench clean netns-tools
 
 $(BIN)/teleo: pyproject.toml
 	$(PY) -m venv $(VENV)
@@ -11,7 +11,14 @@ $(BIN)/teleo: pyproject.toml
 	$(BIN)/pip install -q -e '.[dev]'
 	touch $(BIN)/teleo
 
-setup: $(BIN)/teleo
+setup: $(BIN)/teleo netns-tools
+
+# The cross-host test (tests/e2e/test_hosts_live.py) joins two Linux network namespaces with
+# a veth pair, which needs root and iproute2's `ip`; install it where we can (Debian, root).
+netns-tools:
+	@command -v ip >/dev/null 2>&1 || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1 \
+		&& apt-get update -qq && apt-get install -y -qq iproute2 >/dev/null; } \
+		|| echo "note: no iproute2 (ip) or not root: the cross-host test will be skipped"
 
 # Headless Chromium for the web view's browser test (tests/e2e/test_view_browser.py), from
 # Debian's packages when it is missing (CI runs as root; elsewhere run this once with sudo).

@@ -11,23 +11,30 @@ Lockstep: state t is published, then the clock waits for the Actions of t from e
 whose stages are all alive. A stage that misses the per-cycle deadline while its token is
 still there (hung, SIGSTOPped) is reported in `late` and its agent gets the no-op. A stage
 whose token disappears (crash) is waited for up to `restart_timeout_s`; when it (or any
-stage) comes back, state t is re-sent so it rejoins at the current cycle. If it is not
+stage) comes back, state t is re-sent so it rejoins at the current cycle; a cycle still
+waiting re-sends it every `resend_s` anyway (a sample lost in a reconnect). If it is not
 back in time: policy CONTINUE counts it in `dead`, gives its agent the no-op and stops
 waiting for it until it returns; policy STOP raises ClockStopped.
 Realtime: a fixed period; whatever has not arrived by the end of the period is the no-op
 (`late`); a vanished stage is reported in `dead` at once, and the policy applies once it
 has been gone longer than the restart timeout.
+
+Every wait is interruptible: with a `stop` event, `wait_ready` and `run_cycle` raise
+CycleInterrupted within one poll (20 ms) of it being set (Ctrl-C during a stall). A lockstep
+cycle that waits longer than `stall_s` names the stages it was waiting for in
+`CycleReport.stalled`, so a run's summary shows stalls that recovered.
 """
 
 from __future__ import annotations
 
 import logging
+import threading
 import time
 from collections.abc import Mapping, Sequence
 
 from bus import keys
 from bus.cycle import CycleBook, CycleMode, CycleReport, DeadPolicy, culprit
-from bus.errors import ClockStopped, NotReady
+from bus.errors import BusError, ClockStopped, NotReady
 from bus.messages import WorldState
 from bus.node import Node
 
@@ -35,19 +42,34 @@ log = logging.getLogger(__name__)
 _POLL_S = 0.02  # how often liveliness is rechecked while waiting for actions [s]
 
 
+class CycleInterrupted(BusError):
+    """The clock's stop event was set while it waited (a signal asked the world to stop)."""
+
+    def __init__(self, cycle: int, waiting: Sequence[str]) -> None:
+        what = f"waiting for {', '.join(sorted(waiting))}" if waiting else "waiting"
+        super().__init__(f"cycle {cycle}: interrupted while {what}")
+        self.cycle = cycle
+
+
 class Clock:
     """Publishes world states and collects actions; one per run, in the world process.
 
     pipelines: agent -> its stage process names in pipeline order (used to name the late
     stage); period_s: realtime period [s]; deadline_s: lockstep per-cycle deadline [s];
-    restart_timeout_s: how long lockstep waits for a vanished stage to come back [s].
+    restart_timeout_s: how long lockstep waits for a vanished stage to come back [s];
+    stall_s: a lockstep cycle waiting longer than this is reported as stalled [s];
+    resend_s: a lockstep cycle still waiting re-publishes its state this often [s];
+    stop: an event that interrupts any wait (CycleInterrupted).
     """
 
     def __init__(self, node: Node, pipelines: Mapping[str, Sequence[str]], *,
                  mode: CycleMode = CycleMode.LOCKSTEP, period_s: float = 0.1,
                  deadline_s: float = 2.0, restart_timeout_s: float = 5.0,
-                 policy: DeadPolicy = DeadPolicy.CONTINUE) -> None:
+                 policy: DeadPolicy = DeadPolicy.CONTINUE, stall_s: float = 1.0,
+                 resend_s: float = 1.0, stop: threading.Event | None = None) -> None:
         self.node = node
+        self.stall_s, self.resend_s = stall_s, resend_s
+        self.stop = stop if stop is not None else threading.Event()
         self.pipelines = {a: tuple(p) for a, p in pipelines.items()}
         self.mode = CycleMode(mode)
         self.period_s, self.deadline_s = period_s, deadline_s
@@ -68,8 +90,11 @@ class Clock:
         """Start-up barrier: wait until every process in `expected` holds its token and
         the world state has a subscriber; raise NotReady (naming the missing) on timeout."""
         deadline = time.monotonic() + timeout
-        if not self.node.presence.wait_for(lambda alive: expected <= alive, timeout):
-            raise NotReady(set(expected) - self.node.alive(), timeout)
+        while not self.node.presence.wait_for(lambda alive: expected <= alive, _POLL_S * 5):
+            if self.stop.is_set():
+                raise CycleInterrupted(-1, set(expected) - self.node.alive())
+            if time.monotonic() >= deadline:
+                raise NotReady(set(expected) - self.node.alive(), timeout)
         if self.pipelines and self.node.wait_matching([self._state_key],
                                                       max(0.0, deadline - time.monotonic())):
             raise NotReady(set(), timeout, f"no subscriber on {self._state_key}")
@@ -122,12 +147,16 @@ class _CycleRun:
         self.dead: list[str] = []
         self.noop: list[str] = []
         self.republished = 0
+        self.stalled: list[str] = []
         self.stopped = False
         self.start = start
+        self.sent = start  # when state t was last (re)published
         self.end = start + clock.period_s if clock.mode is CycleMode.REALTIME else None
 
     def wait(self) -> None:
         while self.waiting:
+            if self.c.stop.is_set():
+                raise CycleInterrupted(self.cycle, self.waiting)
             self._check(time.monotonic())
             if self.stopped or not self.waiting:
                 return
@@ -150,12 +179,32 @@ class _CycleRun:
             agents = {a for a, pipe in self.c.pipelines.items() if rejoined & set(pipe)}
             if agents & self.waiting:
                 log.info("cycle %d: %s back; re-publishing state", self.cycle, sorted(rejoined))
-                self.c.node.publish(self.c._state_key, self.state)
-                self.republished += 1
+                self._resend(now)
                 for a in agents:
                     self.since[a] = now
+        if self.end is None and self.waiting and now - self.sent >= self.c.resend_s:
+            # a sample lost while a stage was cut off (a reconnect re-declares its token and
+            # its subscriptions in no set order) would hold the cycle until the deadline:
+            # every stage answers a repeated state with its cached outputs, so send it again
+            self._resend(now)
         for agent in sorted(self.waiting):
             self._check_agent(agent, alive, now)
+        if not self.stalled and self.end is None and now - self.start > self.c.stall_s:
+            self._note_stall(alive)
+
+    def _resend(self, now: float) -> None:
+        self.c.node.publish(self.c._state_key, self.state)
+        self.republished += 1
+        self.sent = now
+
+    def _note_stall(self, alive: frozenset[str]) -> None:
+        """Name what this cycle waits for: a gone stage, else the first one behind."""
+        self._read_stats()
+        for agent in sorted(self.waiting):
+            pipe = self.c.pipelines[agent]
+            gone = [p for p in pipe if p not in alive]
+            self.stalled += gone or [culprit(pipe, self.c.last_seen, self.cycle)]
+        log.warning("cycle %d: stalled, waiting for %s", self.cycle, sorted(set(self.stalled)))
 
     def _check_agent(self, agent: str, alive: frozenset[str], now: float) -> None:
         pipe = self.c.pipelines[agent]
@@ -201,6 +250,7 @@ class _CycleRun:
             cycle=self.cycle, actions=actions, late=_unique(self.late), dead=_unique(self.dead),
             noop=tuple(self.noop), republished=self.republished,
             elapsed_ms=(now - self.start) * 1e3, stage_ms=dict(self.book.stage_ms),
+            stalled=_unique(self.stalled),
             memory={a: m for a, m in self.book.memory.items() if a not in self.noop})
 
 

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import MISSING, fields
 from functools import lru_cache
 from itertools import chain
+from math import isfinite
 from typing import Any
 
 import msgpack
@@ -154,19 +155,25 @@ def _list(v: Any) -> list:
 
 
 def _rows(v: Any) -> tuple:
-    """A tuple of neutral-form lists whose items are str, int or float (never bool/None).
+    """A tuple of neutral-form lists whose items are str, int or float (never bool/None) and
+    whose floats are finite (NaN and infinities would poison every comparison downstream).
 
-    Checked in two C-level passes over the types (one per row, one per item); only a bad
-    payload takes the row-by-row loop that names the offending row.
+    Checked in C-level passes over the types and one over the floats; only a bad payload
+    takes the row-by-row loop that names the offending row.
     """
     rows = _list(v)
-    if _LIST_ONLY.issuperset(map(type, rows)) and \
-            _ATOM_TYPES.issuperset(map(type, chain.from_iterable(rows))):
-        return tuple(rows)
+    if _LIST_ONLY.issuperset(map(type, rows)):
+        atoms = list(chain.from_iterable(rows))
+        if _ATOM_TYPES.issuperset(map(type, atoms)) and \
+                all(map(isfinite, [a for a in atoms if type(a) is float])):
+            return tuple(rows)
     atoms_only = _ATOM_TYPES.issuperset
     for row in rows:
         if type(row) is not list or not atoms_only(map(type, row)):
             raise TypeError(f"expected arrays of str, int or float, found item {row!r:.60}")
+        bad = [a for a in row if type(a) is float and not isfinite(a)]
+        if bad:
+            raise TypeError(f"expected finite numbers, found {bad[0]} in item {row!r:.60}")
     raise TypeError("expected arrays of str, int or float")  # not reached: some row failed
 
 
@@ -184,9 +191,10 @@ def _any(v: Any) -> Any:
 _FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
     "snapshot": _dict, "outcomes": _dict, "events": _list, "agent": _str,
     "percepts": _rows, "beliefs": _rows, "actions": _rows, "decision": _dict,
-    "op": _str, "goal": _str, "priority": _int, "goal_id": _str,
+    "op": _str, "goal": _str, "priority": _int, "goal_id": _str, "force": _bool,
     "ok": _bool, "reason": _str, "goals": _dict_rows,
     "process": _str, "compute_ms": _float, "late": _int, "event": _dict, "memory": _dict,
+    "outcome": _dict,
 }
 
 _KIND_FIELD_CHECKS: dict[tuple[str, str], Callable[[Any], Any]] = {

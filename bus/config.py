@@ -6,6 +6,12 @@ Defaults: peer mode, listening on loopback only (tcp/127.0.0.1, any free port), 
 to a hub at tcp/127.0.0.1:7447 (`teleo router`, or the one the launcher spawns), multicast
 scouting off. So it works on a machine with no multicast and no zenohd. Peers that meet at
 the hub learn of each other by gossip and then talk directly.
+
+Every mode retries a lost or refused connection to the hub every 0.1 to 0.5 s, so a restarted
+router is rejoined within half a second of coming back (docs/faults.md). A secured process
+(`credentials`: a file written by `teleo launch --secure`, bus/security.py) is a client over
+TLS with its own user and password; a secured router reads its certificate, user dictionary
+and access-control list from `router_security`.
 """
 
 from __future__ import annotations
@@ -22,10 +28,14 @@ import click
 import zenoh
 
 from bus.errors import ConfigError
+from bus.security import Credentials, RouterSecurity
 
 DEFAULT_HUB = "tcp/127.0.0.1:7447"
 LOOPBACK_ANY = "tcp/127.0.0.1:0"
 ENV_MODE, ENV_CONNECT, ENV_LISTEN = "TELEO_ZENOH_MODE", "TELEO_ZENOH_CONNECT", "TELEO_ZENOH_LISTEN"
+ENV_CREDENTIALS = "TELEO_CREDENTIALS"
+# how a lost or refused link to the hub is retried [ms] (zenoh connect/retry)
+RETRY = {"period_init_ms": 100, "period_max_ms": 500, "period_increase_factor": 2}
 
 
 class Mode(enum.StrEnum):
@@ -41,7 +51,10 @@ class BusConfig:
     mode: peer | client | router; connect / listen: zenoh endpoints such as
     "tcp/127.0.0.1:7447"; multicast: multicast scouting (off by default);
     lease_ms: link lease [ms]: a silent (e.g. SIGSTOPped) peer's liveliness token
-    disappears after about this long; a SIGKILLed one within milliseconds.
+    disappears after about this long; a SIGKILLed one within milliseconds;
+    connect_timeout_ms: how long a client's open waits for an absent hub [ms] (a router
+    being restarted) before failing; credentials: a credentials file (secured bus,
+    bus/security.py); router_security: the router's security file (router mode only).
     """
 
     mode: Mode = Mode.PEER
@@ -49,6 +62,9 @@ class BusConfig:
     listen: tuple[str, ...] = (LOOPBACK_ANY,)
     multicast: bool = False
     lease_ms: int = 2000
+    connect_timeout_ms: int = 5000
+    credentials: str = ""
+    router_security: str = ""
 
     def __post_init__(self) -> None:
         try:
@@ -78,6 +94,8 @@ class BusConfig:
             values["connect"] = _split(env[ENV_CONNECT])
         if ENV_LISTEN in env:
             values["listen"] = _split(env[ENV_LISTEN])
+        if env.get(ENV_CREDENTIALS):
+            values["credentials"] = env[ENV_CREDENTIALS]
         values.update(overrides)
         return cls(**values)
 
@@ -87,8 +105,13 @@ class BusConfig:
 
     def to_args(self) -> list[str]:
         """The flags that `bus_options` parses back into this same config (for child processes)."""
-        return ["--mode", self.mode.value, "--connect", ",".join(self.connect),
+        args = ["--mode", self.mode.value, "--connect", ",".join(self.connect),
                 "--listen", ",".join(self.listen)]
+        return args + (["--credentials", self.credentials] if self.credentials else [])
+
+    @property
+    def secured(self) -> bool:
+        return bool(self.credentials or self.router_security)
 
     def to_zenoh(self) -> zenoh.Config:
         """The zenoh config for `zenoh.open` (see shared/notes/zenoh.md, section 1)."""
@@ -98,9 +121,32 @@ class BusConfig:
         conf.insert_json5("listen/endpoints", json.dumps(list(self.listen)))
         conf.insert_json5("scouting/multicast/enabled", json.dumps(self.multicast))
         conf.insert_json5("transport/link/tx/lease", str(self.lease_ms))
+        conf.insert_json5("connect/retry", json.dumps(RETRY))
+        if self.mode is Mode.CLIENT:
+            conf.insert_json5("connect/timeout_ms", str(self.connect_timeout_ms))
         if self.mode is Mode.ROUTER:
             conf.insert_json5("adminspace/enabled", "true")
+        if self.credentials:
+            _insert_credentials(conf, Credentials.load(self.credentials))
+        if self.router_security:
+            _insert_router_security(conf, RouterSecurity.load(self.router_security))
         return conf
+
+
+def _insert_credentials(conf: zenoh.Config, cred: Credentials) -> None:
+    """A client of a secured router: TLS checked against the run's CA, user and password."""
+    conf.insert_json5("transport/link/tls/root_ca_certificate", json.dumps(cred.ca))
+    conf.insert_json5("transport/auth/usrpwd/user", json.dumps(cred.user))
+    conf.insert_json5("transport/auth/usrpwd/password", json.dumps(cred.password))
+
+
+def _insert_router_security(conf: zenoh.Config, sec: RouterSecurity) -> None:
+    """A secured router: its TLS certificate, the user dictionary, the access-control list."""
+    conf.insert_json5("transport/link/tls/root_ca_certificate", json.dumps(sec.ca))
+    conf.insert_json5("transport/link/tls/listen_certificate", json.dumps(sec.cert))
+    conf.insert_json5("transport/link/tls/listen_private_key", json.dumps(sec.key))
+    conf.insert_json5("transport/auth/usrpwd/dictionary_file", json.dumps(sec.users_file))
+    conf.insert_json5("access_control", json.dumps(sec.acl))
 
 
 def _split(text: str) -> tuple[str, ...]:
@@ -132,12 +178,17 @@ def bus_options(fn: Callable) -> Callable:
     @click.option("--listen", multiple=True, metavar="ENDPOINTS",
                   help=f"Endpoints to listen on, comma-separated [env TELEO_ZENOH_LISTEN; "
                        f"default {LOOPBACK_ANY}].")
+    @click.option("--credentials", default=None, metavar="FILE",
+                  help="Credentials of a secured run (user, password, CA) [env "
+                       "TELEO_CREDENTIALS].")
     @functools.wraps(fn)
     def wrapper(*args: Any, mode: str | None, connect: tuple[str, ...],
-                listen: tuple[str, ...], **kwargs: Any) -> Any:
+                listen: tuple[str, ...], credentials: str | None, **kwargs: Any) -> Any:
         overrides: dict[str, Any] = {}
         if mode:
             overrides["mode"] = mode
+        if credentials:
+            overrides["credentials"] = credentials
         for name, given in (("connect", connect), ("listen", listen)):
             merged = _merge(given)
             if merged is not None or given:

@@ -131,6 +131,8 @@ class CycleReport:
     agent); dead: stages whose liveliness token was gone; noop: agents given the no-op;
     republished: how many times state t was re-sent for a restarted stage;
     elapsed_ms: publish to return [ms]; stage_ms: each stage's compute time this cycle [ms];
+    stalled: the stages the clock was still waiting for when the cycle passed the stall
+    threshold (a lockstep cycle that waited, but whose actions did come);
     memory: agent -> the memory sent with its actions (absent for agents given the no-op).
     """
 
@@ -142,6 +144,7 @@ class CycleReport:
     republished: int = 0
     elapsed_ms: float = 0.0
     stage_ms: dict[str, float] = field(default_factory=dict)
+    stalled: tuple[str, ...] = ()
     memory: dict[str, dict] = field(default_factory=dict)
 
     @property

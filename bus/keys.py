@@ -4,7 +4,7 @@ Layout (keys are static; the cycle number travels in the payload envelope, so de
 publishers and matching status keep working across cycles):
 
     teleo/<run>/world/state                  WorldState
-    teleo/<run>/world/events                 WorldEvent
+    teleo/<run>/world/events                 WorldEvent; queryable: WorldEvent -> EventReply
     teleo/<run>/agent/<agent>/percepts       Percepts
     teleo/<run>/agent/<agent>/beliefs        Beliefs
     teleo/<run>/agent/<agent>/actions        Actions
@@ -33,6 +33,51 @@ def check_chunk(name: str, what: str = "name") -> str:
     return name
 
 
+MAX_KEYEXPR_CHARS = 1024
+"""[characters] of a key expression a user types (`teleo echo KEYEXPR`)."""
+
+
+def check_keyexpr(expr: str) -> str:
+    """Return ``expr`` if zenoh accepts it as a key expression (canonical form), else raise
+    KeyFormatError saying what is wrong and, where zenoh's rule has one, the right form:
+    chunks separated by single slashes, none empty; `*` and `**` alone in a chunk; `$*`
+    inside one; no `#` or `?`; no `**/**` or `**/*`."""
+    if not isinstance(expr, str) or not expr:
+        raise KeyFormatError("key expression must be a non-empty string, e.g. 'teleo/**', "
+                             f"got {expr!r}")
+    if len(expr) > MAX_KEYEXPR_CHARS:
+        raise KeyFormatError(f"key expression of {len(expr)} characters is longer than "
+                             f"{MAX_KEYEXPR_CHARS}")
+    bad = sorted(set(expr) & set("#?"))
+    if bad:
+        raise KeyFormatError(f"key expression {expr!r}: {''.join(bad)!r} may not appear in a key")
+    chunks = expr.split("/")
+    if "" in chunks:
+        raise KeyFormatError(f"key expression {expr!r}: empty chunk (a leading, trailing or "
+                             f"double slash); e.g. {'/'.join(c for c in chunks if c)!r}")
+    for chunk in chunks:
+        _check_wild_chunk(expr, chunk)
+    for a, b in zip(chunks, chunks[1:], strict=False):
+        if a == "**" and b in ("**", "*"):
+            right = "**" if b == "**" else "*/**"
+            raise KeyFormatError(f"key expression {expr!r}: write {right!r} for '**/{b}'")
+    return expr
+
+
+def _check_wild_chunk(expr: str, chunk: str) -> None:
+    if chunk in ("*", "**"):
+        return
+    if chunk == "$*":
+        raise KeyFormatError(f"key expression {expr!r}: write '*' for the chunk '$*'")
+    rest = chunk.replace("$*", "")
+    if "*" in rest:
+        raise KeyFormatError(f"key expression {expr!r}: chunk {chunk!r}: '*' stands alone in a "
+                             "chunk ('*' or '**'), or as '$*' inside one")
+    if "$" in rest or "$*$*" in chunk:
+        raise KeyFormatError(f"key expression {expr!r}: chunk {chunk!r}: '$' is only allowed "
+                             "in '$*' (and not twice in a row)")
+
+
 def run_root(run: str) -> str:
     """`teleo/<run>`: the prefix of everything in one run."""
     return f"{ROOT}/{check_chunk(run, 'run')}"
@@ -48,6 +93,8 @@ def world_state(run: str) -> str:
 
 
 def world_events(run: str) -> str:
+    """Events into the world: published (applied at the next cycle), or asked as a query
+    (applied at the next cycle and answered with the world's EventReply)."""
     return f"{run_root(run)}/world/events"
 
 
@@ -123,7 +170,7 @@ def kind_of_key(key: str) -> frozenset[str]:
     if tail == ("world", "state"):
         return frozenset({"WorldState"})
     if tail == ("world", "events"):
-        return frozenset({"WorldEvent"})
+        return frozenset({"WorldEvent", "EventReply"})
     if len(tail) == 2 and tail[0] == "stats":
         return frozenset({"ProcessStats"})
     if len(tail) == 3 and tail[0] == "agent":

@@ -101,6 +101,7 @@ class GoalRequest:
     goal: str = ""
     priority: int = 0
     goal_id: str = ""
+    force: bool = False  # rank above the program's goals or cancel an achieved goal all the same
 
 
 @dataclass(frozen=True)
@@ -144,13 +145,27 @@ class WorldEvent:
     event: dict
 
 
+@dataclass(frozen=True)
+class EventReply:
+    """The world's verdict on an event asked for on teleo/<run>/world/events (a query, as
+    `teleo event` sends it): ok when applied, else the world's reason; env.cycle is the cycle
+    at whose start it was applied; outcome is what the trace records,
+    {"event", "status": "done"|"failed", "reason"}."""
+
+    KIND: ClassVar[str] = "EventReply"
+    env: Envelope
+    ok: bool
+    reason: str
+    outcome: dict = field(default_factory=dict)
+
+
 Message = (
     WorldState | Percepts | Beliefs | Actions | Intention | GoalRequest | GoalReply | GoalList
-    | ProcessStats | WorldEvent
+    | ProcessStats | WorldEvent | EventReply
 )
 
 MESSAGE_TYPES: dict[str, type] = {
     cls.KIND: cls
     for cls in (WorldState, Percepts, Beliefs, Actions, Intention, GoalRequest, GoalReply,
-                GoalList, ProcessStats, WorldEvent)
+                GoalList, ProcessStats, WorldEvent, EventReply)
 }

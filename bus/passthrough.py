@@ -64,7 +64,7 @@ def run_stage(cfg: BusConfig, run: str, agent: str, stage: str, log_path: str | 
               die_at: int | None = None, stop: threading.Event | None = None) -> None:
     """Run one pass-through stage until `stop` is set (default: until SIGINT/SIGTERM)."""
     if stop is None:
-        stop = stop_on_signals()
+        stop = stop_on_signals(child=True)
     process = f"{agent}.{stage}"
     with open_node(cfg, run, process) as node:
         in_key, out_key = wiring(run, agent, stage)

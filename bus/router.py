@@ -4,7 +4,10 @@ PyPI). `python -m bus.router --listen tcp/127.0.0.1:7447`, `teleo router`, or fr
 
 On start the router prints one line `TELEO-ROUTER <endpoint> ...` on stdout (the endpoints
 it really listens on, read from its adminspace, so port 0 works) and runs until
-SIGINT/SIGTERM.
+SIGINT/SIGTERM (or until its launcher dies: bus/lifeline.py). `--security FILE` makes it a
+secured router (TLS, users, access control: bus/security.py). Started again on the same
+endpoint after a crash, it is rejoined by every process within about half a second
+(bus/config.py RETRY; docs/faults.md).
 """
 
 from __future__ import annotations
@@ -13,7 +16,6 @@ import json
 import logging
 import os
 import selectors
-import signal
 import subprocess
 import sys
 import threading
@@ -24,15 +26,19 @@ from dataclasses import dataclass
 import zenoh
 
 from bus.config import BusConfig, Mode
-from bus.errors import RouterError
+from bus.errors import BusError, RouterError
+from bus.stage import stop_on_signals
 
 log = logging.getLogger(__name__)
 READY_PREFIX = "TELEO-ROUTER"
 
 
-def router_config(listen: Sequence[str], connect: Sequence[str] = ()) -> BusConfig:
-    """The config of a hub listening on `listen` (and linked to other routers in `connect`)."""
-    return BusConfig(mode=Mode.ROUTER, listen=tuple(listen), connect=tuple(connect))
+def router_config(listen: Sequence[str], connect: Sequence[str] = (),
+                  security: str = "") -> BusConfig:
+    """The config of a hub listening on `listen` (and linked to other routers in `connect`);
+    `security`: a router security file (bus/security.py) for a secured run."""
+    return BusConfig(mode=Mode.ROUTER, listen=tuple(listen), connect=tuple(connect),
+                     router_security=security)
 
 
 def locators(session: zenoh.Session, timeout: float = 2.0) -> list[str]:
@@ -47,12 +53,25 @@ def serve(cfg: BusConfig, stop: threading.Event, ready_out: object = None) -> No
     """Run a router session from `cfg` until `stop` is set; writes the ready line to
     `ready_out` (a text stream, default stdout)."""
     out = sys.stdout if ready_out is None else ready_out
-    with zenoh.open(cfg.to_zenoh()) as session:
+    with _open_router(cfg) as session:
         eps = locators(session) or list(cfg.listen)
         out.write(f"{READY_PREFIX} {' '.join(eps)}\n")
         out.flush()
         log.info("router %s listening on %s", session.zid(), eps)
         stop.wait()
+
+
+def _open_router(cfg: BusConfig) -> zenoh.Session:
+    """The router's session; raises RouterError naming the endpoints when it cannot listen
+    (a port already in use: another router, or zenohd, whose default port is 7447 too)."""
+    try:
+        return zenoh.open(cfg.to_zenoh())
+    except zenoh.ZError as exc:
+        busy = "Address already in use" in str(exc)
+        hint = ("; the port is in use (another `teleo router` or zenohd?): pick another, or "
+                "tcp/127.0.0.1:0 for a free one") if busy else ""
+        raise RouterError(f"cannot start a router listening on {', '.join(cfg.listen)}"
+                          f"{hint} ({str(exc).split(' at /')[0]})") from None
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -62,17 +81,24 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser = argparse.ArgumentParser(prog="python -m bus.router", description=__doc__)
     parser.add_argument("--listen", default="tcp/127.0.0.1:7447")
     parser.add_argument("--connect", default="")
+    parser.add_argument("--security", default="", help="router security file (secured run)")
+    parser.add_argument("--run", default="", help="the run it serves (to name it in `ps`)")
     args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO,
+                        format="%(asctime)s router %(name)s %(levelname)s %(message)s")
     split = [e.strip() for e in args.listen.split(",") if e.strip()]
     conn = [e.strip() for e in args.connect.split(",") if e.strip()]
-    run_until_signalled(router_config(split, conn))
+    try:
+        run_until_signalled(router_config(split, conn, args.security))
+    except (BusError, zenoh.ZError) as exc:
+        log.error("router on %s: %s", split, exc)
+        raise SystemExit(2) from exc
 
 
 def run_until_signalled(cfg: BusConfig) -> None:
-    """Serve `cfg` until SIGINT or SIGTERM (then close the session and return)."""
-    stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
+    """Serve `cfg` until SIGINT or SIGTERM, or until the launcher that started it dies
+    (then close the session and return)."""
+    stop = stop_on_signals(child=True)
     serve(cfg, stop)
 
 
@@ -104,14 +130,31 @@ class RouterProcess:
         self.stop()
 
 
-def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0) -> RouterProcess:
+def router_argv(listen: str, security: str = "", run: str = "") -> tuple[str, ...]:
+    """The command that starts a router on `listen` with this interpreter (`run`: the run
+    it serves, only so that its command line names it)."""
+    extra = ("--security", security) if security else ()
+    return (sys.executable, "-m", "bus.router", "--listen", listen, *extra,
+            *(("--run", run) if run else ()))
+
+
+def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0, security: str = "",
+                 env: dict[str, str] | None = None, log_file: str | None = None,
+                 run: str = "") -> RouterProcess:
     """Start `python -m bus.router` as a subprocess listening on `listen` (port 0: a free
-    port) and wait until it reports its endpoints; raises RouterError if it does not."""
-    env = dict(os.environ)
+    port) and wait until it reports its endpoints; raises RouterError if it does not.
+    `env`: extra environment; `log_file`: where its log goes (default: this stderr)."""
+    full = dict(os.environ, **(env or {}))
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH", "")) if p)
-    proc = subprocess.Popen([sys.executable, "-m", "bus.router", "--listen", listen],
-                            stdout=subprocess.PIPE, text=True, env=env)
+    full["PYTHONPATH"] = os.pathsep.join(p for p in (root, full.get("PYTHONPATH", "")) if p)
+    err = open(log_file, "ab") if log_file else None  # noqa: SIM115 (the child inherits it)
+    try:
+        proc = subprocess.Popen(router_argv(listen, security, run), stdout=subprocess.PIPE,
+                                stderr=err, stdin=subprocess.DEVNULL, text=True, env=full,
+                                start_new_session=True)
+    finally:
+        if err is not None:
+            err.close()
     line = _read_line(proc, timeout)
     if not line.startswith(READY_PREFIX):
         proc.kill()
@@ -119,8 +162,9 @@ def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0) -> Rout
         raise RouterError(f"router on {listen} did not report ready within {timeout:g} s "
                           f"(exit code {proc.poll()}, got {line!r})")
     eps = tuple(line.split()[1:])
-    tcp = [e for e in eps if e.startswith("tcp/")]
-    return RouterProcess(proc, (tcp or list(eps))[0], eps)
+    scheme = listen.split("/", 1)[0] + "/"
+    same = [e for e in eps if e.startswith(scheme)]
+    return RouterProcess(proc, (same or list(eps))[0], eps)
 
 
 def _read_line(proc: subprocess.Popen, timeout: float) -> str:

@@ -22,16 +22,31 @@ from collections.abc import Callable, Sequence
 
 from bus import keys
 from bus.cycle import Joined, Joiner, pick
+from bus.lifeline import hold_on_to_parent
 from bus.messages import Message, ProcessStats
 from bus.node import Inbox, Node
 
 log = logging.getLogger(__name__)
 
-def stop_on_signals() -> threading.Event:
-    """An Event set by SIGINT or SIGTERM (installs the handlers; call from the main thread)."""
+
+def stop_on_signals(child: bool = False) -> threading.Event:
+    """An Event set by SIGINT or SIGTERM (installs the handlers; call from the main thread).
+
+    SIGINT is installed explicitly, so it works even where the process was started with it
+    ignored (a background job of a non-interactive shell). `child=True` (processes of a
+    launch) also ties the process to its launcher: it stops when the launcher dies
+    (bus/lifeline.py)."""
     stop = threading.Event()
+
+    def handler(signum: int, frame: object) -> None:
+        if not stop.is_set():
+            log.info("signal %s: stopping", signal.Signals(signum).name)
+        stop.set()
+
     for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
+        signal.signal(sig, handler)
+    if child:
+        hold_on_to_parent()
     return stop
 
 

@@ -1,4 +1,9 @@
-"""`teleo router | echo | record | replay`: the bus subcommands (thin wrappers over bus/)."""
+"""`teleo router | echo | record | replay`: the bus subcommands (thin wrappers over bus/).
+
+echo, record and replay reach the running launch as every tool does (tools/target.py over
+tools/runfile.py: the only running launch, or `--run RUN`) and say on stderr which run and
+router they reach; an explicit `--connect` (or TELEO_ZENOH_CONNECT) names a router instead.
+"""
 
 from __future__ import annotations
 
@@ -18,6 +23,7 @@ from bus.node import open_node
 from bus.record import from_record
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
+from tools import runfile
 
 
 def _split(text: str) -> list[str]:
@@ -46,6 +52,13 @@ def _run_of(keyexpr: str) -> str:
     return "any"
 
 
+def _full_key(keyexpr: str, run: str | None) -> str:
+    """A key expression as given when it starts with teleo/, else under teleo/<run>/."""
+    if keyexpr.startswith(f"{keys.ROOT}/") or run is None:
+        return keyexpr
+    return f"{keys.run_root(run)}/{keyexpr.lstrip('/') or '**'}"
+
+
 def _json_line(key: str, t_ns: int, payload: bytes) -> str:
     try:
         msg = decode(key, payload)
@@ -56,29 +69,49 @@ def _json_line(key: str, t_ns: int, payload: bytes) -> str:
 
 
 @click.command()
-@click.argument("keyexpr")
+@click.argument("keyexpr", default="**")
 @click.option("--filter", "text", default=None, help="Only lines containing TEXT.")
 @click.option("--count", type=int, default=None, help="Exit after N printed messages.")
 @click.option("--seconds", type=float, default=None, help="Exit after S seconds.")
+@runfile.run_option
 @bus_options
 def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | None,
-         bus_config: BusConfig) -> None:
-    """Print messages on KEYEXPR (e.g. 'teleo/demo/**') decoded, as JSON lines."""
+         run_id: str | None, bus_config: BusConfig) -> None:
+    """Print messages on KEYEXPR decoded, as JSON lines: a key of the run such as
+    'world/state' or 'agent/ME/**' (default: everything), or a full 'teleo/RUN/...'."""
+    from tools.target import find_target
+
+    try:
+        keys.check_keyexpr(keyexpr)
+    except BusError as exc:
+        raise click.BadParameter(str(exc), param_hint="KEYEXPR") from None
+    target = find_target(bus_config, run=run_id)
+    keyexpr = _full_key(keyexpr, target.run)
+    click.echo(f"listening on {keyexpr} of {target.who}", err=True)
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
+    try:
+        with open_node(target.cfg, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
+            _print_messages(node.subscribe(keyexpr, raw=True), text, count, end, stop)
+    except BusError as exc:
+        raise click.ClickException(str(exc)) from exc
+
+
+def _print_messages(inbox, text: str | None, count: int | None, end: float | None,
+                    stop) -> None:
+    """Print what arrives in `inbox` as JSON lines until `end` [monotonic s], `count`
+    lines, or `stop`."""
     printed = 0
-    with open_node(bus_config, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
-        inbox = node.subscribe(keyexpr, raw=True)
-        while not stop.is_set() and (end is None or time.monotonic() < end):
-            item = inbox.receive(0.1)
-            if item is None:
-                continue
-            line = _json_line(item.key, item.t_ns, item.payload)
-            if text is None or text in line:
-                click.echo(line)
-                printed += 1
-                if count is not None and printed >= count:
-                    break
+    while not stop.is_set() and (end is None or time.monotonic() < end):
+        item = inbox.receive(0.1)
+        if item is None:
+            continue
+        line = _json_line(item.key, item.t_ns, item.payload)
+        if text is None or text in line:
+            click.echo(line)
+            printed += 1
+            if count is not None and printed >= count:
+                break
 
 
 @click.command()
@@ -97,7 +130,13 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
     from tools.recorder import BusRecorder
     from tools.target import find_target
 
-    target = find_target(bus_config)
+    if run_id is not None:
+        try:
+            keys.check_chunk(run_id, "run")
+        except BusError as exc:
+            raise click.BadParameter(f"{exc} (a run id, e.g. driving-demo-3f2a1c, as `teleo "
+                                     "launch` prints it)", param_hint="--run") from None
+    target = find_target(bus_config, run=run_id)
     run_id = run_id or target.run
     if run_id is None:
         raise click.UsageError("--run RUN is needed with --connect (which run to record)")
@@ -125,8 +164,11 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
               help="Time scale on world time (2: twice as fast; 0: as fast as possible).")
 @click.option("--wait", "wait_s", type=float, default=2.0, show_default=True,
               help="Wait up to S seconds for subscribers on the recorded keys first.")
+@click.option("--onto", "onto", default=None, metavar="RUN",
+              help="The running launch to replay onto (default: the only one).")
 @bus_options
-def replay(file: str, speed: float, wait_s: float, bus_config: BusConfig) -> None:
+def replay(file: str, speed: float, wait_s: float, onto: str | None,
+           bus_config: BusConfig) -> None:
     """Play a run record (RECORD: an .mcap file, a run folder or run id) back on the bus of
     the running launch, or of the router named by --connect, with its world-time pacing."""
     from tools.records import RecordError, RunRecord, locate
@@ -138,7 +180,7 @@ def replay(file: str, speed: float, wait_s: float, bus_config: BusConfig) -> Non
         times = _log_times(rec)
     except (RecordError, BusError) as exc:
         raise click.ClickException(str(exc)) from exc
-    target = find_target(bus_config)
+    target = find_target(bus_config, run=onto)
     click.echo(f"replaying run {rec.run} ({len(items)} messages) to {target.who}; watch it "
                f"with `teleo view --run {rec.run}`", err=True)
     stop = stop_on_signals()

@@ -1,18 +1,27 @@
-"""The `teleo` command: one click group; each subcommand lives in the module that owns it."""
+"""The `teleo` command: one click group; each subcommand lives in the module that owns it.
+
+`teleo --version`, `-h`/`--help` on every command, and summaries in `teleo --help` that are
+the first sentence of each command's help (not cut at an "e.g."). Shell completion is click's:
+`eval "$(_TELEO_COMPLETE=bash_source teleo)"` (zsh_source, fish_source; README, "Shell
+completion").
+"""
 
 from __future__ import annotations
 
 import importlib
 import logging
+import re
 
 import click
 
 # (module, attribute holding a list of click commands). Each module owns its subcommands.
 _COMMAND_MODULES = (
-    "tools.lang_commands",   # check, infer, step        (language engine)
+    "tools.check_commands",  # check                     (programs, learned files, scenarios)
+    "tools.lang_commands",   # infer, step               (language engine)
     "tools.bus_commands",    # router, echo, record, replay (bus)
     "tools.world_commands",  # render                    (world)
     "tools.launch",          # launch                    (processes)
+    "tools.run_commands",    # ps, stop                  (runs on this host)
     "tools.goal_commands",   # goal post/list/cancel/priority
     "tools.event_commands",  # event                     (world events into a running launch)
     "tools.inspect",         # inspect
@@ -21,9 +30,14 @@ _COMMAND_MODULES = (
     "tools.plot",            # plot                      (run records)
     "tools.view",            # view                      (live web view)
 )
+SUMMARY_CHARS = 66
+"""[characters] of a command's summary in `teleo --help`: what fits beside the longest
+command name in 80 columns (click's own summaries stop at 45 and at the first dot)."""
 
 
-@click.group()
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="teleo", prog_name="teleo",
+                      message="%(prog)s %(version)s")
 @click.option("-v", "--verbose", count=True, help="More logging (-v info, -vv debug).")
 def cli(verbose: int) -> None:
     """teleo: goal-directed, reactive agents on an Eclipse Zenoh bus."""
@@ -31,10 +45,39 @@ def cli(verbose: int) -> None:
     logging.basicConfig(level=level, format="%(asctime)s %(name)s %(levelname)s %(message)s")
 
 
+# A sentence ends at ". " unless the dot closes one of these abbreviations.
+_ABBREVIATIONS = ("e.g.", "i.e.", "etc.", "vs.", "cf.")
+_SENTENCE_END = re.compile(r"\.(\s|$)")
+
+
+def summary(help_text: str, width: int = SUMMARY_CHARS) -> str:
+    """The first sentence of ``help_text``'s first paragraph, without its final dot, cut to
+    ``width`` characters at a word with "..." when longer."""
+    text = " ".join(help_text.split("\n\n")[0].split())
+    end = len(text)
+    for match in _SENTENCE_END.finditer(text):
+        if not text[:match.end(0)].rstrip().endswith(_ABBREVIATIONS):
+            end = match.start()
+            break
+    first = text[:end]
+    if len(first) <= width:
+        return first
+    return first[:width - 3].rsplit(" ", 1)[0].rstrip(",;:") + "..."
+
+
+def _summarise(command: click.Command) -> None:
+    """Give ``command`` (and a group's subcommands) a summary unless it has its own."""
+    if command.short_help is None and command.help:
+        command.short_help = summary(command.help)
+    for sub in getattr(command, "commands", {}).values():
+        _summarise(sub)
+
+
 def _register() -> None:
     for name in _COMMAND_MODULES:
         module = importlib.import_module(name)
         for command in module.commands:
+            _summarise(command)
             cli.add_command(command)
 
 

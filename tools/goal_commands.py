@@ -1,6 +1,7 @@
 """`teleo goal post|list|cancel|priority`: talk to the goal-entry process of a running launch.
 
-The launch is found through its run file (tools/runfile.py), so no bus flags are needed.
+The launch is found through the run registry (tools/runfile.py; `--run RUN` when several
+run), so no bus flags are needed.
 Each command is one query on teleo/<run>/agent/<agent>/goals (GoalRequest -> GoalReply);
 the goal-entry process validates a post against the agent's program and answers with the
 reason when it refuses it. A posted goal takes effect at the next cycle the goal-entry
@@ -8,6 +9,8 @@ process publishes.
 """
 
 from __future__ import annotations
+
+import json
 
 import click
 
@@ -18,28 +21,24 @@ QUERY_TIMEOUT = 5.0  # [s]
 
 
 def _request(op: str, agent: str | None, goal: str = "", priority: int = 0,
-             goal_id: str = "") -> list:
+             goal_id: str = "", force: bool = False, run: str | None = None) -> list:
     """Send one GoalRequest per addressed agent; returns the replies (raises ClickException)."""
     from bus import keys
-    from bus.config import BusConfig
     from bus.errors import BusError, NobodyServing
     from bus.messages import GoalRequest
     from bus.node import open_node
 
-    try:
-        info = runfile.find()
-    except runfile.NoRunningLaunch as exc:
-        raise click.ClickException(str(exc)) from exc
+    info = runfile.locate(run)
     agents = list(info.agents) if agent is None and op == "list" else [agent or info.agents[0]]
     if agents[0] not in info.agents:
         raise click.ClickException(f"run {info.run} has no agent {agents[0]!r} "
                                    f"(agents: {', '.join(info.agents)})")
-    cfg = BusConfig(mode="client", connect=(info.endpoint,), listen=())
+    cfg = runfile.bus_config(info)
     replies = []
     try:
         with open_node(cfg, info.run, "goal-cli") as node:
             for name in agents:
-                request = GoalRequest(node.envelope(), op, name, goal, priority, goal_id)
+                request = GoalRequest(node.envelope(), op, name, goal, priority, goal_id, force)
                 replies.append(node.query(keys.goals(info.run, name), request, QUERY_TIMEOUT))
     except NobodyServing as exc:
         raise click.ClickException(
@@ -67,10 +66,18 @@ def _table(goals) -> None:
 
 @click.group()
 def goal() -> None:
-    """Post, list, cancel and reprioritise goals of a running `teleo launch`."""
+    """Post, list, cancel and reprioritise goals of a running launch.
+
+    Priorities: the program's own goals have priorities 1..n (p1..pn, in file order; in the
+    driving program the laws); a goal ranks after every goal of priority <= its own. A
+    priority below n would rank a user goal above some of them (a car breaking a law for
+    an errand), so it is refused unless --force."""
 
 
 _PRIORITY = click.IntRange(1, MAX_PRIORITY)
+_FORCE = click.option("--force", is_flag=True,
+                      help="Accept a priority that ranks the goal above the program's own "
+                           "goals (refused otherwise).")
 
 
 @goal.command()
@@ -78,9 +85,11 @@ _PRIORITY = click.IntRange(1, MAX_PRIORITY)
 @click.option("--priority", "-p", type=_PRIORITY, default=100, show_default=True,
               help="Rank: the goal goes after every goal of priority <= P (lower = sooner).")
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def post(text: str, priority: int, agent: str | None) -> None:
-    """Post GOAL, e.g. '(package-delivered PACKET2)'."""
-    reply = _request("post", agent, goal=text, priority=priority)[0]
+@_FORCE
+@runfile.run_option
+def post(text: str, priority: int, agent: str | None, force: bool, run_id: str | None) -> None:
+    """Post GOAL, such as '(package-delivered PACKET2)'."""
+    reply = _request("post", agent, goal=text, priority=priority, force=force, run=run_id)[0]
     _check(reply)
     click.echo(reply.reason or "posted")
     _table(reply.goals)
@@ -88,21 +97,32 @@ def post(text: str, priority: int, agent: str | None) -> None:
 
 @goal.command(name="list")
 @click.option("--agent", "-a", help="Only this agent (default: all).")
-def list_(agent: str | None) -> None:
+@click.option("--json", "as_json", is_flag=True,
+              help="Print a JSON list of goal objects (id, agent, goal, priority, status, "
+                   "posted_cycle, updated_cycle, note).")
+@runfile.run_option
+def list_(agent: str | None, as_json: bool, run_id: str | None) -> None:
     """List the goals with their statuses."""
     goals = []
-    for reply in _request("list", agent):
+    for reply in _request("list", agent, run=run_id):
         _check(reply)
         goals.extend(reply.goals)
-    _table(goals)
+    if as_json:
+        click.echo(json.dumps(goals, indent=1))
+    else:
+        _table(goals)
 
 
 @goal.command()
 @click.argument("goal_id", metavar="ID")
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def cancel(goal_id: str, agent: str | None) -> None:
+@click.option("--force", is_flag=True,
+              help="Withdraw an achieved goal too (refused otherwise: the agent keeps an "
+                   "achieved goal, acting again should it stop holding).")
+@runfile.run_option
+def cancel(goal_id: str, agent: str | None, force: bool, run_id: str | None) -> None:
     """Cancel goal ID."""
-    reply = _request("cancel", agent, goal_id=goal_id)[0]
+    reply = _request("cancel", agent, goal_id=goal_id, force=force, run=run_id)[0]
     _check(reply)
     click.echo(reply.reason or f"cancelled {goal_id}")
 
@@ -111,9 +131,13 @@ def cancel(goal_id: str, agent: str | None) -> None:
 @click.argument("goal_id", metavar="ID")
 @click.argument("new_priority", metavar="P", type=_PRIORITY)
 @click.option("--agent", "-a", help="Agent (default: the run's first agent).")
-def priority(goal_id: str, new_priority: int, agent: str | None) -> None:
+@_FORCE
+@runfile.run_option
+def priority(goal_id: str, new_priority: int, agent: str | None, force: bool,
+             run_id: str | None) -> None:
     """Give goal ID the priority P."""
-    reply = _request("priority", agent, priority=new_priority, goal_id=goal_id)[0]
+    reply = _request("priority", agent, priority=new_priority, goal_id=goal_id,
+                     force=force, run=run_id)[0]
     _check(reply)
     click.echo(reply.reason or f"{goal_id} now has priority {new_priority}")
 

@@ -9,7 +9,6 @@ from pathlib import Path
 import click
 
 from agents.lang import (
-    Diagnostic,
     Engine,
     EngineState,
     LangError,
@@ -20,10 +19,9 @@ from agents.lang import (
 from agents.lang.limits import read_json
 from agents.lang.loader import read_text
 from agents.lang.outcomes import as_outcomes
-from agents.lang.solving.learned import is_learned_text, read_learned
 from agents.lang.terms import sort_key
 
-_include = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
+include_option = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
                         help="Extra file read into the same program (e.g. concepts a table of "
                              "skills uses). Repeatable.")
 
@@ -54,7 +52,7 @@ def _percepts(path: str):
 def _outcomes(path: str) -> tuple:
     """The outcomes in ``path`` (a JSON list); exits 1 naming the file and the bad item."""
     try:
-        data = json.loads(read_text(path))
+        data = read_json(read_text(path), path)
         if not isinstance(data, list):
             raise LangError(f"expected a JSON list of outcomes, got {type(data).__name__}")
         found = []
@@ -64,8 +62,8 @@ def _outcomes(path: str) -> tuple:
             except LangError as exc:
                 raise LangError(f"item {i}: {exc}") from None
         return tuple(found)
-    except json.JSONDecodeError as exc:
-        _fail(LangError(f"{path}:{exc.lineno}:{exc.colno}: bad JSON: {exc.msg}"))
+    except ProgramError as exc:
+        _fail(exc)
     except LangError as exc:
         _fail(LangError(f"{path}: {exc}"))
 
@@ -84,58 +82,14 @@ def _goal_option(option: str) -> tuple[str, int | None]:
 
 
 @click.command()
-@click.argument("programs", nargs=-1, required=True, type=click.Path())
-@_include
-def check(programs: tuple[str, ...], includes: tuple[str, ...]) -> None:
-    """Check PROGRAMS; exit 0 when every one is valid, 1 with all errors otherwise. A file of
-    learned skills is checked against the program named before it (PROGRAM LEARNED)."""
-    failed = 0
-    program = None
-    for path in programs:
-        try:
-            if _learned_file(path):
-                _check_learned(program, path)
-                continue
-            program = None
-            program = load_program(path, *includes)
-        except ProgramError as exc:
-            failed += 1
-            click.echo(str(exc), err=True)
-            n = len(exc.errors)
-            click.echo(f"{path}: {n} error{'s' if n != 1 else ''}", err=True)
-            continue
-        for w in program.warnings:
-            click.echo(str(w), err=True)
-        n_concepts = sum(len(c) for c in program.concepts.values())
-        click.echo(f"{path}: ok ({n_concepts} concepts, {len(program.skills)} skills, "
-                   f"{len(program.goals)} goals)")
-    sys.exit(1 if failed else 0)
-
-
-def _learned_file(path: str) -> bool:
-    try:
-        return is_learned_text(read_text(path))
-    except ProgramError:
-        return False
-
-
-def _check_learned(program, path: str) -> None:
-    """Check the learned-skills file ``path`` against ``program`` (the one before it)."""
-    if program is None:
-        raise ProgramError([Diagnostic(path, 1, 1, "a file of learned skills: name the valid "
-                                       "program it was learned with before it "
-                                       "(teleo check PROGRAM LEARNED)")])
-    clauses = read_learned(program, read_text(path), path)
-    click.echo(f"{path}: ok ({len(clauses)} learned skills for {program.sources[0]})")
-
-
-@click.command()
 @click.argument("program", type=click.Path())
 @click.option("--percepts", "percepts_file", required=True, type=click.Path(),
               help="Percept file: Table 3 s-expressions or JSON neutral lists.")
-@_include
+@include_option
 def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
-    """Print every belief PROGRAM infers from the percepts, one s-expression a line, sorted."""
+    """Print every belief PROGRAM infers from the percepts, sorted.
+
+    One s-expression a line."""
     engine = Engine(_load(program, includes))
     for b in _sorted_beliefs(engine.infer(_percepts(percepts_file))):
         click.echo(str(b))
@@ -156,11 +110,11 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
 @click.option("--mechanism", default="means-ends", show_default=True,
               help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
-@_include
+@include_option
 def step(program: str, percepts_file: str, outcomes_file: str | None, state_file: str | None,
          save_file: str | None, goals: tuple[str, ...], as_json: bool, mechanism: str,
          includes: tuple[str, ...]) -> None:
-    """Run one cycle: print beliefs, goal statuses, the skill path, actions and why."""
+    """Run one cycle of PROGRAM: beliefs, goals, skill path, actions, why."""
     try:
         engine = Engine(_load(program, includes), solver=mechanism)
     except LangError as exc:
@@ -190,4 +144,4 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     click.echo(result.decision.explain())
 
 
-commands = [check, infer, step]
+commands = [infer, step]

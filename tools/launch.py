@@ -3,9 +3,16 @@
 Order of a launch: a router (bus.router.spawn_router), then the goal-entry process, each
 agent's perception, inference and executive, and the world (the clock, which waits for all
 the others). The launcher waits until every process has announced itself (liveliness), shows
-their status, restarts a crashed one per its respawn policy, and when the world finishes its
-cycles (or on Ctrl-C) stops them in order: world, executives, inferences, perceptions, goals,
-router. It writes a run file (tools/runfile.py) so `teleo goal` and `teleo inspect` find it.
+their status, registers the run (tools/runfile.py), restarts any process that dies (the
+router on the same endpoint, the world with --resume: docs/faults.md) per its respawn policy,
+and ends the run when the world finishes, when a process is left down (its restarts used up),
+or on Ctrl-C, SIGTERM or SIGHUP; it then stops every process within about two seconds,
+unregisters the run and prints the summary (tools/summary.py), whose status is its exit code.
+If the launcher itself is killed, every process of the run follows it (bus/lifeline.py).
+
+`--secure` (or `[run] secure = true`) runs the bus with TLS, a user and password per process
+and an access-control list (bus/security.py); `--only` and `--join` spread one run over
+several hosts (tools/run_plan.py, docs/faults.md "Across hosts").
 """
 
 from __future__ import annotations
@@ -15,59 +22,121 @@ import logging
 import os
 import secrets
 import signal
+import sys
 import time
+from contextlib import nullcontext, redirect_stdout
 from dataclasses import replace
 from pathlib import Path
 
 import click
 
 from tools import runfile, summary
+from tools.run_plan import Plan, PlanError, check_secrets, select, uses_clients
+from tools.run_secrets import RunSecrets, host_of, make_secrets
 from tools.scenario_check import load_checked
-from tools.supervisor import ProcSpec, Supervisor, module_argv
-from world.run_scenario import AGENT_STAGES, Scenario, ScenarioError
+from tools.supervision import Outcome, supervise
+from world.errors import WorldError
+from world.pictures import picture_format
+from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
-READY_TIMEOUT = 60.0  # [s] for every process to announce itself (imports + zenoh open)
+REMOTE_READY_TIMEOUT = 600.0  # [s] the world waits for stages started on other hosts
 
 
-def process_specs(scenario: Scenario, run: str, run_dir: Path, bus_args: list[str],
-                  cycles: int, seed: int, mode: str, learned: str | None = None
-                  ) -> list[ProcSpec]:
-    """The command of every process of the run, in start order (world last). Each executive
-    keeps its engine state and learned skills in the run folder (summary.state_file,
-    summary.learned_file), starting from ``learned`` if given."""
-    common = ["--run", run, *bus_args]
-    specs = [ProcSpec("goals", module_argv(
-        "agents.processes.goals", *common, "--scenario", str(scenario.path),
-        "--store", str(run_dir / summary.GOALS_FILE)), scenario.run.goals_respawn)]
-    modules = {"perception": "agents.processes.perception",
-               "inference": "agents.processes.inference",
-               "executive": "agents.processes.executive"}
-    for agent in scenario.agents:
-        for stage in AGENT_STAGES:
-            extra = [] if stage == "perception" else ["--program", str(agent.program)]
-            if stage == "executive":
-                extra += ["--state", str(summary.state_file(run_dir, agent.id)),
-                          "--learned-out", str(summary.learned_file(run_dir, agent.id)),
-                          *(["--learned", learned] if learned else []),
-                          *([] if agent.solver else ["--no-solver"]),
-                          *(["--mechanism", agent.mechanism]
-                            if agent.mechanism != "means-ends" else [])]
-            specs.append(ProcSpec(f"{agent.id}.{stage}", module_argv(
-                modules[stage], *common, "--agent", agent.id, *extra),
-                agent.max_restarts(stage)))
-    specs.append(ProcSpec("world", module_argv(
-        "world.process", *common, "--scenario", str(scenario.path), "--cycles", str(cycles),
-        "--seed", str(seed), "--run-mode", mode, "--out", str(run_dir)), 0))
-    return specs
+def _raise_interrupt(signum: int, frame: object) -> None:
+    raise KeyboardInterrupt
 
 
-def stop_order(scenario: Scenario) -> list[str]:
-    """World first (it is the clock), then each stage kind from the last to the first."""
-    names = ["world"]
-    for stage in reversed(AGENT_STAGES):
-        names += [f"{a.id}.{stage}" for a in scenario.agents]
-    return names + ["goals"]
+def _catch_signals() -> None:
+    """SIGINT, SIGTERM and SIGHUP all stop the run in order. SIGINT is set explicitly: a
+    background job of a non-interactive shell starts with it ignored."""
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, _raise_interrupt)
+
+
+@click.command()
+@click.argument("scenario_file", metavar="SCENARIO", type=click.Path(dir_okay=False))
+@click.option("--cycles", type=click.IntRange(min=0), help="Cycles to run (0: forever).")
+@click.option("--seed", type=int, help="World seed (overrides [run].seed).")
+@click.option("--mode", type=click.Choice(["lockstep", "realtime"]), help="Clock mode.")
+@click.option("--summary", "summary_file", type=click.Path(dir_okay=False),
+              help="Write the summary JSON here.")
+@click.option("--render", "render_file", type=click.Path(dir_okay=False),
+              help="Draw the run: a .png of the last state or a .gif of the run.")
+@click.option("--secure", is_flag=True, help="TLS, a user per process and access control "
+              "(also [run] secure = true).")
+@click.option("--listen", default=None, metavar="ENDPOINT",
+              help="Where the router listens [default tcp/127.0.0.1:0, or tls/... secured], "
+                   "e.g. tls/10.0.0.1:7447 for agents on other hosts.")
+@click.option("--host", "hosts", multiple=True, metavar="NAME",
+              help="Another name or address of this host for the router's certificate.")
+@click.option("--only", default=None, metavar="NAMES",
+              help="Start only these: world, goals, an agent id or a process name, "
+                   "comma-separated (the others run on other hosts).")
+@click.option("--join", "join", default=None, metavar="ENDPOINT",
+              help="Join the run whose router is at ENDPOINT (needs --run; starts no router).")
+@click.option("--run", "run_id", default=None, help="Run id (required with --join).")
+@click.option("--secrets", "secrets_dir", default=None, type=click.Path(file_okay=False),
+              help="A secured run's secrets folder (copied from the first host, with --join).")
+@click.option("--learned", type=click.Path(exists=True, dir_okay=False),
+              help="Start every agent from the skills learned in an earlier run (its "
+                   "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
+@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
+              help="Plot the run record (PNG): speed, goal timeline, stage times.")
+@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the summary as one JSON object on stdout (everything else on stderr).")
+def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
+           summary_file: str | None, render_file: str | None, secure: bool,
+           listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
+           run_id: str | None, secrets_dir: str | None, learned: str | None,
+           plot_file: str | None, no_record: bool, as_json: bool) -> None:
+    """Start every process of SCENARIO, supervise them, and summarise the run."""
+    _catch_signals()
+    try:
+        if render_file:
+            picture_format(render_file)
+        scenario, _ = load_checked(scenario_file)
+        if learned:
+            check_learned(scenario, learned)
+        plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
+                     hosts, only, join, run_id, secrets_dir)
+        plan = replace(plan, learned=learned, record=not no_record or bool(plot_file))
+    except (ScenarioError, PlanError, WorldError) as exc:
+        raise click.ClickException(str(exc)) from exc
+    base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
+            "seed": plan.seed, "cycles_requested": plan.cycles,
+            "secured": plan.secrets is not None}
+    with redirect_stdout(sys.stderr) if as_json else nullcontext():
+        outcome = supervise(plan)
+        if not plan.runs_world:
+            _echo_joined(plan, outcome)
+            raise SystemExit(1 if outcome.left_down else 0)
+        result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
+                               outcome.left_down, outcome.ended, outcome.requested_stop)
+        _finish(result, scenario, plan.run_dir, summary_file, render_file, plot_file, as_json)
+    if as_json:
+        click.echo(json.dumps(result, indent=1))
+    raise SystemExit(summary.exit_code(result))
+
+
+def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
+            render_file: str | None, plot_file: str | None, as_json: bool) -> None:
+    """The summary for a person (unless --json), its file, the picture, the plot."""
+    if not as_json:
+        summary.echo(result)
+    if summary_file:
+        Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
+        Path(summary_file).write_text(json.dumps(result, indent=1))
+        click.echo(f"summary written to {summary_file}")
+    if render_file:
+        frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
+        click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
+                   else "no snapshots saved: nothing rendered")
+    if plot_file:
+        from tools.plot import plot_command_output
+
+        click.echo(plot_command_output(run_dir, Path(plot_file)))
 
 
 def check_learned(scenario: Scenario, learned: str) -> None:
@@ -85,162 +154,73 @@ def check_learned(scenario: Scenario, learned: str) -> None:
         raise click.ClickException(str(exc)) from exc
 
 
-def _raise_interrupt(signum: int, frame: object) -> None:
-    raise KeyboardInterrupt
-
-
-@click.command()
-@click.argument("scenario_file", metavar="SCENARIO", type=click.Path(dir_okay=False))
-@click.option("--cycles", type=click.IntRange(min=0), help="Cycles to run (0: forever).")
-@click.option("--seed", type=int, help="World seed (overrides [run].seed).")
-@click.option("--mode", type=click.Choice(["lockstep", "realtime"]), help="Clock mode.")
-@click.option("--summary", "summary_file", type=click.Path(dir_okay=False),
-              help="Write the summary JSON here.")
-@click.option("--render", "render_file", type=click.Path(dir_okay=False),
-              help="Draw the run: a .png of the last state or a .gif of the run.")
-@click.option("--learned", type=click.Path(exists=True, dir_okay=False),
-              help="Start every agent from the skills learned in an earlier run (its "
-                   "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
-@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
-              help="Plot the run record (PNG): speed, goal timeline, stage times.")
-@click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
-def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
-           summary_file: str | None, render_file: str | None, learned: str | None,
-           plot_file: str | None, no_record: bool) -> None:
-    """Start every process of SCENARIO, supervise them, and summarise the run."""
-    try:
-        scenario, _ = load_checked(scenario_file)
-    except ScenarioError as exc:
-        raise click.ClickException(str(exc)) from exc
-    if learned:
-        check_learned(scenario, learned)
-    cycles = scenario.run.cycles if cycles is None else cycles
-    seed = scenario.run.seed if seed is None else seed
-    mode = mode or scenario.run.mode.value
-    run = f"{scenario.run.name}-{secrets.token_hex(3)}"
+def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_id,
+          secrets_dir) -> Plan:
+    if join and not run_id:
+        raise PlanError("--join needs --run RUN, the id of the run to join")
+    if join and secure and not secrets_dir:
+        raise PlanError("--join of a secured run needs --secrets FOLDER (copied from the "
+                        "host that started the run)")
+    listen = listen or ("tls/127.0.0.1:0" if secure else "tcp/127.0.0.1:0")
+    if secure and not (join or listen).startswith("tls/"):
+        raise PlanError(f"a secured run listens and connects on tls/ endpoints, got "
+                        f"{join or listen!r}")
+    run = run_id or f"{scenario.run.name}-{secrets.token_hex(3)}"
+    _check_run_id(run)
+    local = select(scenario, only)
     run_dir = runfile.base_dir() / "runs" / run
-    base = {"run": run, "scenario": str(scenario.path), "mode": mode, "seed": seed,
-            "cycles_requested": cycles}
-    signal.signal(signal.SIGTERM, _raise_interrupt)
-    restarts = _run(scenario, run, run_dir, cycles, seed, mode, learned,
-                    record=not no_record or bool(plot_file))
-    result = summary.build(run_dir, base, restarts, scenario.domain)
-    summary.echo(result)
-    if summary_file:
-        Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
-        Path(summary_file).write_text(json.dumps(result, indent=1))
-        click.echo(f"summary written to {summary_file}")
-    if render_file:
-        frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
-        click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
-                   else "no snapshots saved: nothing rendered")
-    if plot_file:
-        from tools.plot import plot_command_output
-
-        click.echo(plot_command_output(run_dir, Path(plot_file)))
-    if not result["completed"]:
-        raise SystemExit(1)
+    if join:
+        run_dir = run_dir.with_name(f"{run}.join-{os.getpid()}")
+    keep = None
+    if secure:
+        keep = RunSecrets(Path(secrets_dir).resolve()) if secrets_dir else None
+        if keep is None:
+            run_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
+            keep = make_secrets(run_dir / "secrets", run, scenario.agent_ids,
+                                [h for h in (host_of(listen), *hosts) if h])
+    plan = Plan(scenario, run, run_dir, scenario.run.cycles if cycles is None else cycles,
+                scenario.run.seed if seed is None else seed,
+                mode or scenario.run.mode.value, local, endpoint=join or "", listen=listen,
+                secrets=keep,
+                client=uses_clients(secure, bool(join), join or listen), joined=bool(join),
+                ready_timeout=REMOTE_READY_TIMEOUT if len(local) < len(select(scenario, None))
+                else 60.0)
+    check_secrets(plan)
+    return plan
 
 
-def _run(scenario: Scenario, run: str, run_dir: Path, cycles: int, seed: int,
-         mode: str, learned: str | None, record: bool = True) -> dict[str, int]:
-    """Start, supervise and stop the processes; returns restarts per process."""
-    from bus.config import BusConfig
-    from bus.router import spawn_router
-    from tools.recorder import start_run_recorder
+def _check_run_id(run: str) -> None:
+    from bus.errors import KeyFormatError
+    from bus.keys import check_chunk
 
-    run_dir.mkdir(parents=True, exist_ok=True)
-    router = spawn_router()
-    cfg = BusConfig(connect=(router.endpoint,))
-    recorder = start_run_recorder(cfg, run, run_dir, scenario) if record else None
-    sup = Supervisor(run_dir / "logs")
-    info = runfile.RunInfo(run, router.endpoint, os.getpid(), tuple(scenario.agent_ids),
-                           str(run_dir), str(scenario.path))
     try:
-        for spec in process_specs(scenario, run, run_dir, cfg.to_args(), cycles, seed, mode,
-                                  learned):
-            sup.start(spec)
-        click.echo(f"run {run}: {len(sup.names())} processes, router {router.endpoint}, "
-                   f"logs in {run_dir / 'logs'}")
-        _supervise(sup, cfg, info)
-    except KeyboardInterrupt:
-        click.echo("interrupted: stopping the run")
-    finally:
-        sup.stop_all(stop_order(scenario))
-        if recorder is not None:
-            recorder.stop()
-        router.stop()
-        runfile.remove(info)
-    return sup.restarts()
+        check_chunk(run, "run id")
+    except KeyFormatError as exc:
+        raise PlanError(f"--run: {exc}") from exc
 
 
-def _supervise(sup: Supervisor, cfg, info: runfile.RunInfo) -> None:
-    """Wait for every announcement, publish the run file, then restart crashed processes
-    until the world ends."""
-    from bus.node import open_node
-
-    with open_node(cfg, info.run, "launch") as node:
-        _wait_ready(sup, node, Path(info.run_dir) / "logs")
-        _show_status(sup, node.alive())
-        _publish_run_file(sup, info)
-        while True:
-            exits = sup.poll(exempt=("world",))
-            if any(ex.restarted for ex in exits):
-                _publish_run_file(sup, info)
-            for ex in exits:
-                if ex.name == "world":
-                    if ex.returncode != 0:
-                        click.echo(f"world exited with code {ex.returncode}", err=True)
-                    return
-                verb = f"restarted ({ex.restarts})" if ex.restarted else "left down"
-                click.echo(f"{ex.name} exited with code {ex.returncode}: {verb}", err=True)
-            node.presence.wait_change(0.2)
-
-
-def _wait_ready(sup: Supervisor, node, log_dir: Path) -> None:
-    """Wait until every process has announced itself; fail fast, with the end of its log,
-    when one exits during start-up."""
-    expected = set(sup.names())
-    end = time.monotonic() + READY_TIMEOUT
-    while not expected <= node.alive():
-        for ex in sup.poll():
-            tail = _log_tail(log_dir / f"{ex.name}.log")
-            raise click.ClickException(f"{ex.name} exited with code {ex.returncode} while "
-                                       f"starting; end of its log:\n{tail}")
-        if time.monotonic() > end:
-            missing = sorted(expected - node.alive())
-            raise click.ClickException(f"not every process announced itself within "
-                                       f"{READY_TIMEOUT:g} s: missing {missing}; see {log_dir}")
-        node.presence.wait_change(0.1)
-
-
-def _log_tail(path: Path, lines: int = 12) -> str:
-    try:
-        return "\n".join(path.read_text(errors="replace").splitlines()[-lines:])
-    except FileNotFoundError:
-        return "(no log)"
-
-
-def _publish_run_file(sup: Supervisor, info: runfile.RunInfo) -> None:
-    runfile.write(replace(info, pids={name: sup.pid(name) for name in sup.names()}))
-
-
-def _show_status(sup: Supervisor, alive: set[str]) -> None:
-    for name in sup.names():
-        state = "up" if name in alive else ("running" if sup.running(name) else "exited")
-        click.echo(f"  {name:<24} pid {sup.pid(name):<8} {state}")
+def _echo_joined(plan: Plan, outcome: Outcome) -> None:
+    click.echo(f"left run {plan.run}: {', '.join(plan.local)} stopped")
+    if outcome.ended:
+        click.echo(f"  {outcome.ended}")
+    shown = {n: k for n, k in outcome.restarts.items() if k}
+    click.echo(f"  restarts: {sum(shown.values())}"
+               + (f" ({', '.join(f'{n} {k}' for n, k in shown.items())})" if shown else ""))
+    for name in outcome.left_down:
+        click.echo(f"  failed: {name} gave up")
 
 
 commands = [launch]
 
 
-def wait_for_run_file(timeout: float) -> runfile.RunInfo:
-    """For tests and scripts: the running launch once its run file appears."""
+def wait_for_run_file(timeout: float, run: str | None = None) -> runfile.RunInfo:
+    """For tests and scripts: the running launch once it is registered."""
     end = time.monotonic() + timeout
     while True:
         try:
-            return runfile.find()
+            return runfile.find(run)
         except runfile.NoRunningLaunch:
             if time.monotonic() > end:
                 raise
             time.sleep(0.05)
+

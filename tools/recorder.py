@@ -118,7 +118,8 @@ def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
     record holds cycle 0), writing run_dir/record.mcap; None (said on the log) when it
     cannot subscribe: the run goes on unrecorded."""
     meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain}
-    client = BusConfig(mode="client", connect=cfg.connect, listen=())
+    client = BusConfig(mode="client", connect=cfg.connect, listen=(),
+                       credentials=cfg.credentials)  # a secured run: the operator's
     recorder = BusRecorder(client, run, run_dir / RECORD_FILE, meta, process="launch.record")
     try:
         return recorder.start()

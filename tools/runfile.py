@@ -1,22 +1,29 @@
-"""Where a running `teleo launch` can be found: a small JSON file, so that `teleo goal` and
-`teleo inspect` connect to it with no flags.
+"""Where running launches are found: one small JSON file per run, so that every tool (`teleo
+goal`, `event`, `inspect`, `echo`, `record`, `replay`, `ps`, `stop`) finds a run the same way,
+from any directory, and a second launch never takes over the first one's file.
 
-The file is `$TELEO_RUN_DIR/teleo-run.json`, or `./out/teleo-run.json` without that variable.
-It holds the run id, the router endpoint, the launcher's pid, the agents and the run folder.
+The files live in the run registry, `<state>/active/<run>.json`, where <state> is
+$TELEO_RUN_DIR when set, else $XDG_RUNTIME_DIR/teleo, else ~/.local/state/teleo. Each holds
+the run id, the router endpoint, the launcher's pid, the agents, the run folder, the pids of
+the run's processes and, for a secured run, the operator's credentials file. The registry
+folder is 0700 and the files 0600: only the user who launched a run can find or join it.
+A run's folder (logs, trace, summary) is $TELEO_RUN_DIR/runs/<run>, else ./out/runs/<run>
+from where the launch was started; the run file names it absolutely.
 """
 
 from __future__ import annotations
 
 import json
 import os
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
-RUN_FILE = "teleo-run.json"
+RUN_FILE = "teleo-run.json"  # kept for the docs of older versions: one file per run now
 
 
 class NoRunningLaunch(Exception):
-    """No `teleo launch` is running where the tools look for one."""
+    """No `teleo launch` is running where the tools look for one; says where it looked."""
 
 
 @dataclass(frozen=True)
@@ -30,58 +37,154 @@ class RunInfo:
     run_dir: str
     scenario: str
     pids: dict[str, int] = field(default_factory=dict)  # process name -> current pid
+    credentials: str = ""   # the operator's credentials file of a secured run
+    joined: bool = False    # a launch that joined another host's run (no router, no world)
+    started: float = 0.0    # [s since the epoch]
+    restarts: dict[str, int] = field(default_factory=dict)  # process name -> times restarted
+
+    @property
+    def secured(self) -> bool:
+        return bool(self.credentials)
+
+    @property
+    def key(self) -> str:
+        """The registry file's name (a joined launch is registered beside the main one)."""
+        return f"{self.run}.join-{self.pid}" if self.joined else self.run
+
+
+def state_dir() -> Path:
+    """The folder of the run registry (see the module doc), absolute."""
+    if os.environ.get("TELEO_RUN_DIR"):
+        return Path(os.environ["TELEO_RUN_DIR"]).resolve()
+    if os.environ.get("XDG_RUNTIME_DIR"):
+        return Path(os.environ["XDG_RUNTIME_DIR"]) / "teleo"
+    return Path.home() / ".local" / "state" / "teleo"
+
+
+def registry() -> Path:
+    return state_dir() / "active"
 
 
 def base_dir() -> Path:
-    """The folder holding the run file and the run folders."""
-    return Path(os.environ.get("TELEO_RUN_DIR", "out"))
+    """The folder the run folders go in: $TELEO_RUN_DIR, else ./out (absolute)."""
+    return Path(os.environ.get("TELEO_RUN_DIR") or "out").resolve()
 
 
-def run_file() -> Path:
-    return base_dir() / RUN_FILE
+def path_of(info: RunInfo) -> Path:
+    return registry() / f"{info.key}.json"
 
 
 def write(info: RunInfo) -> Path:
-    path = run_file()
-    path.parent.mkdir(parents=True, exist_ok=True)
+    """Register (or update) a run; the file is readable by its owner only."""
+    folder = registry()
+    folder.mkdir(parents=True, exist_ok=True, mode=0o700)
+    path = path_of(info)
     tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(asdict(info), indent=1))
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+    with os.fdopen(fd, "w") as out:
+        out.write(json.dumps(asdict(info), indent=1))
     os.replace(tmp, path)
     return path
 
 
 def remove(info: RunInfo) -> None:
-    """Remove the run file if it still describes `info` (a newer launch may have replaced it)."""
-    path = run_file()
+    """Unregister `info` (only its own file: other runs are never touched)."""
     try:
-        if json.loads(path.read_text()).get("run") == info.run:
-            path.unlink()
-    except (FileNotFoundError, ValueError):
+        path_of(info).unlink()
+    except FileNotFoundError:
         pass
 
 
-def find() -> RunInfo:
-    """The running launch; raises NoRunningLaunch if the file is absent or its launcher is gone."""
-    path = run_file()
+def _load(path: Path) -> RunInfo | None:
     try:
-        doc = json.loads(path.read_text())
-        info = RunInfo(doc["run"], doc["endpoint"], int(doc["pid"]), tuple(doc["agents"]),
-                       doc["run_dir"], doc.get("scenario", ""), dict(doc.get("pids", {})))
-    except FileNotFoundError as exc:
-        raise NoRunningLaunch(f"no running teleo launch found (no {path})") from exc
-    except (ValueError, KeyError, TypeError) as exc:
-        raise NoRunningLaunch(f"no running teleo launch found ({path} unreadable: {exc})") from exc
-    if not _alive(info.pid):
-        raise NoRunningLaunch(
-            f"no running teleo launch found ({path} names pid {info.pid}, which has exited)")
-    return info
+        doc: dict[str, Any] = json.loads(path.read_text())
+        return RunInfo(doc["run"], doc["endpoint"], int(doc["pid"]), tuple(doc["agents"]),
+                       doc["run_dir"], doc.get("scenario", ""), dict(doc.get("pids", {})),
+                       doc.get("credentials", ""), bool(doc.get("joined", False)),
+                       float(doc.get("started", 0.0)), dict(doc.get("restarts", {})))
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
 
 
-def _alive(pid: int) -> bool:
+def all_runs() -> list[tuple[RunInfo, bool]]:
+    """Every registered run with whether its launcher is still alive, oldest first."""
+    found = [(info, alive(info.pid)) for p in sorted(registry().glob("*.json"))
+             if (info := _load(p)) is not None]
+    return sorted(found, key=lambda pair: pair[0].started)
+
+
+def find(run: str | None = None) -> RunInfo:
+    """The running launch named `run`, or the only one; raises NoRunningLaunch saying where
+    it looked and what it found (none, several, or a launcher that has exited)."""
+    where = registry()
+    runs = [(i, up) for i, up in all_runs() if not i.joined]
+    if run is not None:
+        match = [(i, up) for i, up in runs if i.run == run]
+        if not match:
+            names = ", ".join(i.run for i, _ in runs) or "none"
+            raise NoRunningLaunch(f"no run {run!r} in {where} (runs there: {names})")
+        info, up = match[0]
+        if not up:
+            raise NoRunningLaunch(f"run {run} in {where} names launcher pid {info.pid}, which "
+                                  f"has exited (see `teleo ps`, `teleo stop {run}`)")
+        return info
+    live = [i for i, up in runs if up]
+    if len(live) == 1:
+        return live[0]
+    if not live:
+        stale = f" ({len(runs)} stale: see `teleo ps`)" if runs else ""
+        raise NoRunningLaunch(f"no running teleo launch found in {where}{stale}")
+    raise NoRunningLaunch(f"{len(live)} runs are running ({', '.join(i.run for i in live)}): "
+                          f"choose one with --run")
+
+
+def with_pids(info: RunInfo, pids: dict[str, int]) -> RunInfo:
+    return replace(info, pids=dict(pids))
+
+
+def alive(pid: int) -> bool:
+    """Whether a process with this pid exists and has not exited (a zombie has)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:
         return True
-    return True
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return True  # no /proc here: existing is all we can tell
+    return stat.rsplit(")", 1)[-1].split()[0] not in ("Z", "X")
+
+
+def locate(run: str | None = None) -> RunInfo:
+    """`find` for a command: a ClickException instead of NoRunningLaunch, and one line on
+    stderr saying which run it reaches and where it found it."""
+    import click
+
+    try:
+        info = find(run)
+    except NoRunningLaunch as exc:
+        raise click.ClickException(str(exc)) from exc
+    secured = ", secured" if info.secured else ""
+    click.echo(f"run {info.run}: router {info.endpoint}{secured} (from {path_of(info)})",
+               err=True)
+    return info
+
+
+def bus_config(info: RunInfo):
+    """The bus configuration a tool uses to reach the run: a client of its router, with the
+    operator's credentials when the run is secured."""
+    from bus.config import BusConfig
+
+    return BusConfig(mode="client", connect=(info.endpoint,), listen=(),
+                     credentials=info.credentials)
+
+
+def run_option(f):
+    """Click option `--run RUN` (the run to reach; default: the only running one)."""
+    import click
+
+    return click.option("--run", "run_id", default=None, metavar="RUN",
+                        help="The run to reach (default: the only running one; see "
+                             "`teleo ps`).")(f)

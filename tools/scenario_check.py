@@ -10,9 +10,10 @@ from pathlib import Path
 from agents.lang import Engine, GoalError, ProgramError, load_program
 from agents.lang.engine import SOLVERS
 from agents.lang.program import Program
+from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
 from world.domain import get_domain
 from world.errors import WorldError
-from world.run_scenario import Scenario, ScenarioError, load_scenario
+from world.run_scenario import Scenario, ScenarioError, ScriptedGoal, load_scenario
 
 
 def check_scenario(scenario: Scenario) -> dict[str, Program]:
@@ -37,19 +38,36 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
             raise ScenarioError(f"{where}: agent {agent.id}: program {agent.program}:\n{exc}") \
                 from None
     for k, goal in enumerate(scenario.goals):
-        if goal.op != "post":
-            continue
-        engine = Engine(programs[goal.agent])
-        try:
-            engine.add_goal(engine.initial_state(), goal.goal, priority=goal.priority)
-        except GoalError as exc:
-            raise ScenarioError(f"{where}: [[goals]] #{k + 1}: {exc}") from None
+        problem = _goal_problem(goal, programs[goal.agent])
+        if problem:
+            raise ScenarioError(f"{where}: [[goals]] #{k + 1}: {problem}")
     for k, event in enumerate(scenario.events):
         kind = event.event.get("kind")
         if domain.event_kinds and kind not in domain.event_kinds:
             raise ScenarioError(f"{where}: [[events]] #{k + 1}.kind: expected one of "
                                 f"{list(domain.event_kinds)}, got {kind!r}")
     return programs
+
+
+def _goal_problem(goal: ScriptedGoal, program: Program) -> str:
+    """What is wrong with one scripted request ("" if nothing): the goal against the
+    agent's program, the priority range and the priority rule (goal_store.rank_problem),
+    the goal id's length."""
+    if goal.op != "cancel" and not 1 <= goal.priority <= MAX_PRIORITY:
+        return f"priority: expected an integer in 1..{MAX_PRIORITY}, got {goal.priority}"
+    if len(goal.goal_id) > MAX_ID_CHARS:
+        return f"goal_id: longer than {MAX_ID_CHARS} characters"
+    if goal.op == "post":
+        engine = Engine(program)
+        try:
+            engine.add_goal(engine.initial_state(), goal.goal, priority=goal.priority)
+        except GoalError as exc:
+            return str(exc)
+    if goal.op != "cancel" and not goal.force:
+        problem = rank_problem(tuple(str(g.literal) for g in program.goals), goal.priority)
+        if problem:
+            return f"{problem} (force = true)"
+    return ""
 
 
 def load_checked(path: str | Path) -> tuple[Scenario, dict[str, Program]]:

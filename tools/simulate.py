@@ -10,6 +10,7 @@ its inputs.
 from __future__ import annotations
 
 import json
+import logging
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,10 +20,20 @@ import click
 
 from agents.lang import Engine, EngineState, LangError, load_program
 from agents.lang.loader import read_text
-from agents.lang.solving.learned import clause_heads, learned_text, read_learned
+from agents.lang.solving.learned import learned_text, read_learned
+from agents.processes.goal_store import GoalStore, GoalStoreError
+from agents.processes.goal_sync import GoalSync, validator
+from agents.processes.hints import with_hints
+from tools import sim_summary, summary
+from tools.progress import progress_cycles
 from tools.scenario_check import load_checked
 from world.domain import get_domain
-from world.run_scenario import Scenario, ScenarioError
+from world.errors import WorldError
+from world.pictures import picture_format
+from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
+from world.trace import trace_line
+
+log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -37,21 +48,51 @@ class SimRun:
     final: dict[str, Any] = field(default_factory=dict)
     learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
     states: dict[str, EngineState] = field(default_factory=dict)
+    trace: list[str] = field(default_factory=list)   # trace.jsonl lines (world/trace.py)
+    goals: GoalStore = field(default_factory=GoalStore)  # user goals, as a launch keeps them
+    memory: dict[str, dict[str, Any]] = field(default_factory=dict)  # each agent's, at the end
+    elapsed_s: float = 0.0
 
 
-def _apply_goals(scenario: Scenario, cycle: int, engines: dict[str, Engine],
-                 states: dict[str, EngineState]) -> None:
-    for k, g in enumerate(scenario.goals):
-        if g.at_cycle != cycle:
-            continue
-        engine, state = engines[g.agent], states[g.agent]
-        goal_id = g.goal_id or f"s{k + 1}"
+class _Goals:
+    """The user goals of a simulated run, kept as the goal-entry process keeps them: the
+    scenario's requests applied to a GoalStore at their cycle (ids g1, g2, ... in order),
+    statuses mirrored from each decision, and each engine's goals synced from the store's goal
+    list (agents/processes/goal_sync.py), so ids, statuses and the goals the engine is given
+    are those of `teleo launch`."""
+
+    def __init__(self, scenario: Scenario, engines: dict[str, Engine]) -> None:
+        self.scenario = scenario
+        self.engines = engines
+        self.store = GoalStore()
+        self.validate = validator(engines)
+        self.sync = {a: GoalSync() for a in engines}
+
+    def before(self, cycle: int, states: dict[str, EngineState]) -> None:
+        """Apply the requests due at ``cycle``, then give each engine its goal list."""
+        for g in self.scenario.goals:
+            if g.at_cycle == cycle:
+                self.store = _request(self.store, g, cycle, self.validate)
+        for a, engine in self.engines.items():
+            states[a] = self.sync[a].apply(engine, states[a], self.store.goal_list(a), log)
+
+    def after(self, agent: str, decision: dict[str, Any], cycle: int) -> None:
+        """Mirror the statuses the agent's decision of ``cycle`` reports."""
+        self.store = self.store.update_from_intention(agent, decision, cycle)
+
+
+def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalStore:
+    """One scripted request applied to ``store`` (a refused one is logged, as the goal-entry
+    process logs it)."""
+    try:
         if g.op == "post":
-            states[g.agent] = engine.add_goal(state, g.goal, priority=g.priority, goal_id=goal_id)
-        elif g.op == "cancel":
-            states[g.agent] = engine.remove_goal(state, goal_id)
-        else:
-            states[g.agent] = engine.set_priority(state, goal_id, g.priority)
+            return store.post(g.agent, g.goal, g.priority, cycle, validate)[0]
+        if g.op == "cancel":
+            return store.cancel(g.goal_id, cycle, g.force)
+        return store.set_priority(g.goal_id, g.priority, cycle)
+    except GoalStoreError as exc:
+        log.warning("scripted request refused: %s", exc)
+        return store
 
 
 @dataclass(frozen=True)
@@ -82,11 +123,13 @@ def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str
 
 
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
-             keep_every: int = 0, learned: Path | None = None, recorder: Any = None) -> SimRun:
+             keep_every: int = 0, learned: Path | None = None, recorder: Any = None,
+             show_progress: bool = False) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
     file:line:col if it does not fit an agent's program); `recorder` (a
-    tools.recorder.SimRecorder) gets every cycle's messages."""
+    tools.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
+    bar on a terminal (tools/progress.py)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
@@ -96,12 +139,15 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
                                           if learned else ()) for a in agents}
     run = SimRun()
+    goals = _Goals(scenario, engines)
     outcomes: dict[str, list[dict[str, Any]]] = {}
+    memory: dict[str, dict[str, Any]] = {}   # each agent's last memory, as the world keeps it
     total = scenario.run.cycles if cycles is None else cycles
-    for cycle in range(total):
+    start = time.monotonic()
+    for cycle in progress_cycles(total, show_progress):
         w0 = time.perf_counter()
         injected = [sim.inject(ev.event) for ev in scenario.events if ev.at_cycle == cycle]
-        _apply_goals(scenario, cycle, engines, states)
+        goals.before(cycle, states)
         snap = sim.snapshot_dict()
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
@@ -116,6 +162,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             w0 = time.perf_counter()
             outcomes[a] = sim.apply_actions(a, actions)
             world_ms += (time.perf_counter() - w0) * 1e3
+            goals.after(a, with_hints(seen.decision.to_dict(), seen.percepts), cycle)
             record[a] = {"actions": actions,
                          "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
             for name in ("solver", "planner"):
@@ -125,6 +172,11 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             if recorder is not None:
                 recorder.agent(cycle, a, seen)
         run.records.append(record)
+        now = {a: _memory(states[a]) for a in agents}
+        changed = {a: m for a, m in now.items() if memory.get(a, {}) != m}
+        memory.update(changed)
+        run.trace.append(trace_line(cycle, snap, {a: record[a]["actions"] for a in agents},
+                                    injected, changed))
         w0 = time.perf_counter()
         sim.step()
         if recorder is not None:
@@ -132,7 +184,16 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
     run.states = states
+    run.goals, run.elapsed_s = goals.store, time.monotonic() - start
+    run.memory = {a: memory.get(a, {}) for a in agents}
     return run
+
+
+def _memory(state: EngineState) -> dict[str, Any]:
+    """The agent memory an executive process would send last (docs/bus.md, "Agent memory")."""
+    from agents.lang.scs.state import ScsState, to_memory
+
+    return to_memory(state.scs) if state.scs != ScsState() else {}
 
 
 def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
@@ -150,12 +211,14 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 
 @click.command("simulate")
 @click.argument("scenario", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("--cycles", type=int, default=None, help="Cycles to run (default: the scenario's).")
+@click.option("--cycles", type=click.IntRange(min=0), default=None,
+              help="Cycles to run (default: the scenario's).")
 @click.option("--seed", type=int, default=None, help="World seed (default: the scenario's).")
 @click.option("--trace", type=click.Path(dir_okay=False, path_type=Path), default=None,
-              help="Write one JSON line per cycle (actions and goal statuses) to this file.")
+              help="Write the run's trace here: one JSON line per cycle, as a launch's "
+                   "trace.jsonl (docs/scenarios.md, \"Run files\").")
 @click.option("--render", type=click.Path(dir_okay=False, path_type=Path), default=None,
-              help="Write a picture of the run (.png: the last cycle, .gif: the whole run).")
+              help="Write a picture of the run (.png/.jpg: the last cycle, .gif: the run).")
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               default=None, help="Start every agent from the skills in this learned file.")
 @click.option("--learned-out", type=click.Path(dir_okay=False, path_type=Path), default=None,
@@ -163,42 +226,68 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 @click.option("--plot", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Write plots of the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the summary as one JSON object (a launch's --json form) instead.")
 def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
                      render: Path | None, learned: Path | None, learned_out: Path | None,
-                     plot: Path | None, no_record: bool) -> None:
-    """Run SCENARIO in one process, without the bus (for writing and debugging programs)."""
+                     plot: Path | None, no_record: bool, as_json: bool) -> None:
+    """Run SCENARIO in one process without the bus (to write programs).
+
+    The same cycle as a lockstep launch, with the same goal ids (g1, g2, ...), trace lines
+    and summary; a progress bar on a terminal."""
     from tools.recorder import SimRecorder
 
     recorder = None
     try:
+        if render:
+            picture_format(render)
         sc, _ = load_checked(scenario)
         recorder = None if no_record and not plot else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
-                       learned=learned, recorder=recorder)
-    except (ScenarioError, LangError) as exc:
+                       learned=learned, recorder=recorder, show_progress=True)
+    except (ScenarioError, LangError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     finally:
         if recorder is not None:
             recorder.writer.close()
+    notes = []
+    if recorder is not None:
+        notes.append(f"run record written to {recorder.writer.path}")
     if plot:
         from tools.plot import plot_record
 
-        click.echo(f"plot written to {plot_record(recorder.writer.path, plot)}", err=True)
-    if learned_out:
-        write_learned(run, sc, learned_out)
+        notes.append(f"plot written to {plot_record(recorder.writer.path, plot)}")
+    _write_outputs(run, sc, trace, render, learned_out, seed, cycles, as_json, notes,
+                   str(recorder.writer.path) if recorder else None)
+
+
+def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path | None,
+                   learned_out: Path | None, seed: int | None, cycles: int | None,
+                   as_json: bool, notes: list[str], record: str | None) -> None:
+    """The files asked for, then the summary (text, or JSON on stdout)."""
+    files = dict(zip(sc.agent_ids, write_learned(run, sc, learned_out), strict=False)) \
+        if learned_out else {}
     if trace:
         trace.parent.mkdir(parents=True, exist_ok=True)
-        trace.write_text("".join(json.dumps(r) + "\n" for r in run.records))
+        trace.write_text("".join(run.trace))
+        notes.append(f"trace written to {trace}")
     if render:
         render.parent.mkdir(parents=True, exist_ok=True)
-        get_domain(sc.domain).render(run.snapshots + [run.final], render, sc.agent_ids[0])
-    last = run.records[-1] if run.records else {}
-    click.echo(json.dumps({"cycles": len(run.records), "time": run.final.get("time"),
-                           "counters": run.final.get("counters", {}),
-                           "goals": {a: last.get(a, {}).get("goals", []) for a in sc.agent_ids},
-                           "learned": {a: clause_heads("\n".join(run.learned[a]))
-                                       for a in sc.agent_ids},
-                           "record": str(recorder.writer.path) if recorder else None}))
+        frames = get_domain(sc.domain).render(run.snapshots + [run.final], render,
+                                              sc.agent_ids[0])
+        notes.append(f"picture written to {render} ({frames} frame(s))")
+    result = sim_summary.build(run, sc, sc.run.seed if seed is None else seed,
+                               sc.run.cycles if cycles is None else cycles, trace, files)
+    result["record"] = record
+    if as_json:
+        click.echo(json.dumps(result, indent=1))
+        for note in notes:
+            click.echo(note, err=True)
+    else:
+        summary.echo(result)
+        for note in notes:
+            click.echo(note)
+    raise SystemExit(summary.exit_code(result))
 
 
 commands = [simulate_command]

@@ -1,24 +1,41 @@
 """The end-of-run summary of `teleo launch`, built from the files the processes leave in the
-run folder: the world's final counters and each agent's last memory (`world-final.json`), the
-goal store (`goals.json`), the snapshots for rendering (`snapshots.jsonl`), each agent's
-learned skills (`learned-AGENT.tlp`), the planner's head-plan and travel figures in each
-executive's state file (`state-AGENT.json`) and the launcher's restart counts.
+run folder (world/recorder.py): the trace (cycles run, last counters), the world's health
+record (agents left uncontrolled, late, dead and stalled stages, world restarts), the world's
+final totals when it wrote them, the goal store, and the launcher's own record (restarts per
+process, processes left down, why the run ended). The files are read as they are, so the
+figures stay true when the world was killed. What each agent's mechanisms did (learned
+skills, SCS bodies, the ROGUE planner) is told by tools/summary_agents.py.
+
+The run's status (docs/faults.md, "What counts as a failed run"):
+- failed (exit 1): an agent was uncontrolled for at least one cycle (its actions did not
+  arrive and the world applied its safe action), a process gave up (left down after its
+  restarts, or a world that could not resume), a goal could not be kept (the executive
+  reported it failed), or the world stopped before its cycles were done for any other reason
+  than a stop asked for. A goal still at an impasse at the end (no skill path yet; the
+  problem solver may have been working on it) is listed as not achieved, not as failed.
+  Goals the goal store lost (a damaged file it could not recover) fail the run too;
+- interrupted (exit 130): stopped on request (Ctrl-C, `teleo stop`) before its cycles were
+  done, with nothing failed; a run without a cycle limit ends this way and counts as completed;
+- completed (exit 0): otherwise. Stalls, late stages and restarts that recovered are shown
+  but do not fail a run.
 """
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
 import click
 
 from tools import records
+from tools.summary_agents import agent_sections, echo_agents, read_json_file
+from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, read_jsonl
 
-WORLD_FINAL = "world-final.json"
 GOALS_FILE = "goals.json"
-SNAPSHOTS = "snapshots.jsonl"
-TRACE = "trace.jsonl"
+EXIT_CODES = {"completed": 0, "failed": 1, "interrupted": 130}
+_NOT_KEPT = ("failed",)
+__all__ = ["GOALS_FILE", "SNAPSHOTS", "build", "echo", "exit_code", "learned_file", "render",
+           "state_file"]
 
 
 def learned_file(run_dir: Path, agent: str) -> Path:
@@ -32,29 +49,40 @@ def state_file(run_dir: Path, agent: str) -> Path:
 
 
 def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
-          domain: str = "driving") -> dict[str, Any]:
+          domain: str = "driving", left_down: tuple[str, ...] = (), ended: str = "",
+          requested_stop: bool = False) -> dict[str, Any]:
     """The summary as a JSON-able dict. `base` holds run, scenario, mode, seed, requested
-    cycles; missing files (a crashed world) give zeros and `completed: false`. The domain
-    says which counters are violations and which are work done (world/domain.py)."""
+    cycles; `left_down`: processes the launcher gave up on; `ended`: the launcher's reason
+    for ending the run early; `requested_stop`: a user asked for the stop."""
     from world.domain import get_domain
 
     spec = get_domain(domain)
-    final = _read_json(run_dir / WORLD_FINAL)
+    trace = read_jsonl(run_dir / TRACE)
+    health = read_jsonl(run_dir / HEALTH)
+    final = read_json_file(run_dir / WORLD_FINAL)
     final = final if isinstance(final, dict) else {}
+    cycles = len(trace)
+    counters: dict[str, dict[str, int]] = trace[-1].get("counters", {}) if trace else {}
+    elapsed = _elapsed(health)
     goals, incidents = _goals(run_dir / GOALS_FILE)
     goals = records.with_history(goals, run_dir)  # when each became active, achieved, ...
-    counters: dict[str, dict[str, int]] = final.get("counters", {})
-    elapsed = float(final.get("elapsed_s", 0.0))
-    cycles = int(final.get("cycles", 0))
-    return {
+    totals = _totals(health)
+    memory: dict[str, Any] = {}
+    for line in trace:  # each change of an agent's memory, in order
+        memory.update(line.get("memory", {}))
+    summary = {
         **base,
-        "completed": bool(final.get("completed", False)),
         "cycles": cycles,
         "elapsed_s": round(elapsed, 3),
         "cycles_per_s": round(cycles / elapsed, 2) if elapsed > 0 else 0.0,
-        "late_stages": final.get("late", {}),
-        "dead_stages": final.get("dead", {}),
+        "uncontrolled": totals["noop"],
+        "late_stages": totals["late"],
+        "dead_stages": totals["dead"],
+        "stalls": _stalls(health),
         "restarts": {name: n for name, n in restarts.items() if n},
+        "world_resumes": [{k: h.get(k) for k in ("cycle", "checkpoint", "replayed")}
+                          for h in health if h.get("kind") == "start" and h.get("resumed")],
+        "left_down": list(left_down),
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g.get("status") == "achieved"),
         "goal_store_incidents": incidents,
@@ -65,37 +93,102 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
-        "learned": _learned(run_dir),
-        "planner": _planner(run_dir, counters),
-        "bodies": {a: b for a, m in sorted(final.get("memory", {}).items())
-                   if (b := bodies(m))},
+        **agent_sections(run_dir, counters, memory),
         "trace": str(run_dir / TRACE),
+        "world_reason": final.get("reason", "the world did not finish (killed)"),
     }
+    return finish_status(summary, ended, requested_stop)
 
 
-def bodies(memory: dict[str, Any]) -> dict[str, Any]:
-    """What an agent's SCS bodies did, from its memory (docs/bus.md, "Agent memory"): the
-    tally, each do-best alternative's record and discount factor, the threads still running
-    and the world model; {} for an agent without bodies."""
-    scs = memory.get("scs") if isinstance(memory, dict) else None
-    if not isinstance(scs, dict) or not (scs.get("tally") or scs.get("threads")):
-        return {}
-    return {"tally": scs.get("tally", {}),
-            "choices": scs.get("choices", []),
-            "threads": [{k: t.get(k) for k in ("goal_id", "goal", "skill_name", "status", "note")}
-                        for t in scs.get("threads", [])],
-            "model": memory.get("model", [])}
+def finish_status(summary: dict[str, Any], ended: str = "",
+                  requested_stop: bool = False) -> dict[str, Any]:
+    """Add `failures`, `status` and `completed` to a summary (launch's or simulate's): a run
+    is failed when an agent went uncontrolled, a process gave up, a goal could not be kept,
+    goals were lost or the world stopped early."""
+    summary["failures"] = _failures(summary, ended)
+    summary["status"] = _status(summary, requested_stop)
+    summary["completed"] = summary["status"] == "completed"
+    return summary
+
+
+def _totals(health: list[dict[str, Any]]) -> dict[str, dict[str, int]]:
+    totals: dict[str, dict[str, int]] = {k: {} for k in ("noop", "late", "dead")}
+    for h in health:
+        if h.get("kind") != "cycle":
+            continue
+        for k, counter in totals.items():
+            for name in h.get(k, ()):
+                counter[name] = counter.get(name, 0) + 1
+    return totals
+
+
+def _stalls(health: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Cycles that waited past the stall threshold: when, how long [s], for whom."""
+    return [{"cycle": h["cycle"], "seconds": h.get("elapsed_s", 0.0), "stages": h["stalled"]}
+            for h in health if h.get("kind") == "cycle" and h.get("stalled")]
+
+
+def _elapsed(health: list[dict[str, Any]]) -> float:
+    """From the first cycle (all processes ready) to the world's last line [s]; restarts
+    and downtime included."""
+    times = [float(h["t"]) for h in health if isinstance(h.get("t"), int | float)]
+    ready = [float(h["t"]) for h in health if h.get("kind") == "ready" and "t" in h]
+    return max(times) - (ready[0] if ready else min(times)) if times else 0.0
+
+
+def _failures(s: dict[str, Any], ended: str) -> list[str]:
+    out = [f"{agent} uncontrolled for {n} cycle(s) (the world applied its safe action)"
+           for agent, n in s["uncontrolled"].items()]
+    out += [f"{name} gave up (left down after {s['restarts'].get(name, 0)} restart(s))"
+            for name in s["left_down"]]
+    out += [f"goal {g.get('id')} {g.get('goal')} could not be kept: {g.get('status')}"
+            + (f" ({g['note']})" if g.get("note") else "")
+            for g in s["goals"] if g.get("status") in _NOT_KEPT]
+    out += [f"goal store: {i}" for i in s["goal_store_incidents"] if i.startswith("GOALS LOST")]
+    if ended:
+        out.append(ended)
+    return out
+
+
+def _status(s: dict[str, Any], requested_stop: bool) -> str:
+    if s["failures"]:
+        return "failed"
+    wanted = int(s.get("cycles_requested") or 0)
+    if wanted and s["cycles"] < wanted:
+        if requested_stop:
+            return "interrupted"
+        s["failures"].append(f"the world stopped at cycle {s['cycles']} of {wanted}: "
+                             f"{s['world_reason']}")
+        return "failed"
+    return "completed"
+
+
+def exit_code(summary: dict[str, Any]) -> int:
+    """0 completed, 1 failed, 130 interrupted (module doc)."""
+    return EXIT_CODES[summary["status"]]
 
 
 def echo(summary: dict[str, Any]) -> None:
     """Print the summary for a person."""
-    state = "completed" if summary["completed"] else "INCOMPLETE"
-    click.echo(f"run {summary['run']} {state}: {summary['cycles']} cycles in "
-               f"{summary['elapsed_s']} s ({summary['cycles_per_s']} cycles/s, "
+    state = {"completed": "completed", "failed": "FAILED", "interrupted": "INTERRUPTED"}
+    click.echo(f"run {summary['run']} {state[summary['status']]}: {summary['cycles']} cycles "
+               f"in {summary['elapsed_s']} s ({summary['cycles_per_s']} cycles/s, "
                f"{summary['mode']}, seed {summary['seed']})")
-    late = summary["late_stages"]
+    for reason in summary["failures"]:
+        click.echo(f"  failed: {reason}")
+    late, dead = summary["late_stages"], summary["dead_stages"]
     click.echo(f"  late stages: {sum(late.values())}{_pairs(late)}")
+    if dead:
+        click.echo(f"  dead stages: {sum(dead.values())} cycle(s){_pairs(dead)}")
+    stalls = summary["stalls"]
+    if stalls:
+        shown = ", ".join(f"{'+'.join(s['stages'])} {s['seconds']} s at cycle {s['cycle']}"
+                          for s in stalls[:5])
+        click.echo(f"  stalls: {len(stalls)} ({shown}{', ...' if len(stalls) > 5 else ''})")
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
+    for r in summary["world_resumes"]:
+        click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
+                   f"{r['replayed']} cycles replayed)")
     click.echo(f"  goals achieved: {summary['goals_achieved']} of {len(summary['goals'])}")
     for incident in summary.get("goal_store_incidents", ()):
         click.echo(f"  GOAL STORE: {incident}")
@@ -107,75 +200,7 @@ def echo(summary: dict[str, Any]) -> None:
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
-    _echo_planner(summary)
-    for agent, learned in summary.get("learned", {}).items():
-        heads = learned["skills"]
-        click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
-                   + "".join(f"\n    {h}" for h in heads))
-    for agent, b in summary.get("bodies", {}).items():
-        _echo_bodies(agent, b)
-
-
-def _planner(run_dir: Path, counters: dict[str, dict[str, int]]) -> dict[str, Any]:
-    """Per agent run by the ROGUE planner (seed 003): the operators it executed (its
-    head-plan) with what monitoring found, each request's end, the distance travelled
-    (odometer) and, by the map, that of the executed order and of first-come-first-served."""
-    out = {}
-    for path in sorted(run_dir.glob("state-*.json")):
-        agent = path.stem.removeprefix("state-")
-        doc = _read_json(path) or {}
-        planner = doc.get("state", {}).get("planner") or {}
-        if not planner:
-            continue
-        travel = planner.get("travel", {})
-        out[agent] = {
-            "executed": [{"step": a["step"], "tasks": a["tasks"], "result": a["result"],
-                          "note": a.get("note", ""), "ended": a["ended"]}
-                         for a in planner.get("head", ())],
-            "requests": [{"id": f["goal_id"], "goal": f["goal"], "status": f["status"],
-                          "reason": f.get("reason", ""), "arrived": f["arrived"],
-                          "ended": f["ended"]} for f in planner.get("finished", ())],
-            "pending": [t["goal_id"] for t in planner.get("tasks", ())],
-            "travelled_m": round(counters.get(agent, {}).get("travel_cm", 0) / 100, 2),
-            "executed_m": travel.get("executed_m", 0.0), "fcfs_m": travel.get("fcfs_m", 0.0),
-            "log": planner.get("log", [])}
-    return out
-
-
-def _echo_planner(summary: dict[str, Any]) -> None:
-    for agent, plan in summary.get("planner", {}).items():
-        click.echo(f"  {agent}: operators executed (ROGUE head-plan): {len(plan['executed'])}")
-        for a in plan["executed"]:
-            extra = "" if a["result"] in ("verified", "applied") else f" ({a['note']})"
-            click.echo(f"    {a['step']} for {' '.join(a['tasks'])}: {a['result']}{extra}")
-        click.echo(f"  {agent}: travelled {plan['travelled_m']:.1f} m (odometer); by the map "
-                   f"{plan['executed_m']:.1f} m in the executed order, "
-                   f"{plan['fcfs_m']:.1f} m first-come-first-served")
-
-
-def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
-    """Per agent: its learned-skills file and the head of each skill in it."""
-    from agents.lang.solving.learned import clause_heads
-
-    out = {}
-    for path in sorted(run_dir.glob("learned-*.tlp")):
-        agent = path.stem.removeprefix("learned-")
-        out[agent] = {"file": str(path), "skills": clause_heads(path.read_text())}
-    return out
-
-
-def _echo_bodies(agent: str, b: dict[str, Any]) -> None:
-    tally = ", ".join(f"{k} {v}" for k, v in sorted(b["tally"].items()))
-    click.echo(f"  {agent} SCS bodies: {tally or 'nothing done'}")
-    for c in b["choices"]:
-        click.echo(f"    do-best {c['label']}: chosen {c['chosen']}, succeeded "
-                   f"{c['succeeded']}, failed {c['failed']}, discount factor {c['factor']:.3f}")
-    for t in b["threads"]:
-        click.echo(f"    thread {t['goal_id']} {t['goal']} <- {t['skill_name']}: "
-                   f"{t['status']} ({t['note']})")
-    if b["model"]:
-        click.echo("    world model: " + " ".join("(" + " ".join(map(str, f)) + ")"
-                                             for f in b["model"]))
+    echo_agents(summary)
 
 
 def _pairs(d: dict[str, Any]) -> str:
@@ -188,10 +213,7 @@ def render(run_dir: Path, out: Path, agent: str) -> int:
     agent's path over the whole run. Returns the number of frames used (0 when none saved)."""
     from world.domain import domain_of
 
-    path = run_dir / SNAPSHOTS
-    if not path.exists():
-        return 0
-    snaps = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    snaps = read_jsonl(run_dir / SNAPSHOTS)
     if not snaps:
         return 0
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -202,7 +224,7 @@ def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
     """The goal records and recovery incidents of the goal store, whatever shape the file has:
     only records that are objects are kept; a file that is not a goal store adds an incident
     saying so (drill F2: a goal that was an integer crashed the summary)."""
-    doc = _read_json(path)
+    doc = read_json_file(path)
     if doc is None:
         return [], ([f"{path}: not readable as JSON"] if path.exists() else [])
     goals = doc.get("goals", []) if isinstance(doc, dict) else None
@@ -214,15 +236,3 @@ def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
     if len(keep) != len(goals):
         incidents.append(f"{path}: {len(goals) - len(keep)} goal record(s) are not objects")
     return keep, incidents
-
-
-def _read_json(path: Path) -> Any:
-    """The JSON in `path`, or None when it is absent or not bounded JSON (any bytes)."""
-    from agents.lang import LangError
-    from agents.lang.limits import read_json
-
-    try:
-        text = path.read_bytes().decode("utf-8", errors="replace")
-        return read_json(text, str(path), max_chars=64 << 20, max_string=1 << 20)
-    except (OSError, LangError):
-        return None

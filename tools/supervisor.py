@@ -1,9 +1,16 @@
-"""Child processes of `teleo launch`: start, watch, restart per policy, stop in order.
+"""Child processes of `teleo launch`: start, watch, restart per policy, stop quickly.
 
 Like `ros2 launch` with `respawn=True`: a process that exits while the run goes on is started
-again with the same command, at most `max_restarts` times. Children are started with
-subprocess (fork + exec at once), never by forking a Python process that has a zenoh session
-(notes/zenoh.md, pitfall 2). Each child's output goes to its own log file.
+again with the same command (plus its `restart_args`, e.g. the world's `--resume`), at most
+`max_restarts` times. Children are started with subprocess (fork + exec at once), never by
+forking a Python process that has a zenoh session (notes/zenoh.md, pitfall 2). Each child's
+output goes to its own log file, and each is told the launcher's pid (TELEO_PARENT_PID) so it
+exits when the launcher dies (bus/lifeline.py).
+
+Stopping is bounded (docs/faults.md: Ctrl-C stops a run within 2 s in any state): the `first`
+group (the world, the clock) is asked to stop and given up to `first_s`, then every other
+process at once, then the `last` group (the router); whatever is still there after its share
+of time, a stopped (SIGSTOPped) or hung process included, is killed.
 """
 
 from __future__ import annotations
@@ -14,20 +21,25 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from bus.lifeline import ENV_PARENT
 
 log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
 class ProcSpec:
-    """How to start one process: its name (the liveliness name, e.g. "ME.inference")."""
+    """How to start one process: its name (the liveliness name, e.g. "ME.inference"), its
+    command, how often it may be restarted, extra arguments on a restart, extra environment."""
 
     name: str
     argv: tuple[str, ...]
     max_restarts: int = 3
     env: dict[str, str] = field(default_factory=dict)
+    restart_args: tuple[str, ...] = ()
 
 
 @dataclass
@@ -41,12 +53,14 @@ class _Child:
 
 @dataclass(frozen=True)
 class Exit:
-    """A child that exited by itself: restarted (True) or left down (False)."""
+    """A child that exited by itself: restarted (True) or left down (False); `at`: when it
+    was seen gone [s, time.monotonic()]."""
 
     name: str
     returncode: int
     restarted: bool
     restarts: int
+    at: float = 0.0
 
 
 def module_argv(module: str, *args: str) -> tuple[str, ...]:
@@ -67,14 +81,20 @@ class Supervisor:
         """Start `spec` (it must not be running yet)."""
         if spec.name in self._children:
             raise ValueError(f"process {spec.name!r} already started")
-        self._children[spec.name] = _Child(spec, self._spawn(spec))
+        self._children[spec.name] = _Child(spec, self._spawn(spec, spec.argv))
 
-    def _spawn(self, spec: ProcSpec) -> subprocess.Popen:
-        out = open(self.log_dir / f"{spec.name}.log", "ab")  # the child inherits it
+    def adopt(self, spec: ProcSpec, popen: subprocess.Popen) -> None:
+        """Supervise a process started elsewhere (the router: started first, to learn its
+        port); restarts use `spec.argv`."""
+        self._children[spec.name] = _Child(spec, popen)
+
+    def _spawn(self, spec: ProcSpec, argv: tuple[str, ...]) -> subprocess.Popen:
+        out = open(self.log_dir / f"{spec.name}.log", "ab")  # noqa: SIM115 (inherited)
+        env = {**os.environ, **spec.env, ENV_PARENT: str(os.getpid())}
         try:
-            return subprocess.Popen(spec.argv, stdout=out, stderr=subprocess.STDOUT,
-                                    stdin=subprocess.DEVNULL, cwd=self.cwd,
-                                    env={**os.environ, **spec.env}, start_new_session=True)
+            return subprocess.Popen(argv, stdout=out, stderr=subprocess.STDOUT,
+                                    stdin=subprocess.DEVNULL, cwd=self.cwd, env=env,
+                                    start_new_session=True)
         finally:
             out.close()
 
@@ -84,64 +104,92 @@ class Supervisor:
     def pid(self, name: str) -> int:
         return self._children[name].popen.pid
 
+    def pids(self) -> dict[str, int]:
+        return {name: c.popen.pid for name, c in self._children.items()}
+
     def running(self, name: str) -> bool:
         return self._children[name].popen.poll() is None
 
     def restarts(self) -> dict[str, int]:
         return {name: c.restarts for name, c in self._children.items()}
 
-    def poll(self, exempt: tuple[str, ...] = ()) -> list[Exit]:
-        """Restart children that exited (per their policy); `exempt` ones are only reported."""
+    def left_down(self) -> list[str]:
+        """Processes that exited and were not restarted (policy exhausted or exempt)."""
+        return [name for name, c in self._children.items()
+                if c.gave_up and c.popen.poll() is not None]
+
+    def poll(self, exempt: tuple[str, ...] = (),
+             restartable: Callable[[str, int], bool] | None = None) -> list[Exit]:
+        """Restart children that exited (per their policy); `exempt` ones are only reported;
+        `restartable(name, returncode)` may refuse a restart (e.g. a world that cannot
+        resume)."""
         exits: list[Exit] = []
         for name, child in self._children.items():
             rc = child.popen.poll()
             if rc is None or child.gave_up:
                 continue
+            now = time.monotonic()
             child.exits.append(rc)
-            if name in exempt or child.restarts >= child.spec.max_restarts:
+            refused = restartable is not None and not restartable(name, rc)
+            if name in exempt or refused or child.restarts >= child.spec.max_restarts:
                 child.gave_up = True
-                exits.append(Exit(name, rc, False, child.restarts))
+                exits.append(Exit(name, rc, False, child.restarts, now))
                 continue
             child.restarts += 1
             log.warning("%s exited with %s; restart %d of %d", name, rc, child.restarts,
                         child.spec.max_restarts)
-            child.popen = self._spawn(child.spec)
-            exits.append(Exit(name, rc, True, child.restarts))
+            child.popen = self._spawn(child.spec, child.spec.argv + child.spec.restart_args)
+            exits.append(Exit(name, rc, True, child.restarts, now))
         return exits
 
     def stop(self, names: list[str], timeout: float = 5.0) -> dict[str, int | None]:
-        """Stop `names` in order: SIGINT, then SIGTERM, then SIGKILL after `timeout` [s] each."""
+        """Stop `names` one after the other: SIGINT, then SIGKILL after `timeout` [s]."""
         codes: dict[str, int | None] = {}
         for name in names:
-            child = self._children.get(name)
-            if child is None:
-                continue
-            child.gave_up = True
-            codes[name] = _stop_one(child.popen, timeout)
+            codes.update(self._stop_group([name], timeout))
         return codes
 
-    def stop_all(self, first: list[str], timeout: float = 5.0) -> dict[str, int | None]:
-        """Stop `first` in that order, then everything else in reverse start order."""
-        rest = [n for n in reversed(self._children) if n not in first]
-        return self.stop(first + rest, timeout)
+    def stop_all(self, first: list[str], last: Iterable[str] = (), first_s: float = 1.0,
+                 rest_s: float = 0.6, last_s: float = 0.3) -> dict[str, int | None]:
+        """Stop `first` (in order, `first_s` [s] in all), then every other process at once
+        (`rest_s`), then `last` (`last_s`); each group's stragglers are killed."""
+        last = [n for n in last if n in self._children]
+        rest = [n for n in reversed(self._children) if n not in first and n not in last]
+        codes = self._stop_group([n for n in first if n in self._children], first_s)
+        codes.update(self._stop_group(rest, rest_s))
+        codes.update(self._stop_group(last, last_s, quiet=True))
+        return codes
+
+    def _stop_group(self, names: list[str], timeout: float,
+                    quiet: bool = False) -> dict[str, int | None]:
+        children = [(n, self._children[n]) for n in names if n in self._children]
+        for _, child in children:
+            child.gave_up = True
+            _signal(child.popen, signal.SIGINT)
+            _signal(child.popen, signal.SIGCONT)  # a stopped process must run to stop
+        end = time.monotonic() + timeout
+        codes: dict[str, int | None] = {}
+        for name, child in children:
+            try:
+                codes[name] = child.popen.wait(max(0.0, end - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                (log.info if quiet else log.warning)(
+                    "%s (pid %d) still running %.1f s after SIGINT: killed", name,
+                    child.popen.pid, timeout)
+                _signal(child.popen, signal.SIGKILL)
+                codes[name] = child.popen.wait()
+        return codes
 
 
-def _stop_one(popen: subprocess.Popen, timeout: float) -> int | None:
-    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
-        if popen.poll() is not None:
-            return popen.returncode
+def _signal(popen: subprocess.Popen, sig: signal.Signals) -> None:
+    if popen.poll() is None:
         try:
             popen.send_signal(sig)
         except ProcessLookupError:
-            break
-        try:
-            return popen.wait(timeout)
-        except subprocess.TimeoutExpired:
-            log.warning("pid %d ignored %s", popen.pid, sig.name)
-    return popen.poll()
+            pass
 
 
-def wait_until(predicate, timeout: float, interval: float = 0.05) -> bool:
+def wait_until(predicate: Callable[[], object], timeout: float, interval: float = 0.05) -> bool:
     """Poll `predicate()` until true or `timeout` [s] passes; returns the last value."""
     end = time.monotonic() + timeout
     while True:

@@ -1,7 +1,9 @@
-"""Which bus a record, replay or view command talks to, said out loud: the running launch's
-router (from its run file, tools/runfile.py), or a router named with --connect (or
-$TELEO_ZENOH_CONNECT), checked by opening a client session to it, so a command never
-publishes into nothing or waits silently on a port where nobody listens.
+"""Which bus an echo, record, replay or view command talks to, said out loud: the running
+launch's router (found in the run registry as every tool finds it, tools/runfile.py: the
+only running launch, or the one named with --run; with the operator's credentials when the
+run is secured), or a router named with --connect (or $TELEO_ZENOH_CONNECT), checked by
+opening a client session to it, so a command never publishes into nothing or waits silently
+on a port where nobody listens.
 """
 
 from __future__ import annotations
@@ -37,20 +39,24 @@ def connect_given() -> bool:
     return given or bool(os.environ.get(ENV_CONNECT))
 
 
-def find_target(bus_config: BusConfig, explicit: bool | None = None) -> Target:
-    """The running launch (its run file), or the router of `bus_config` when one was named;
-    raises TargetError saying what was tried."""
+def find_target(bus_config: BusConfig, explicit: bool | None = None,
+                run: str | None = None) -> Target:
+    """The running launch (`run`, or the only one), or the router of `bus_config` when one
+    was named; raises TargetError saying what was tried."""
     if explicit if explicit is not None else connect_given():
-        cfg = BusConfig(mode=Mode.CLIENT, connect=bus_config.connect, listen=())
+        cfg = BusConfig(mode=Mode.CLIENT, connect=bus_config.connect, listen=(),
+                        credentials=bus_config.credentials)
         probe(cfg)
-        return Target(cfg, None, f"router {', '.join(cfg.connect)}")
+        return Target(cfg, run, f"router {', '.join(cfg.connect)}")
     try:
-        info = runfile.find()
+        info = runfile.find(run)
     except runfile.NoRunningLaunch as exc:
         raise TargetError(f"{exc}; start `teleo launch`, or name a router with "
                           f"--connect tcp/HOST:PORT (e.g. a `teleo router`)") from exc
-    cfg = BusConfig(mode=Mode.CLIENT, connect=(info.endpoint,), listen=())
-    return Target(cfg, info.run, f"launch {info.run} (router {info.endpoint})")
+    secured = ", secured" if info.secured else ""
+    return Target(runfile.bus_config(info), info.run,
+                  f"launch {info.run} (router {info.endpoint}{secured}, from "
+                  f"{runfile.path_of(info)})")
 
 
 def probe(cfg: BusConfig) -> None:

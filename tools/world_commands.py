@@ -8,8 +8,6 @@ for --steps cycles with idle agent cars, to look at a city).
 
 from __future__ import annotations
 
-import json
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -19,16 +17,43 @@ from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
 from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
 from world.errors import WorldError
+from world.pictures import is_animation, picture_format
+from world.toml_text import read_toml
+
+MAX_SNAPSHOT_CHARS = 256 << 20
+"""[characters] of a snapshots file `teleo render` reads (a day-long run's is ~100 MB)."""
 
 
 def _from_json(path: Path) -> list[dict[str, Any]]:
-    text = path.read_text()
-    if path.suffix == ".jsonl":
-        rows = [json.loads(line) for line in text.splitlines() if line.strip()]
-    else:
-        data = json.loads(text)
-        rows = data if isinstance(data, list) else [data]
+    from agents.lang import LangError
+    from agents.lang.limits import read_json
+
+    text = path.read_bytes()[:MAX_SNAPSHOT_CHARS + 1].decode("utf-8", errors="replace")
+    try:
+        if path.suffix == ".jsonl":
+            rows = [read_json(line, f"{path}:{n}", max_chars=MAX_SNAPSHOT_CHARS,
+                              max_string=1 << 20)
+                    for n, line in enumerate(text.splitlines(), 1) if line.strip()]
+        else:
+            data = read_json(text, str(path), max_chars=MAX_SNAPSHOT_CHARS, max_string=1 << 20)
+            rows = data if isinstance(data, list) else [data]
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from None
     return [r.get("snapshot", r) if isinstance(r, dict) else r for r in rows]
+
+
+def _check_rows(source: Path, rows: list) -> None:
+    """Refuse rows that are not world snapshots, saying what the file seems to be."""
+    for n, row in enumerate(rows, 1):
+        if isinstance(row, dict) and {"cycle", "time", "counters"} <= set(row):
+            continue
+        hint = ""
+        if isinstance(row, dict) and "digest" in row:
+            hint = ("; it is a run's trace: draw the snapshots.jsonl beside it, or the run "
+                    "record")
+        raise click.ClickException(
+            f"{source}: item {n} is not a world snapshot (expected an object with cycle, time "
+            f"and counters, as in a run's snapshots.jsonl){hint}")
 
 
 def _from_recording(path: Path) -> list[dict[str, Any]]:
@@ -45,14 +70,15 @@ def _from_scenario(path: Path, steps: int, seed: int | None) -> list[dict[str, A
     """A scenario's world simulated for `steps` cycles with idle agents (a scenario may hold
     only its [world] table: the agents are then its cars, or ME)."""
     try:
-        doc = tomllib.loads(path.read_text())
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise click.ClickException(f"{path}: not valid TOML: {exc}") from exc
-    table = dict(doc.get("world", {}))
+        doc = read_toml(path)
+    except WorldError as exc:
+        raise click.ClickException(str(exc)) from None
+    table = dict(doc.get("world", {}) if isinstance(doc.get("world"), dict) else {})
     domain = get_domain(str(table.pop("domain", DEFAULT_DOMAIN)))
     agents = [a.get("id") for a in doc.get("agents", []) if isinstance(a, dict)]
     agents = agents or [c.get("agent") for c in table.get("cars", [])] or ["ME"]
-    run_seed = doc.get("run", {}).get("seed", 1)
+    run = doc.get("run") if isinstance(doc.get("run"), dict) else {}
+    run_seed = run.get("seed", 1) if isinstance(run.get("seed"), int) else 1
     world = domain.create(table, run_seed if seed is None else seed, agents)
     snaps = [world.snapshot_dict()]
     for _ in range(steps):
@@ -66,13 +92,14 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
     if source.suffix == ".toml":
         return _from_scenario(source, steps, seed)
     rows = _from_json(source) if source.suffix in (".json", ".jsonl") else _from_recording(source)
+    _check_rows(source, rows)
     return sorted(rows, key=lambda s: s.get("cycle", 0) if isinstance(s, dict) else 0)
 
 
 @click.command()
 @click.argument("source", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("--out", "out", required=True, type=click.Path(dir_okay=False, path_type=Path),
-              help="FILE.png (one cycle) or FILE.gif (the whole run).")
+              help="FILE.png or FILE.jpg (one cycle) or FILE.gif (the whole run).")
 @click.option("--agent", default=None, help="Whose car, range and counters to show.")
 @click.option("--cycle", "cycle", type=int, default=None,
               help="PNG: the cycle to draw (default: the last).")
@@ -87,8 +114,12 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
               help="Scenario source: seed (default: the scenario's).")
 def render(source: Path, out: Path, agent: str | None, cycle: int | None, every: int,
            scale: float | None, follow: float | None, steps: int, seed: int | None) -> None:
-    """Draw SOURCE (snapshots .jsonl/.json, a run record .mcap, or a scenario .toml) to --out."""
+    """Draw a run or a scenario to a PNG, JPEG or GIF.
+
+    SOURCE: a run's snapshots (.jsonl/.json), a run record (.mcap), or a scenario .toml
+    (simulated for --steps cycles with its own seed)."""
     try:
+        picture_format(out)
         rows = load_snapshots(source, steps, seed)
         if not rows:
             raise click.ClickException(f"{source}: no world snapshots in it")
@@ -100,7 +131,7 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
             click.echo(f"{out}: {frames} frame(s)")
             return
         snaps = [WorldSnapshot.from_dict(r) for r in rows]
-        if out.suffix.lower() == ".gif":
+        if is_animation(out):
             render_gif(snaps, out, agent=agent, every=max(1, every),
                        px_per_m=scale or (4.0 if follow else 1.5), follow=follow)
             click.echo(f"{out}: {len(snaps[::max(1, every)])} frame(s), cycles "

@@ -13,6 +13,18 @@ every snapshot carries under "domain".
     world.step()
     snap = world.snapshot_dict()                              # plain data: msgpack/JSON-able
     percepts = domain.perceive(snap, "ME")                    # neutral percept lists
+
+Restart (docs/faults.md): a world process that dies is started again and resumes at the cycle
+it had reached, deterministically. It rebuilds the simulation from its last checkpoint and
+replays the actions and events recorded since (world/resume.py), so a domain must be
+deterministic given its seed, the actions and the events (the contract test checks it), and
+should offer `checkpoint()` (Restartable) and `Domain.restore`, the exact inverse:
+
+    blob = world.checkpoint()                  # bytes, before the next cycle's injections
+    again = domain.restore(blob)               # continues exactly as `world` would
+
+A domain without them still restarts, by replaying the whole run from cycle 0 (slower: its
+restart time grows with the run's length).
 """
 
 from __future__ import annotations
@@ -53,6 +65,15 @@ class World(Protocol):
         "cycle", "time" [s] and "counters" ({agent: {name: int}})."""
 
 
+@runtime_checkable
+class Restartable(Protocol):
+    """A World that can be saved between cycles and restored by its Domain.restore."""
+
+    def checkpoint(self) -> bytes:
+        """The whole state of the simulation as bytes (a pickle is fine: the file lives in
+        the run folder, written and read by the same user)."""
+
+
 @dataclass(frozen=True)
 class Domain:
     """A domain's hooks. ``violations`` names the counters that are breaches of a law or a
@@ -67,6 +88,7 @@ class Domain:
     violations: tuple[str, ...] = ()
     event_kinds: tuple[str, ...] = ()
     achievements: tuple[str, ...] = field(default=())  # counters of work done (deliveries)
+    restore: Callable[[bytes], World] | None = None     # the inverse of World.checkpoint
 
 
 # name -> module whose DOMAIN attribute is the Domain (imported on first use, so a process

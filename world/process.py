@@ -1,30 +1,31 @@
 """The world process: the simulation and the clock of a run (DESIGN.md, One cognitive cycle).
 
     python -m world.process --run RUN --scenario FILE --cycles N --seed S
-                            --run-mode lockstep|realtime --out DIR [bus flags]
+                            --run-mode lockstep|realtime --out DIR [--resume] [bus flags]
 
-For cycle t: inject the events due (scripted at t, or received on world/events), publish the
-world state of t with each agent's action outcomes of t-1, collect every agent's actions of
-t through bus.clock.Clock, apply them and step the physics by dt. It writes in DIR:
-trace.jsonl (one line per cycle: cycle, actions per agent, counters, a digest of the state,
-the outcomes of injected events; nothing that depends on timing, so two lockstep runs with
-one seed give the same file),
-snapshots.jsonl (every render_every cycles and the last, for world.driving.render) and
-world-final.json (counters, late and dead stages, timing, each agent's last memory) for the
-launcher's summary. Each agent's memory (what its executive sends with its actions: world-model
-facts, SCS threads and discount factors) is kept and handed back in the next world state, so
-a restarted agent process loses none of it (docs/bus.md, "Agent memory").
+For cycle t: inject the events due (scripted at t, or received on world/events, where a
+query, as `teleo event` sends, is answered with the world's verdict), publish the world state
+of t with each agent's action outcomes of t-1, collect every agent's actions of t through
+bus.clock.Clock, apply them (the world's safe action for an agent whose actions did not
+arrive) and step the physics by dt. The files it keeps in DIR are described in
+world/recorder.py. `--resume` (the launcher restarting a world that died) first brings the
+simulation back to the cycle the run had reached (world/resume.py), then goes on from there.
+Each agent's memory (what its executive sends with its actions: world-model facts, SCS
+threads and discount factors) is kept and handed back in the next world state, so a restarted
+agent process loses none of it (docs/bus.md, "Agent memory"); the trace records each change
+of it, so a restarted world hands back the same.
+
+Exit status: 0 when the cycles are done or a signal stopped it; EXIT_CANNOT_RESUME when a
+restart cannot get back to the run's state, EXIT_NOT_READY when the stages did not all
+announce themselves in time (the launcher then ends the run with the reason in the log);
+anything else is a crash, after which the launcher restarts it with --resume.
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
 import logging
-import signal
 import threading
 import time
-from collections import Counter
 from itertools import count
 from pathlib import Path
 from typing import Any
@@ -32,89 +33,32 @@ from typing import Any
 import click
 
 from bus import keys
-from bus.clock import Clock
+from bus.clock import Clock, CycleInterrupted
 from bus.config import BusConfig, bus_options
-from bus.cycle import CycleMode, CycleReport
-from bus.messages import WorldEvent, WorldState
+from bus.cycle import CycleMode
+from bus.errors import BusError, NotReady
+from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
-from world.domain import get_domain
-from world.run_scenario import Scenario, load_scenario
+from bus.pending import PendingQueries, serve_later
+from bus.stage import stop_on_signals
+from world.domain import Domain, World, get_domain
+from world.recorder import CHECKPOINT_EVERY, Recorder
+from world.resume import CannotResume, Resumed, can_checkpoint, resume
+from world.run_scenario import Scenario, ScenarioError, load_scenario
 
 log = logging.getLogger("teleo.world")
 READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
 RESTART_TIMEOUT = 30.0    # [s] lockstep waits this long for a crashed stage to come back
 STALL_TIMEOUT = 30.0      # [s] lockstep waits this long for a live but silent stage
+STALL_REPORT_S = 1.0      # [s] a lockstep cycle waiting longer is recorded as a stall
+EXIT_CANNOT_RESUME = 3
+EXIT_NOT_READY = 4
+__all__ = ["pipelines", "run_world"]
 
 
 def pipelines(agents: list[str]) -> dict[str, list[str]]:
     """Each agent's stages in pipeline order; the goal-entry process feeds every executive."""
     return {a: ["goals", f"{a}.perception", f"{a}.inference", f"{a}.executive"] for a in agents}
-
-
-def digest(snapshot: dict[str, Any]) -> str:
-    """A short hash of the whole world state (canonical JSON)."""
-    text = json.dumps(snapshot, sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
-
-
-class Recorder:
-    """The files of the run folder and the totals for world-final.json."""
-
-    def __init__(self, out: Path, render_every: int) -> None:
-        out.mkdir(parents=True, exist_ok=True)
-        self.out = out
-        self.render_every = render_every
-        self.trace = (out / "trace.jsonl").open("w", buffering=1)  # lines
-        self.snaps = (out / "snapshots.jsonl").open("w")
-        self.late: Counter[str] = Counter()
-        self.dead: Counter[str] = Counter()
-        self.noop: Counter[str] = Counter()
-        self.stage_ms: Counter[str] = Counter()
-        self.cycle_ms = 0.0
-        self.world_ms = 0.0
-        self.cycles = 0
-        self.last_snapshot: dict[str, Any] | None = None
-        self.last_written = -1
-
-    def cycle(self, t: int, snap: dict[str, Any], injected: list[dict[str, Any]],
-              report: CycleReport, world_ms: float) -> None:
-        line = {"cycle": t, "actions": {a: [list(x) for x in acts]
-                                        for a, acts in sorted(report.actions.items())},
-                "counters": snap["counters"], "digest": digest(snap)}
-        if injected:
-            line["events"] = injected
-        self.trace.write(json.dumps(line, sort_keys=True) + "\n")
-        self.late.update(report.late)
-        self.dead.update(report.dead)
-        self.noop.update(report.noop)
-        self.stage_ms.update(report.stage_ms)
-        self.cycle_ms += report.elapsed_ms
-        self.world_ms += world_ms
-        self.cycles = t + 1
-        self.last_snapshot = snap
-        if t % self.render_every == 0:
-            self._snapshot(t, snap)
-
-    def _snapshot(self, t: int, snap: dict[str, Any]) -> None:
-        self.snaps.write(json.dumps(snap) + "\n")
-        self.last_written = t
-
-    def finish(self, completed: bool, elapsed_s: float, memory: dict[str, Any]) -> None:
-        if self.last_snapshot is not None and self.last_written != self.cycles - 1:
-            self._snapshot(self.cycles - 1, self.last_snapshot)
-        self.trace.close()
-        self.snaps.close()
-        final = {
-            "completed": completed, "cycles": self.cycles, "elapsed_s": elapsed_s,
-            "late": dict(self.late), "dead": dict(self.dead), "noop": dict(self.noop),
-            "counters": (self.last_snapshot or {}).get("counters", {}),
-            "timing_ms": {"cycle": self.cycle_ms, "world": self.world_ms,
-                          "stages": dict(self.stage_ms)},
-            "memory": memory,
-        }
-        tmp = self.out / "world-final.json.tmp"
-        tmp.write_text(json.dumps(final, indent=1))
-        tmp.replace(self.out / "world-final.json")
 
 
 def _drain(inbox: Inbox) -> list[dict[str, Any]]:
@@ -125,7 +69,26 @@ def _drain(inbox: Inbox) -> list[dict[str, Any]]:
     return events
 
 
-def _actions_of(sim, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
+def _inject(sim: World, due: list[dict[str, Any]], events_in: Inbox, asked: PendingQueries,
+            node, t: int) -> list[dict[str, Any]]:
+    """Apply the events of cycle `t` in order: scripted, published on world/events, then
+    asked there as queries (`teleo event`), each of which is answered with the world's
+    verdict now, before the state of `t` goes out. Returns every outcome, for the state and
+    the trace (so a run with events stays deterministic and its trace says what happened)."""
+    injected = [sim.inject(e) for e in due + _drain(events_in)]
+    for pending in asked.take():
+        event = pending.request.event if isinstance(pending.request, WorldEvent) else None
+        if event is None:
+            pending.fail(f"expected a WorldEvent, got a {pending.request.KIND}")
+            continue
+        outcome = sim.inject(dict(event))
+        injected.append(outcome)
+        pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
+                                  str(outcome.get("reason", "")), outcome))
+    return injected
+
+
+def _actions_of(sim: World, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
     """The agent's actions of this cycle, or the world's safe action when they did not arrive
     (a dead or late stage): an uncontrolled agent is stopped, never left on its last controls."""
     if agent in noop:
@@ -133,46 +96,80 @@ def _actions_of(sim, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[
     return [list(x) for x in actions]
 
 
-def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
-              mode: str, out: Path, stop: threading.Event) -> bool:
-    """Run `cycles` cycles (0: until stopped); returns whether all were run."""
+def _begin(domain: Domain, scenario: Scenario, seed: int, out: Path, again: bool) -> Resumed:
+    """A fresh world at cycle 0, or (`again`) the world of the run recorded in `out`."""
     agents = scenario.agent_ids
-    sim = get_domain(scenario.domain).create(scenario.world_table, seed, agents)
+    if again:
+        return resume(domain, scenario.world_table, seed, agents, out)
+    return Resumed(domain.create(scenario.world_table, seed, agents), 0,
+                   {a: [] for a in agents}, -1, 0, {a: {} for a in agents})
+
+
+def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
+              mode: str, out: Path, stop: threading.Event, again: bool = False,
+              ready_timeout: float = READY_TIMEOUT) -> bool:
+    """Run cycles up to `cycles` (0: until stopped); returns whether all were run.
+    `again`: resume the run recorded in `out` (a restarted world); `ready_timeout` [s]: how
+    long to wait for every stage (longer when some run on other hosts)."""
+    agents = scenario.agent_ids
+    domain = get_domain(scenario.domain)
+    begun = _begin(domain, scenario, seed, out, again)
+    sim, first = begun.world, begun.cycle
+    saving = can_checkpoint(sim, domain)
     scripted: dict[int, list[dict[str, Any]]] = {}
     for e in scenario.events:
         scripted.setdefault(e.at_cycle, []).append(e.event)
-    rec = Recorder(out, scenario.run.render_every)
+    rec = Recorder(out, scenario.run.render_every, resumed_at=first)
+    rec.event("start", cycle=first, resumed=again, checkpoint=begun.checkpoint,
+              replayed=begun.replayed, mode=mode)
+    if again:
+        log.info("resumed at cycle %d (checkpoint %d, %d cycles replayed)", first,
+                 begun.checkpoint, begun.replayed)
+    start, reason = time.monotonic(), "done"
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
+        asked = serve_later(node, keys.world_events(run))
+        node.declare([keys.stats(run, "world")])
         clock = Clock(node, pipelines(agents), mode=CycleMode(mode),
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
-                      restart_timeout_s=RESTART_TIMEOUT)
+                      restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         node.announce()
-        expected = {p for pipe in pipelines(agents).values() for p in pipe}
-        clock.wait_ready(expected, READY_TIMEOUT)
-        log.info("all %d stages ready; running %s cycles, %s", len(expected),
-                 cycles or "unlimited", mode)
-        outcomes: dict[str, list] = {a: [] for a in agents}
-        memory: dict[str, dict] = {a: {} for a in agents}
-        start = time.monotonic()
-        for t in (range(cycles) if cycles else count()):
-            if stop.is_set():
-                break
-            w0 = time.perf_counter()
-            injected = [sim.inject(e) for e in scripted.get(t, []) + _drain(events_in)]
-            snap = sim.snapshot_dict()
-            world_ms = (time.perf_counter() - w0) * 1e3
-            report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes, injected,
-                                                   dict(memory)))
-            memory.update(report.memory)   # an agent given the no-op keeps its last memory
-            w0 = time.perf_counter()
-            outcomes = {a: sim.apply_actions(a, _actions_of(sim, a, acts, report.noop))
-                        for a, acts in report.actions.items()}
-            sim.step()
-            rec.cycle(t, snap, injected, report, world_ms + (time.perf_counter() - w0) * 1e3)
-        completed = rec.cycles == cycles if cycles else True  # a forever run ends by a stop
-        rec.finish(completed, time.monotonic() - start, memory)
-    log.info("stopped after %d cycles (%s)", rec.cycles, "complete" if completed else "early")
+        outcomes, memory = begun.outcomes, begun.memory
+        try:
+            clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
+                             ready_timeout)
+            rec.event("ready", cycle=first)
+            log.info("all stages ready; running cycles %d to %s, %s", first,
+                     cycles - 1 if cycles else "unlimited", mode)
+            for t in (range(first, cycles) if cycles else count(first)):
+                if stop.is_set():
+                    reason = "stopped by a signal"
+                    break
+                w0 = time.perf_counter()
+                injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
+                snap = sim.snapshot_dict()
+                world_ms = (time.perf_counter() - w0) * 1e3
+                report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes,
+                                                       injected, dict(memory)))
+                changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
+                memory.update(changed)  # an agent given the no-op keeps its last memory
+                w0 = time.perf_counter()
+                applied = {a: _actions_of(sim, a, acts, report.noop)
+                           for a, acts in report.actions.items()}
+                outcomes = {a: sim.apply_actions(a, acts) for a, acts in applied.items()}
+                sim.step()
+                world_ms += (time.perf_counter() - w0) * 1e3
+                rec.cycle(t, snap, applied, injected, report, world_ms, changed)
+                node.publish_stats(t, world_ms)   # after the report: not a stage of the cycle
+                if saving and (t + 1) % CHECKPOINT_EVERY == 0:
+                    rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
+        except CycleInterrupted as exc:
+            reason = f"stopped by a signal ({exc})"
+        asked.close("the run ended before the event could be applied")
+        completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
+        rec.finish(completed, time.monotonic() - start, reason, memory)
+    log.info("stopped after %d cycles (%s): %s", rec.cycles,
+             "complete" if completed else "early", reason)
     return completed
 
 
@@ -183,20 +180,33 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
 @click.option("--seed", type=int, default=None)
 @click.option("--run-mode", type=click.Choice(["lockstep", "realtime"]), default=None)
 @click.option("--out", required=True, type=click.Path(file_okay=False), help="Run folder.")
+@click.option("--resume", "again", is_flag=True,
+              help="Resume the run recorded in --out (a restarted world).")
+@click.option("--ready-timeout", type=float, default=READY_TIMEOUT, show_default=True,
+              help="Seconds to wait for every stage to announce itself.")
 @bus_options
 def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
-         run_mode: str | None, out: str, bus_config: BusConfig) -> None:
+         run_mode: str | None, out: str, again: bool, ready_timeout: float,
+         bus_config: BusConfig) -> None:
     """The world process of one run."""
     logging.basicConfig(level=logging.INFO,
                         format="%(asctime)s world %(name)s %(levelname)s %(message)s")
-    scenario = load_scenario(scenario_file)
-    stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
-    run_world(bus_config, run, scenario,
-              scenario.run.cycles if cycles is None else cycles,
-              scenario.run.seed if seed is None else seed,
-              run_mode or scenario.run.mode.value, Path(out), stop)
+    stop = stop_on_signals(child=True)
+    try:
+        scenario = load_scenario(scenario_file)
+        run_world(bus_config, run, scenario,
+                  scenario.run.cycles if cycles is None else cycles,
+                  scenario.run.seed if seed is None else seed,
+                  run_mode or scenario.run.mode.value, Path(out), stop, again, ready_timeout)
+    except CannotResume as exc:
+        log.error("cannot resume the run: %s", exc)
+        raise SystemExit(EXIT_CANNOT_RESUME) from exc
+    except NotReady as exc:
+        log.error("%s", exc)
+        raise SystemExit(EXIT_NOT_READY) from exc
+    except (ScenarioError, BusError) as exc:
+        log.error("%s", exc)
+        raise SystemExit(1) from exc
 
 
 if __name__ == "__main__":

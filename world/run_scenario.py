@@ -9,7 +9,6 @@ names its domain (`domain = "driving"`, the default); the rest of it is the doma
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -17,6 +16,7 @@ from typing import Any
 from bus.cycle import CycleMode as Mode
 from world.domain import DEFAULT_DOMAIN, DOMAINS
 from world.errors import WorldError
+from world.toml_text import TomlTextError, read_toml
 
 AGENT_STAGES = ("perception", "inference", "executive")
 GOAL_OPS = ("post", "cancel", "priority")
@@ -28,7 +28,8 @@ class ScenarioError(WorldError):
 
 @dataclass(frozen=True)
 class RunSettings:
-    """The [run] table. cycles 0 means forever; deadline [s] is the realtime period per cycle."""
+    """The [run] table. cycles 0 means forever; deadline [s] is the realtime period per cycle;
+    secure: run on a secured bus (TLS, a user per process, access control: docs/bus.md)."""
 
     name: str = "run"
     mode: Mode = Mode.LOCKSTEP
@@ -37,6 +38,7 @@ class RunSettings:
     deadline: float = 0.1
     goals_respawn: int = 3
     render_every: int = 5
+    secure: bool = False
 
 
 @dataclass(frozen=True)
@@ -72,6 +74,7 @@ class ScriptedGoal:
     at_cycle: int = 0
     op: str = "post"
     goal_id: str = ""
+    force: bool = False  # rank above the program's goals, or cancel an achieved goal
 
 
 @dataclass(frozen=True)
@@ -115,14 +118,14 @@ class Scenario:
 
 
 def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario file; raises ScenarioError naming the file and field."""
+    """Read and check a scenario file; raises ScenarioError naming the file and field (or
+    file:line:col for text that is not UTF-8 or nested too deeply: world/toml_text.py)."""
     path = Path(path)
     try:
-        doc = tomllib.loads(path.read_text())
-    except FileNotFoundError as exc:
-        raise ScenarioError(f"{path}: scenario file not found") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{path}: not valid TOML: {exc}") from exc
+        doc = read_toml(path)
+    except TomlTextError as exc:
+        raise ScenarioError(str(exc).replace(": file not found", ": scenario file not found"))\
+            from None
     return scenario_from_dict(doc, path)
 
 
@@ -169,8 +172,8 @@ def _kind_name(kind: type | tuple) -> str:
 
 def _run(table: dict[str, Any], path: Path) -> RunSettings:
     where = f"{path}: [run]"
-    _only(table, {"name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every"},
-          path, "[run]")
+    _only(table, {"name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every",
+                  "secure"}, path, "[run]")
     mode = table.get("mode", "lockstep")
     if mode not in {m.value for m in Mode}:
         raise ScenarioError(f"{where}.mode: expected 'lockstep' or 'realtime', got {mode!r}")
@@ -182,10 +185,18 @@ def _run(table: dict[str, Any], path: Path) -> RunSettings:
         deadline=float(_typed(table, "deadline", (int, float), 0.1, where)),
         goals_respawn=_typed(table, "goals_respawn", int, 3, where),
         render_every=_typed(table, "render_every", int, 5, where),
+        secure=_flag(table, "secure", where),
     )
     if settings.cycles < 0 or settings.deadline <= 0 or settings.render_every < 1:
         raise ScenarioError(f"{where}: expected cycles >= 0, deadline > 0 [s], render_every >= 1")
     return settings
+
+
+def _flag(table: dict[str, Any], key: str, where: str) -> bool:
+    value = table.get(key, False)
+    if not isinstance(value, bool):
+        raise ScenarioError(f"{where}.{key}: expected true or false, got {value!r}")
+    return value
 
 
 def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
@@ -200,25 +211,34 @@ def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
             raise ScenarioError(
                 f"{where}.respawn: expected {{stage = max restarts}} with stage in "
                 f"{list(AGENT_STAGES)}, got {stage} = {count!r}")
-    solver = table.get("solver", True)
-    if not isinstance(solver, bool):
-        raise ScenarioError(f"{where}.solver: expected true or false, got {solver!r}")
     mechanism = _typed(table, "mechanism", str, "means-ends", where)
-    return AgentSpec(agent_id, program, dict(respawn), solver, mechanism)
+    return AgentSpec(agent_id, program, dict(respawn), _bool(table, "solver", where, True),
+                     mechanism)
+
+
+def _bool(table: dict[str, Any], key: str, where: str, default: bool = False) -> bool:
+    value = table.get(key, default)
+    if not isinstance(value, bool):
+        raise ScenarioError(f"{where}.{key}: expected true or false, got {value!r}")
+    return value
 
 
 def _resolve(program: str, scenario_path: Path) -> Path:
-    """A program path is taken as written from the working directory, else beside the scenario."""
+    """A relative program path is looked up beside the scenario, then in each folder above
+    it (so `programs/driving.tlp` in scenarios/x.toml finds the repository's programs/ from
+    any working directory), then in the working directory."""
     candidate = Path(program)
-    if candidate.is_absolute() or candidate.exists():
+    if candidate.is_absolute():
         return candidate
-    beside = scenario_path.parent / candidate
-    return beside if beside.exists() else candidate
+    for folder in scenario_path.resolve().parents:
+        if (folder / candidate).exists():
+            return folder / candidate
+    return candidate
 
 
 def _goal(table: dict[str, Any], index: int, path: Path, agents: list[str]) -> ScriptedGoal:
     where = f"{path}: [[goals]] #{index + 1}"
-    _only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id"},
+    _only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id", "force"},
           path, f"[[goals]] #{index + 1}")
     goal = ScriptedGoal(
         agent=_typed(table, "agent", str, agents[0] if len(agents) == 1 else None, where),
@@ -227,6 +247,7 @@ def _goal(table: dict[str, Any], index: int, path: Path, agents: list[str]) -> S
         at_cycle=_typed(table, "at_cycle", int, 0, where),
         op=_typed(table, "op", str, "post", where),
         goal_id=_typed(table, "goal_id", str, "", where),
+        force=_bool(table, "force", where),
     )
     if goal.agent not in agents:
         raise ScenarioError(f"{where}.agent: expected one of {agents}, got {goal.agent!r}")

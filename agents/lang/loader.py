@@ -97,6 +97,27 @@ def parse_percepts(text: str, source: str = "<percepts>") -> tuple[Percept, ...]
     return tuple(out)
 
 
+def percept_list(data: object, source: str) -> list:
+    """The percepts in a JSON document, in one of the forms a percept file may take
+    (docs/language.md, "Percept files"): a list of percepts; an object whose "percepts" is
+    that list (a Percepts message as `teleo explain --percepts` or a script writes it); or a
+    saved `teleo echo` line, an object whose "msg" is a Percepts message. Anything else
+    raises ProgramError saying which forms are accepted."""
+    if isinstance(data, list):
+        return data
+    if isinstance(data, dict) and isinstance(data.get("msg"), dict) and "percepts" in data["msg"]:
+        data = data["msg"]
+    if isinstance(data, dict) and isinstance(data.get("percepts"), list):
+        return data["percepts"]
+    got = (f"an object with keys {', '.join(sorted(map(str, data)))[:120] or '(none)'}"
+           if isinstance(data, dict) else f"a JSON {type(data).__name__}")
+    if isinstance(data, dict) and data.get("kind") not in (None, "Percepts"):
+        got = f"a {shorten(str(data['kind']))} message"
+    raise ProgramError([Diagnostic(source, 1, 1, "expected a list of percepts, an object whose "
+                                   '"percepts" is that list, or a `teleo echo` line of a '
+                                   f"Percepts message; got {got}")])
+
+
 def _percept(node: object, source: str, diags: list[Diagnostic]) -> Percept | None:
     def bad(msg: str) -> None:
         diags.append(Diagnostic(source, node.line, node.col, msg))
@@ -118,12 +139,15 @@ def _percept(node: object, source: str, diags: list[Diagnostic]) -> Percept | No
 
 
 def _json_percepts(text: str, source: str) -> tuple[Percept, ...]:
-    """JSON neutral lists, read within the limits (limits.read_json: no NaN or infinity)."""
-    data = read_json(text, source)
-    if isinstance(data, dict):
-        data = data.get("percepts", [])
+    """JSON neutral lists, read within the limits (limits.read_json: no NaN or infinity), in
+    one of the forms ``percept_list`` accepts."""
+    lines = [ln for ln in text.splitlines() if ln.strip()]
+    if len(lines) > 1 and all(ln.lstrip().startswith("{") for ln in lines):
+        raise ProgramError([Diagnostic(source, 2, 1, f"{len(lines)} JSON lines (saved "
+                                       "messages?): keep one, e.g. `teleo echo ... --count 1`"
+                                       " or one line of the file")])
     out, diags = [], []
-    for i, item in enumerate(data if isinstance(data, list) else [data]):
+    for i, item in enumerate(percept_list(read_json(text, source), source)):
         try:
             out.append(Percept.from_list(item))
         except LangError as exc:

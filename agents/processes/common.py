@@ -7,7 +7,6 @@ boilerplate around that loop lives here.
 from __future__ import annotations
 
 import logging
-import signal
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -26,16 +25,11 @@ def setup_logging(process: str, verbose: bool = False) -> logging.Logger:
 
 def stop_on_signals() -> threading.Event:
     """An Event set by SIGINT or SIGTERM, so the main loop ends and the node closes cleanly
-    (an unclosed zenoh session keeps the process alive: notes/zenoh.md, pitfall 1)."""
-    stop = threading.Event()
+    (an unclosed zenoh session keeps the process alive: notes/zenoh.md, pitfall 1); the
+    process also stops when its launcher dies (bus/lifeline.py)."""
+    from bus.stage import stop_on_signals as bus_stop_on_signals
 
-    def handler(signum: int, frame: object) -> None:
-        logging.getLogger("teleo").info("signal %s: stopping", signal.Signals(signum).name)
-        stop.set()
-
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, handler)
-    return stop
+    return bus_stop_on_signals(child=True)
 
 
 def run_stage(cfg: Any, run: str, process: str, inputs: list[str], outputs: list[str],

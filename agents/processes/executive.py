@@ -31,6 +31,8 @@ from typing import Any
 import click
 
 from agents.processes.common import agent_options, run_stage, setup_logging
+from agents.processes.goal_sync import GoalSync
+from agents.processes.hints import with_hints
 from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
@@ -44,34 +46,11 @@ class Executive:
         self.engine = engine
         self.log = log
         self.state = engine.initial_state() if state is None else state
-        # goal id -> (goal text, priority) of the user goals the state already holds
-        self.user: dict[str, tuple[str, int]] = {e.id: (e.text, e.priority)
-                                                 for e in self.state.goals if e.origin == "user"}
-        self.refused: set[str] = set()
+        self.goals = GoalSync.of(self.state)   # the user goals the state already holds
 
     def sync_goals(self, goal_list: tuple[dict[str, Any], ...]) -> None:
         """Add new goals, drop withdrawn ones, move reprioritised ones (in list order)."""
-        from agents.lang import GoalError
-
-        wanted = {g["id"]: (g["goal"], int(g["priority"])) for g in goal_list}
-        for goal_id in [i for i in self.user if i not in wanted]:
-            self.state = self.engine.remove_goal(self.state, goal_id)
-            del self.user[goal_id]
-        for goal_id, (text, priority) in wanted.items():
-            known = self.user.get(goal_id)
-            try:
-                if known is None and goal_id not in self.refused:
-                    self.state = self.engine.add_goal(self.state, text, priority=priority,
-                                                      goal_id=goal_id)
-                elif known is not None and known[1] != priority:
-                    self.state = self.engine.set_priority(self.state, goal_id, priority)
-                else:
-                    continue
-            except GoalError as exc:
-                self.log.warning("goal %s %s refused by the engine: %s", goal_id, text, exc)
-                self.refused.add(goal_id)
-                continue
-            self.user[goal_id] = (text, priority)
+        self.state = self.goals.apply(self.engine, self.state, goal_list, self.log)
 
     def remember(self, memory: dict[str, Any]) -> None:
         """Take the SCS state from the memory the world handed back (a malformed one is
@@ -154,7 +133,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
         executive.remember(seen.memory)                           # after a restart
         decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
-        intention, actions = decision.to_dict(), [a.to_list() for a in decision.actions]
+        intention = with_hints(decision.to_dict(), seen.percepts)
+        actions = [a.to_list() for a in decision.actions]
         if saver is not None:
             saver.save(Saved(cycle, executive.state, intention, actions))
         if out is not None:

@@ -55,6 +55,8 @@ _FROM_ENGINE = {
     "pending": GoalState.PENDING,
     "failed": GoalState.FAILED,
 }
+# Statuses whose note (why it waits, why it failed) the user sees in `teleo goal list`.
+_NOTED = frozenset({GoalState.PENDING, GoalState.IMPASSE, GoalState.FAILED})
 # Goals in these states are no longer sent to the executive.
 _WITHDRAWN = frozenset({GoalState.CANCELLED, GoalState.FAILED})
 
@@ -148,12 +150,23 @@ class GoalStore:
                             cycle, cycle)
         return replace(self, goals=self.goals + (record,), next_id=self.next_id + 1), record
 
-    def cancel(self, goal_id: str, cycle: int) -> GoalStore:
-        """Withdraw a goal; the executive drops it from the next goal list it receives."""
+    def cancel(self, goal_id: str, cycle: int, force: bool = False) -> GoalStore:
+        """Withdraw a goal; the executive drops it from the next goal list it receives. An
+        achieved goal is refused like a cancelled one (its record says what happened), unless
+        `force`: the agent keeps an achieved goal and acts again should it stop holding, so
+        withdrawing one is a real change (then its note says it had been achieved)."""
         record = self.get(goal_id)
         if record.status is GoalState.CANCELLED:
             raise GoalStoreError(f"{goal_id}: already cancelled")
-        return self._put(replace(record, status=GoalState.CANCELLED, updated_cycle=cycle))
+        note = ""
+        if record.status is GoalState.ACHIEVED:
+            if not force:
+                raise GoalStoreError(
+                    f"{goal_id}: already achieved (cycle {record.updated_cycle}); an achieved "
+                    "goal stays achieved (force the cancel to stop the agent keeping it)")
+            note = f"achieved at cycle {record.updated_cycle}, then withdrawn"
+        return self._put(replace(record, status=GoalState.CANCELLED, updated_cycle=cycle,
+                                 note=note))
 
     def set_priority(self, goal_id: str, priority: int, cycle: int) -> GoalStore:
         """Move a goal in the agent's goal list (lower number = more important)."""
@@ -176,11 +189,11 @@ class GoalStore:
             if record.status in _WITHDRAWN or record.id not in reported:
                 continue
             status = _FROM_ENGINE.get(str(reported[record.id].get("status")))
-            if status is None or status is record.status:
+            note = str(reported[record.id].get("note", "")) if status in _NOTED else ""
+            if status is None or (status is record.status and note == record.note):
                 continue
-            note = str(reported[record.id].get("note", "")) \
-                if status in (GoalState.IMPASSE, GoalState.FAILED) else ""
-            store = store._put(replace(record, status=status, updated_cycle=cycle, note=note))
+            when = cycle if status is not record.status else record.updated_cycle
+            store = store._put(replace(record, status=status, updated_cycle=when, note=note))
         return store
 
     def mark_scripted(self, indexes: Iterable[int]) -> GoalStore:
@@ -224,6 +237,22 @@ class GoalStore:
         if not all(type(i) is int for i in done) or not all(isinstance(i, str) for i in incidents):
             raise GoalStoreError("scripted_done must list integers and incidents strings")
         return cls(records, next_id, frozenset(done), tuple(incidents))
+
+
+def rank_problem(standing: tuple[str, ...], priority: int) -> str:
+    """Why a user goal of ``priority`` would rank above some of the program's standing goals
+    (``standing``: their texts in file order; they have priorities 1..n, ids p1..pn), or ""
+    when it ranks after all of them. A goal ranks after every goal of priority <= its own
+    (docs/scenarios.md, "Priorities"), so any priority below n puts it before p(P+1)..pn,
+    which in the driving program are laws: the car would break them for the errand."""
+    above = [(k + 1, goal) for k, goal in enumerate(standing) if k + 1 > priority]
+    if not above:
+        return ""
+    shown = ", ".join(f"p{k} {goal}" for k, goal in above[:3])
+    more = f" and {len(above) - 3} more" if len(above) > 3 else ""
+    return (f"priority {priority} ranks the goal above the program's standing goal"
+            f"{'s' if len(above) > 1 else ''} {shown}{more}: the agent would pursue it before "
+            f"them, at their expense; give priority {len(standing)} or more, or force it")
 
 
 def _check_priority(what: str, priority: int) -> None:

@@ -30,7 +30,8 @@ import click
 from agents.lang.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError
+from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError, rank_problem
+from agents.processes.goal_sync import validator
 from agents.processes.request_limits import RequestLimiter
 from bus import keys
 from bus.config import BusConfig, bus_options
@@ -44,27 +45,28 @@ SAVE_PERIOD = 1.0  # [s] between saves of statuses mirrored from the executives'
 
 def engine_validator(scenario: Scenario):
     """validate(agent, goal, priority) -> "" or the engine's reason, one Engine per agent."""
-    from agents.lang import Engine, GoalError, load_program
+    from agents.lang import Engine, load_program
 
-    engines = {a.id: Engine(load_program(str(a.program))) for a in scenario.agents}
+    return validator({a.id: Engine(load_program(str(a.program))) for a in scenario.agents})
 
-    def validate(agent: str, goal: str, priority: int) -> str:
-        engine = engines[agent]
-        try:
-            engine.add_goal(engine.initial_state(), goal, priority=priority, goal_id="check")
-        except GoalError as exc:
-            return str(exc)
-        return ""
 
-    return validate
+def standing_goals(scenario: Scenario) -> dict[str, tuple[str, ...]]:
+    """Each agent's program goals (p1..pn) as text, in order: what a user goal may not rank
+    above unless forced (goal_store.rank_problem)."""
+    from agents.lang import load_program
+
+    return {a.id: tuple(str(g.literal) for g in load_program(str(a.program)).goals)
+            for a in scenario.agents}
 
 
 class GoalEntry:
     """The process's state: the store, its file, the limiter, the last goal lists published."""
 
     def __init__(self, scenario: Scenario, store_path: Path, validate, log,
-                 clock=time.monotonic) -> None:
+                 clock=time.monotonic, standing: dict[str, tuple[str, ...]] | None = None
+                 ) -> None:
         self.scenario = scenario
+        self.standing = standing or {}  # agent -> its program goals (the priority rule)
         self.path = store_path
         self.validate = validate
         self.log = log
@@ -118,7 +120,7 @@ class GoalEntry:
                 if refusal:
                     raise GoalStoreError(refusal)
                 reason = self._apply(request.op, request.agent, request.goal, request.priority,
-                                     request.goal_id, self.cycle + 1)
+                                     request.goal_id, self.cycle + 1, request.force)
                 ok = True
             except GoalStoreError as exc:
                 reason, ok = str(exc), False
@@ -129,8 +131,10 @@ class GoalEntry:
         return ok, reason, goals, cycle
 
     def _apply(self, op: str, agent: str, goal: str, priority: int, goal_id: str,
-               at: int) -> str:
-        """Apply one request taking effect at cycle `at`; returns what was done."""
+               at: int, force: bool = False) -> str:
+        """Apply one request taking effect at cycle `at`; returns what was done. A post or a
+        priority that ranks a goal above the program's standing goals is refused unless
+        `force` (then the reply says what it outranks)."""
         if agent not in self.scenario.agent_ids:
             raise GoalStoreError(f"no agent {shorten(agent)!r} in this run "
                                  f"(agents: {', '.join(self.scenario.agent_ids)})")
@@ -138,19 +142,29 @@ class GoalEntry:
             raise GoalStoreError(f"goal id {shorten(goal_id)!r}: longer than {MAX_ID_CHARS} "
                                  "characters")
         if op == "post":
+            forced = self._rank(agent, priority, force)
             store, record = self.store.post(agent, goal, priority, at, self.validate)
             self._commit(store)
-            return f"posted {record.id} for {agent}: {record.goal} (from cycle {at})"
+            return f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){forced}"
         if op == "cancel":
-            self._commit(self.store.cancel(goal_id, at))
+            self._commit(self.store.cancel(goal_id, at, force))
             return f"cancelled {goal_id} (from cycle {at})"
         if op == "priority":
+            forced = self._rank(self.store.get(goal_id).agent, priority, force)
             self._commit(self.store.set_priority(goal_id, priority, at))
-            return f"{goal_id} now has priority {priority} (from cycle {at})"
+            return f"{goal_id} now has priority {priority} (from cycle {at}){forced}"
         if op == "list":
             return ""
         raise GoalStoreError(f"unknown op {shorten(op)!r}: expected post, cancel, priority or "
                              "list")
+
+    def _rank(self, agent: str, priority: int, force: bool) -> str:
+        """The priority rule: raises GoalStoreError when `priority` ranks a goal above the
+        agent's program goals and not `force`; returns the note for a forced one."""
+        problem = rank_problem(self.standing.get(agent, ()), priority)
+        if problem and not force:
+            raise GoalStoreError(f"{problem} (teleo goal ... --force)")
+        return f"; forced: {problem.split(': the agent')[0]}" if problem else ""
 
     def on_world_state(self, node: Node, cycle: int) -> None:
         """Apply the scripted requests due, then publish every agent's goal list of `cycle`.
@@ -181,7 +195,8 @@ class GoalEntry:
 
     def _run_scripted(self, g: ScriptedGoal) -> None:
         try:
-            reason = self._apply(g.op, g.agent, g.goal, g.priority, g.goal_id, self.cycle)
+            reason = self._apply(g.op, g.agent, g.goal, g.priority, g.goal_id, self.cycle,
+                                 g.force)
             self.log.info("scripted request at cycle %d: %s", self.cycle, reason)
         except GoalStoreError as exc:
             self.log.warning("scripted request refused: %s", exc)
@@ -197,7 +212,8 @@ class GoalEntry:
 def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> None:
     log = setup_logging(PROCESS)
     stop = stop_on_signals()
-    entry = GoalEntry(scenario, store_path, engine_validator(scenario), log)
+    entry = GoalEntry(scenario, store_path, engine_validator(scenario), log,
+                      standing=standing_goals(scenario))
     with open_node(cfg, run, PROCESS) as node:
         entry.node = node
         inbox = node.subscribe(keys.world_state(run))

@@ -28,7 +28,8 @@ from bus.messages import (
 text = st.text(max_size=12)
 ints = st.integers(min_value=-(2**63), max_value=2**63 - 1)
 floats = st.floats(allow_nan=False)
-atoms = st.one_of(text, ints, floats)
+finite = st.floats(allow_nan=False, allow_infinity=False)
+atoms = st.one_of(text, ints, finite)   # rows hold finite numbers only
 rows = st.lists(st.lists(atoms, max_size=8), max_size=10).map(tuple)
 plain = st.recursive(
     st.one_of(st.none(), st.booleans(), ints, floats, text),
@@ -107,6 +108,22 @@ def test_bad_payloads_raise_codec_error_naming_the_key(payload, problem):
         decode(KEY, payload)
     assert err.value.key == KEY
     assert str(err.value).startswith(KEY)
+
+
+@pytest.mark.parametrize("kind, key, field", [
+    ("Percepts", keys.percepts("r", "ME"), "percepts"),
+    ("Beliefs", keys.beliefs("r", "ME"), "beliefs"),
+    ("Actions", keys.actions("r", "ME"), "actions"),
+])
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), float("-inf")])
+def test_non_finite_numbers_in_rows_are_refused_naming_the_key(kind, key, field, bad):
+    raw = msgpack.unpackb(body())
+    del raw["percepts"]
+    raw.update(kind=kind, **{field: [["speed", "ME", 1.5], ["speed", "ME", bad]]})
+    with pytest.raises(CodecError, match=f"{kind}.{field}: expected finite numbers, found") \
+            as err:
+        decode(key, msgpack.packb(raw))
+    assert str(err.value).startswith(key)
 
 
 def test_missing_field_is_an_error_and_unknown_fields_are_ignored():

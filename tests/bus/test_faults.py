@@ -10,7 +10,7 @@ import threading
 import pytest
 from bus_helpers import AGENT, PIPELINE, Stages, pipeline
 
-from bus.clock import Clock
+from bus.clock import Clock, CycleInterrupted
 from bus.cycle import CycleMode, DeadPolicy
 from bus.errors import ClockStopped
 from bus.messages import WorldState
@@ -119,3 +119,31 @@ def test_realtime_defaults_a_stopped_agent_to_the_noop_and_names_the_stage(cfg, 
     assert first.clean and first.actions == {AGENT: (["*pass", 0, 1],)}
     assert stuck.late == ("A.inference",) and stuck.actions == {AGENT: ()}
     assert any(r.clean for r in later)  # it catches up once resumed
+
+
+def test_a_stall_is_named_and_any_wait_is_interrupted_by_the_stop_event(cfg, run_id, stages):
+    """SIGSTOP inference: a cycle that waits past stall_s names it; setting the stop event
+    (a signal to the world) ends the wait at once with CycleInterrupted (drill F6)."""
+    stop = threading.Event()
+    with open_node(cfg, run_id, "world") as node:
+        clock = Clock(node, {AGENT: PIPELINE}, deadline_s=30.0, restart_timeout_s=30.0,
+                      stall_s=0.3, stop=stop)
+        stages.start_agent()
+        clock.wait_ready(set(PIPELINE), timeout=30)
+        assert clock.run_cycle(0, state(node, 0)).stalled == ()
+        pid = stages.procs["A.inference"].pid
+        os.kill(pid, signal.SIGSTOP)
+        try:
+            timer = threading.Timer(0.8, os.kill, (pid, signal.SIGCONT))
+            timer.start()
+            stalled = clock.run_cycle(1, state(node, 1))
+            timer.join()
+            os.kill(pid, signal.SIGSTOP)
+            threading.Timer(0.5, stop.set).start()
+            with pytest.raises(CycleInterrupted, match="cycle 2: interrupted while waiting "
+                                                       "for A") as err:
+                clock.run_cycle(2, state(node, 2))
+        finally:
+            os.kill(pid, signal.SIGCONT)
+    assert stalled.stalled == ("A.inference",) and stalled.actions == {AGENT: (["*pass", 1, 1],)}
+    assert err.value.cycle == 2

@@ -42,3 +42,42 @@ def test_token_and_agent_parsing():
     assert keys.process_of_token("r1", keys.proc("r2", "world")) is None
     assert keys.agent_of_key(keys.beliefs("r1", "ME")) == "ME"
     assert keys.agent_of_key(keys.world_state("r1")) is None
+
+
+@pytest.mark.parametrize("expr, problem", [
+    ("", "non-empty"),
+    ("teleo//x", "empty chunk"),
+    ("/teleo/x", "empty chunk"),
+    ("teleo/x/", "empty chunk"),
+    ("teleo/a*", "stands alone"),
+    ("teleo/$", "only allowed in"),
+    ("teleo/x?y", "may not appear"),
+    ("teleo/**/**", "write '\\*\\*'"),
+    ("teleo/**/*", "write '\\*/\\*\\*'"),
+])
+def test_key_expressions_zenoh_refuses_are_refused_saying_why(expr, problem):
+    with pytest.raises(KeyFormatError, match=problem):
+        keys.check_keyexpr(expr)
+
+
+def test_the_key_expression_check_agrees_with_zenoh():
+    """Every expression over a small alphabet: refused here exactly when zenoh refuses it."""
+    import itertools
+
+    import zenoh
+
+    alphabet = ["a", "/", "*", "$", "#"]
+    for n in range(1, 6):
+        for letters in itertools.product(alphabet, repeat=n):
+            expr = "".join(letters)
+            try:
+                zenoh.KeyExpr(expr)
+                zenoh_ok = True
+            except zenoh.ZError:
+                zenoh_ok = False
+            try:
+                keys.check_keyexpr(expr)
+                ours = True
+            except KeyFormatError:
+                ours = False
+            assert ours == zenoh_ok, expr

@@ -36,16 +36,21 @@ class Teleo:
                                              stdout=out, stderr=subprocess.STDOUT, text=True)
         return self.launcher
 
+    def run_files(self) -> list[Path]:
+        """The run registry's files in this folder (tools/runfile.py): one per running run."""
+        return sorted((self.run_dir / "active").glob("*.json"))
+
     def run_info(self, timeout: float = 60) -> dict:
         """The run file of the running launch, once it has been written (all announced)."""
-        path = self.run_dir / "teleo-run.json"
         launcher = self.launcher
 
         def running() -> bool:
             return launcher is None or launcher.poll() is None
-        assert wait_for(lambda: path.exists() or not running(), timeout), self.launch_output()
-        assert path.exists(), f"the launch ended:\n{self.launch_output()}"
-        return json.loads(path.read_text())
+        assert wait_for(lambda: self.run_files() or not running(), timeout), \
+            self.launch_output()
+        files = self.run_files()
+        assert files, f"the launch ended:\n{self.launch_output()}"
+        return json.loads(files[0].read_text())
 
     def launch_output(self) -> str:
         path = self.run_dir / "launch.out"

@@ -75,8 +75,9 @@ def test_a_block_added_on_a_by_teleo_event_is_cleared_again(teleo):
             teleo.launch_output()
         sent = teleo("event", '{"kind": "add", "block": "D", "on": "A"}')
         assert sent.returncode == 0, sent.stderr
-        bad = teleo("event", '{"kind": "quake"}')
-        assert bad.returncode == 0, bad.stderr
+        assert "applied at cycle" in sent.stdout
+        bad = teleo("event", '{"kind": "quake"}')          # the world's verdict: refused
+        assert bad.returncode == 1 and "unknown kind 'quake'" in bad.stderr, bad.stderr
         assert wait_for(lambda: ["*unstack", "D", "A"] in _actions(info), 60), \
             teleo.launch_output()
         assert wait_for(lambda: len(_injected(info)) == 2, 60), teleo.launch_output()

@@ -19,6 +19,21 @@ def goal_statuses(teleo) -> dict[str, str]:
     return {row[0]: row[3] for row in rows}
 
 
+def process_rows(text: str) -> dict[str, dict[str, str]]:
+    """The rows of `teleo inspect`'s processes table, by process, by column."""
+    lines = [line.replace("┃", "│") for line in text.splitlines()]
+    lines = [line for line in lines if line.count("│") >= 6]
+    header = [c.strip() for c in lines[0].strip("│ ").split("│")]
+    rows = {}
+    for line in lines[1:]:
+        cells = [c.strip() for c in line.strip().strip("│").split("│")]
+        if len(cells) == len(header) and cells[0] != "key":
+            rows[cells[0]] = dict(zip(header, cells, strict=True))
+        elif cells and cells[0] == "key":
+            break
+    return rows
+
+
 def test_without_a_launch_the_tools_say_so(teleo):
     for args in (("goal", "list"), ("goal", "post", "(x)"), ("inspect", "--once")):
         done = teleo(*args)
@@ -70,6 +85,11 @@ def test_a_killed_inference_is_restarted_and_no_goal_is_lost(teleo, tmp_path):
         assert wait_for(lambda: teleo.run_info()["pids"]["ME.inference"] != killed, 60), \
             teleo.launch_output()
         assert wait_for(lambda: trace_lines(info) >= at_kill + 50, 60)
+        shown = teleo("inspect", "--seconds", "1")
+        assert shown.returncode == 0, shown.stderr
+        rows = process_rows(shown.stdout)
+        assert rows["ME.inference"]["restarts"] == "1", shown.stdout   # the launcher's count
+        assert rows["world"]["cycle"].isdigit() and rows["world"]["compute ms"] != "-"
     finally:
         stopped = interrupt(launcher)
     assert stopped == 0, teleo.launch_output()

@@ -31,8 +31,8 @@ def test_a_launch_runs_the_cycles_and_writes_the_summary(first_run):
     assert set(summary["law_violations"]["ME"]) >= {"pedestrian_hits", "off_road"}
     assert "goals achieved: 0 of 1" in done.stdout
     assert (folder / "run.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    # the processes are gone and so is the run file
-    assert not (folder / "teleo-run.json").exists()
+    # the processes are gone and so is the run's registry file
+    assert list((folder / "active").glob("*.json")) == []
 
 
 def test_the_trace_has_one_line_per_cycle_with_the_agents_actions(first_run):
@@ -85,9 +85,12 @@ def test_a_world_or_program_mistake_is_reported_before_anything_starts(teleo, tm
 def test_a_realtime_run_completes_its_cycles(teleo, tmp_path):
     done = teleo("launch", str(HOLD_SPEED), "--cycles", "15", "--mode", "realtime",
                  "--summary", str(tmp_path / "summary.json"))
-    assert done.returncode == 0, done.stdout + done.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
-    assert summary["mode"] == "realtime" and summary["completed"]
-    assert summary["cycles"] == 15
+    assert summary["mode"] == "realtime" and summary["cycles"] == 15
+    # realtime does not wait: on a busy machine a late stage leaves the car to its safe
+    # action for a cycle, and the run then says so and fails (docs/faults.md)
+    late = sum(summary["uncontrolled"].values())
+    assert (done.returncode, summary["status"]) == ((1, "failed") if late else (0, "completed")), \
+        done.stdout + done.stderr
     lines = Path(summary["trace"]).read_text().splitlines()
     assert [json.loads(x)["cycle"] for x in lines] == list(range(15))

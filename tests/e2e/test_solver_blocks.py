@@ -56,12 +56,23 @@ def _trace(path: str | Path) -> list[dict]:
     return [json.loads(x) for x in Path(path).read_text().splitlines()]
 
 
+def _records(scenario: Path, learned: Path | None = None) -> list[dict]:
+    """Each cycle's goal statuses and solver section of an in-process run (the trace file,
+    as a launch's, holds actions, counters and digests only)."""
+    from tools.scenario_check import load_checked
+    from tools.simulate import simulate
+
+    return [r["ME"] for r in simulate(load_checked(scenario)[0], learned=learned).records]
+
+
 def test_simulate_figure3_stack_per_cycle_and_the_seeds_skills(teleo, tmp_path):
     out = tmp_path / "learned.tlp"
     done = teleo("simulate", str(FIGURE3), "--trace", str(tmp_path / "t.jsonl"),
-                 "--learned-out", str(out))
+                 "--learned-out", str(out), "--json")
     assert done.returncode == 0, done.stderr
-    records = [r["ME"] for r in _trace(tmp_path / "t.jsonl")]
+    trace = _trace(tmp_path / "t.jsonl")
+    assert [a for line in trace for a in line["actions"]["ME"]] == SEED_ACTIONS
+    records = _records(FIGURE3)
     assert [a for r in records for a in r["actions"]] == SEED_ACTIONS
     stacks = [[e["goal"] for e in r["solver"]["stacks"][0]["entries"]]
               if r.get("solver", {}).get("stacks") else [] for r in records[:5]]
@@ -70,22 +81,25 @@ def test_simulate_figure3_stack_per_cycle_and_the_seeds_skills(teleo, tmp_path):
                       ["(clear A)", "(unstackable B A)", "(hand-empty)"],
                       ["(clear A)"], []]
     assert _learned_rules(out) == _seed_rules()
-    assert json.loads(done.stdout)["learned"] == {"ME": ["(unstackable ?b1 ?b2)", "(clear ?b1)"]}
+    assert json.loads(done.stdout)["learned"]["ME"] == {
+        "file": str(out), "skills": ["(unstackable ?b1 ?b2)", "(clear ?b1)"]}
     checked = teleo("check", "programs/blocks.tlp", str(out))
     assert checked.returncode == 0 and "ok (2 learned skills" in checked.stdout
     again = teleo("simulate", str(TRANSFER), "--trace", str(tmp_path / "x.jsonl"),
                   "--learned", str(out), "--learned-out", str(tmp_path / "again.tlp"))
     assert again.returncode == 0, again.stderr
-    records = [r["ME"] for r in _trace(tmp_path / "x.jsonl")]
+    records = _records(TRANSFER, out)
+    assert [line["actions"]["ME"] for line in _trace(tmp_path / "x.jsonl")][:4] == [
+        r["actions"] for r in records[:4]]
     assert [r["actions"] for r in records[:4]] == [
         [["*unstack", "Z", "Y"]], [["*putdown", "Z", "T"]], [["*unstack", "Y", "X"]], []]
-    # (clear X) is s1; the program's own goal p1, (clear A), names no block here: it fails at
-    # once ("nothing to chain off") and no longer blocks s1
+    # (clear X) is g1; the program's own goal p1, (clear A), names no block here: it fails at
+    # once ("nothing to chain off") and no longer blocks g1
     assert [dict(r["goals"])["p1"] for r in records] == ["failed"] * len(records)
     for r in records:   # no impasse on any cycle: the learned skills carry it all
-        assert dict(r["goals"])["s1"] in ("active", "satisfied")
+        assert dict(r["goals"])["g1"] in ("active", "satisfied")
         solver = r.get("solver", {"solving": [], "stacks": []})
-        assert "s1" not in solver["solving"] and solver["stacks"] == []
+        assert "g1" not in solver["solving"] and solver["stacks"] == []
     assert read_text(tmp_path / "again.tlp").split("\n", 3)[3] == \
         read_text(out).split("\n", 3)[3]   # the same skills, nothing new
 
@@ -137,7 +151,9 @@ def test_an_impossible_goal_is_failed_with_its_reason_in_teleo_goal_list(teleo):
         assert "-- (on A A) cannot be achieved: every alternative failed ((stack A A): its " \
                "subgoal (stackable A A) cannot be achieved" in failed()
     finally:
-        assert interrupt(launcher) == 0, teleo.launch_output()
+        # a goal that could not be kept fails the run (docs/faults.md): exit 1, and says why
+        assert interrupt(launcher) == 1, teleo.launch_output()
+    assert "failed: goal g2 (on A A) could not be kept: failed" in teleo.launch_output()
 
 
 def test_an_executive_killed_mid_problem_keeps_its_goal_stack_and_skills(teleo, tmp_path):

@@ -1,4 +1,5 @@
-"""`teleo event` injects a world event into a running launch; the world records its outcome."""
+"""`teleo event` injects a world event into a running launch and reports the world's verdict
+(issue 12, item 2); the world records the outcome in the trace."""
 
 from __future__ import annotations
 
@@ -22,15 +23,30 @@ def test_a_package_sent_with_teleo_event_appears_in_the_world(teleo):
         sent = teleo("event", '{"kind": "package", "id": "P9", "address": 4, "street": "B", '
                               '"owner": "ME"}')
         assert sent.returncode == 0, sent.stderr
-        assert wait_for(lambda: injected(info, "package"), 60), teleo.launch_output()
+        assert sent.stdout.startswith(f"run {info['run']}: applied at cycle ")
+        assert injected(info, "package")     # in the trace by the time the verdict came
+        # the world's verdict, not "sent": a refusal exits 1 with the world's reason
         bad = teleo("event", '{"kind": "block"}')            # no segment: the world refuses it
-        assert bad.returncode == 0, bad.stderr
+        assert bad.returncode == 1, bad.stdout
+        assert "the world refused the event at cycle" in bad.stderr
+        assert "inject: segment: expected a segment id, got None" in bad.stderr
         assert wait_for(lambda: injected(info, "block"), 60), teleo.launch_output()
+        for event, reason in (('{"kind": "teleport"}', "unknown kind 'teleport'"),
+                              ('{"kind": "block", "segment": "S99"}', "S99"),
+                              ('{"kind": "pedestrian", "ahead_of": "YOU", "dist": 5}',
+                               "ahead_of: unknown agent 'YOU'"),
+                              ('{"kind": "pedestrian", "ahead_of": "ME", "dist": 5, '
+                               '"speed": 1e308}', "speed: expected a number in [0, 10]"),
+                              ('{"kind": "package", "id": "P9", "address": 4, "street": "B", '
+                               '"owner": "ME"}', "package P9 exists already")):
+            refused = teleo("event", event)
+            assert refused.returncode == 1 and reason in refused.stderr, refused.stderr
         junk = teleo("event", "[1, 2]")
         assert junk.returncode != 0 and 'expected an object with a "kind"' in junk.stderr
     finally:
         assert interrupt(launcher) == 0, teleo.launch_output()
-    (package,) = injected(info, "package")
+    package, again = injected(info, "package")
     assert package["status"] == "done" and package["event"]["id"] == "P9", package
-    (block,) = injected(info, "block")
-    assert block["status"] == "failed" and "segment" in block["reason"], block
+    assert again["status"] == "failed" and "exists already" in again["reason"], again
+    assert [b["status"] for b in injected(info, "block")] == ["failed", "failed"]
+    assert "segment" in injected(info, "block")[0]["reason"]

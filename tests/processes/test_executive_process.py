@@ -40,5 +40,5 @@ def test_a_goal_the_engine_refuses_is_skipped_not_fatal():
     executive = Executive(Engine(load_program(str(PROGRAM))), logging.getLogger("test"))
     executive.sync_goals((entry("g1", "(flying ME)", 3),))
     executive.sync_goals((entry("g1", "(flying ME)", 3),))
-    assert executive.refused == {"g1"}
+    assert executive.goals.refused == {"g1"}
     assert [g["id"] for g in step(executive, SLOW)["goals"]] == ["p1"]

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tools.launch import process_specs
+from tools.run_plan import Plan, process_specs, select
 from tools.scenario_check import check_scenario
 from world.run_scenario import ScenarioError, load_scenario, scenario_from_dict
 
@@ -33,11 +33,17 @@ def test_the_mechanism_is_read_and_checked():
     assert scenario_from_dict(doc, Path("x.toml")).agent("ME").impasse_handler is None
 
 
+def specs_of(scenario, folder: Path) -> dict:
+    """The processes `teleo launch` would start for `scenario` (tools/run_plan.py)."""
+    plan = Plan(scenario, "r", folder, 10, 1, "lockstep", select(scenario, None),
+                endpoint="tcp/127.0.0.1:7447")
+    return {s.name: s for s in process_specs(plan)}
+
+
 def test_launch_passes_the_mechanism_to_the_executive(tmp_path):
-    specs = {s.name: s for s in process_specs(load_scenario(FIGURE6), "r", tmp_path, [], 10,
-                                               1, "lockstep")}
+    specs = specs_of(load_scenario(FIGURE6), tmp_path)
     argv = specs["ME.executive"].argv
     assert argv[argv.index("--mechanism") + 1] == "rogue"
     errand = load_scenario(ROOT / "scenarios" / "office_errand.toml")
-    plain = {s.name: s for s in process_specs(errand, "r", tmp_path, [], 10, 1, "lockstep")}
+    plain = specs_of(errand, tmp_path)
     assert "--mechanism" not in plain["ME.executive"].argv

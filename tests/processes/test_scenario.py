@@ -15,7 +15,8 @@ def test_the_driving_demo_scenario_loads():
     scenario = load_scenario(ROOT / "scenarios" / "driving_demo.toml")
     assert scenario.run.mode is Mode.LOCKSTEP
     assert scenario.agent_ids == ["ME"]
-    assert scenario.agent("ME").program == Path("programs/driving.tlp")
+    # found from any working directory: the programs/ folder above the scenario
+    assert scenario.agent("ME").program == ROOT / "programs" / "driving.tlp"
     goals = [(g.goal, g.at_cycle) for g in scenario.goals]
     assert goals[0] == ("(package-delivered PACKET1)", 0)
     assert goals[1][0] == "(package-delivered PACKET2)" and goals[1][1] > 0

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import signal
 import sys
 
 from tools.supervisor import ProcSpec, Supervisor, wait_until
@@ -35,15 +37,53 @@ def test_exempt_processes_are_reported_not_restarted(tmp_path):
     assert exits[0].name == "world" and not exits[0].restarted and exits[0].returncode == 0
 
 
-def test_stop_all_goes_in_the_given_order_then_the_rest(tmp_path):
+def test_stop_all_goes_first_then_the_rest_at_once_then_last(tmp_path):
     order = tmp_path / "order.txt"
     sup = Supervisor(tmp_path / "logs")
-    for name in ("router", "goals", "world"):
+    names = ("router", "goals", "ME.inference", "world")
+    for name in names:
         sup.start(ProcSpec(name, (sys.executable, "-c", SLEEPER, str(order), name)))
     logs = tmp_path / "logs"
-    assert wait_until(lambda: all("ready" in (logs / f"{n}.log").read_text()
-                                  for n in ("router", "goals", "world")), timeout=30)
-    codes = sup.stop_all(["world"])
-    assert codes == {"world": 0, "goals": 0, "router": 0}
-    assert order.read_text().split() == ["world", "goals", "router"]
+    assert wait_until(lambda: all("ready" in (logs / f"{n}.log").read_text() for n in names),
+                      timeout=30)
+    codes = sup.stop_all(["world"], last=["router"], first_s=10, rest_s=10, last_s=10)
+    assert codes == dict.fromkeys(names, 0) | {"world": 0}
+    seen = order.read_text().split()
+    assert seen[0] == "world" and seen[-1] == "router"
+    assert sorted(seen[1:3]) == ["ME.inference", "goals"]
     assert sup.poll() == []  # stopped processes are not restarted
+
+
+# Ignores SIGINT (and is then SIGSTOPped by the test): only a kill ends it.
+STUBBORN = ("import signal, time\n"
+            "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+            "print('ready', flush=True)\n"
+            "while True: time.sleep(0.05)\n")
+
+
+def test_a_stopped_or_deaf_process_is_killed_when_its_time_is_up(tmp_path):
+    sup = Supervisor(tmp_path / "logs")
+    for name in ("deaf", "stopped"):
+        sup.start(ProcSpec(name, (sys.executable, "-c", STUBBORN)))
+    logs = tmp_path / "logs"
+    assert wait_until(lambda: all("ready" in (logs / f"{n}.log").read_text()
+                                  for n in ("deaf", "stopped")), timeout=30)
+    os.kill(sup.pid("stopped"), signal.SIGSTOP)
+    codes = sup.stop_all([], rest_s=0.5)
+    assert codes == {"deaf": -signal.SIGKILL, "stopped": -signal.SIGKILL}
+
+
+def test_a_restart_gets_its_restart_args_and_the_launchers_pid(tmp_path):
+    marker = tmp_path / "argv.txt"
+    code = ("import os, sys\n"
+            "open(sys.argv[1], 'a').write(' '.join(sys.argv[2:]) + ' '"
+            " + os.environ['TELEO_PARENT_PID'] + '\\n')\n"
+            "sys.exit(0 if '--resume' in sys.argv else 9)\n")
+    sup = Supervisor(tmp_path / "logs")
+    sup.start(ProcSpec("world", (sys.executable, "-c", code, str(marker)), 2,
+                       restart_args=("--resume",)))
+    exits = []
+    assert wait_until(lambda: exits.extend(sup.poll()) or len(exits) == 2, timeout=30)
+    assert [(e.returncode, e.restarted) for e in exits] == [(9, True), (0, True)]
+    mine = str(os.getpid())
+    assert [x.split() for x in marker.read_text().splitlines()] == [[mine], ["--resume", mine]]

@@ -44,9 +44,9 @@ def test_a_record_waits_for_its_cycles_world_state_to_take_its_time(tmp_path) ->
 
 def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
-    done = CliRunner().invoke(cli, ["simulate", str(FIGURE3)])
+    done = CliRunner().invoke(cli, ["simulate", str(FIGURE3), "--json"])
     assert done.exit_code == 0, done.output
-    out = json.loads(done.output)
+    out = json.loads(done.stdout)
     rec = RunRecord(locate(out["record"]))
     assert rec.meta["teleo.run"]["source"] == "simulate"
     run = rec.run
@@ -62,14 +62,14 @@ def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatc
     actions = [r["actions"] for _, r in sorted(rec.by_cycle("actions", "ME").items())]
     assert [a for a in actions if a] == [[["*unstack", "C", "B"]], [["*putdown", "C", "T"]],
                                          [["*unstack", "B", "A"]]]
-    assert rec.goal_history()["ME"]["s1"][-1]["status"] == "satisfied"
+    assert rec.goal_history()["ME"]["g1"][-1]["status"] == "satisfied"
     assert locate(run) == locate(Path(out["record"]).parent) == Path(out["record"])
 
 
 def test_simulate_without_a_record(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
-    done = CliRunner().invoke(cli, ["simulate", str(FIGURE3), "--no-record"])
-    assert done.exit_code == 0 and json.loads(done.output)["record"] is None
+    done = CliRunner().invoke(cli, ["simulate", str(FIGURE3), "--no-record", "--json"])
+    assert done.exit_code == 0 and json.loads(done.stdout)["record"] is None
     assert not list(tmp_path.rglob("*.mcap"))
 
 
@@ -89,7 +89,7 @@ def test_a_run_that_is_not_there_is_named_with_the_places_looked_at(tmp_path, mo
 def test_plot_of_a_blocks_run_and_explain_of_its_goals(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
     runner = CliRunner()
-    out = json.loads(runner.invoke(cli, ["simulate", str(FIGURE3)]).output)
+    out = json.loads(runner.invoke(cli, ["simulate", str(FIGURE3), "--json"]).stdout)
     drawn = runner.invoke(cli, ["plot", out["record"], "--out", str(tmp_path / "p.png")])
     assert drawn.exit_code == 0, drawn.output
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"

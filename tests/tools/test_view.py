@@ -101,7 +101,7 @@ def test_the_map_and_status(served):
     assert (status["first"], status["last"]) == (0, 29)
     assert {p["name"] for p in status["processes"]} == {"world", "ME.perception",
                                                          "ME.inference", "ME.executive"}
-    assert status["goals"]["ME"]["s1"][0]["cycle"] == 0
+    assert status["goals"]["ME"]["g1"][0]["cycle"] == 0
 
 
 def test_events_push_a_frame_and_the_status(served):

@@ -95,3 +95,31 @@ def test_dense_traffic_keeps_flowing() -> None:
         for t in sim.traffic:
             travelled[t.id] += math.hypot(t.x - before[t.id][0], t.y - before[t.id][1])
     assert min(travelled.values()) > 150.0      # of at most 900 m in 60 s
+
+
+def test_events_a_simulation_cannot_carry_are_refused_with_the_reason() -> None:
+    """Issue 12, item 2: a pedestrian at 1e308 m/s, a package named by a control character,
+    an owner that is no agent: each refused, naming the field and what would be right."""
+    sim = Simulation(WorldConfig(pedestrians=0, traffic=0), seed=1, agents=["ME"])
+    cases = {
+        "speed: expected a number in [0, 10], got 1e+308":
+            {"kind": "pedestrian", "ahead_of": "ME", "dist": 20, "speed": 1e308},
+        "dist: expected a number in [-500, 500], got 1e+300":
+            {"kind": "pedestrian", "ahead_of": "ME", "dist": 1e300},
+        "x: expected a number in [-100, 400], got -5000":
+            {"kind": "pedestrian", "x": -5000, "y": 10},
+        "id: expected a name of letters, digits": {"kind": "package", "id": "\u0000",
+                                                   "address": 2, "street": "B", "owner": "ME"},
+        "owner: expected one of the agents ['ME'], got 'NOBODY'":
+            {"kind": "package", "id": "P7", "address": 2, "street": "B", "owner": "NOBODY"},
+        "ahead_of: unknown agent 'YOU'; agents: ['ME']":
+            {"kind": "pedestrian", "ahead_of": "YOU", "dist": 20},
+    }
+    for reason, event in cases.items():
+        outcome = sim.inject(event)
+        assert outcome["status"] == "failed" and reason in outcome["reason"], outcome
+    sim.step()
+    snap = sim.snapshot()
+    assert snap.pedestrians == () and [p.id for p in snap.packages] == []
+    assert sim.inject({"kind": "pedestrian", "ahead_of": "ME", "dist": 20,
+                       "speed": 1.5})["status"] == "done"

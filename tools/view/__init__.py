@@ -46,7 +46,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         if record is not None:
             load_file(model, locate(record))
         else:
-            target = find_target(bus_config)
+            target = find_target(bus_config, run=run_id)
             model.run = run_id or target.run
             feed = BusFeed(model, target).start()
         server = ViewServer(model, port)

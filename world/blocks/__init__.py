@@ -23,6 +23,7 @@ from typing import Any
 
 from world.domain import Domain
 from world.errors import ConfigError
+from world.pictures import is_animation
 
 VIOLATIONS = ("blocks_dropped",)
 ACHIEVEMENTS = ("blocks_moved",)
@@ -58,12 +59,13 @@ def perceive(snapshot: dict[str, Any], agent: str) -> list[list[Any]]:
 
 
 def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = None) -> int:
-    """A PNG of the last snapshot, or a GIF of them all (by suffix); returns frames drawn."""
+    """A PNG or JPEG of the last snapshot, or a GIF of them all (by suffix:
+    world/pictures.py); returns the frames drawn."""
     from world.blocks.render import render_gif, render_png
     from world.blocks.snapshot import BlocksSnapshot
 
     snaps = [BlocksSnapshot.from_dict(s) for s in snapshots]
-    if path.suffix.lower() == ".gif":
+    if is_animation(path):
         render_gif(snaps, path, agent=agent)
         return len(snaps)
     render_png(snaps[-1], path, agent=agent)

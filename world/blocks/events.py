@@ -61,10 +61,16 @@ def apply_event(world: World, event: Any) -> dict[str, Any]:
     return {"event": event, "status": "done", "reason": ""}
 
 
-def _num(event: dict, key: str, default: float) -> float:
+MAX_OFFSET = 20.0   # [m] an added block's offset from its support's centre
+MAX_KNOCK = 30.0    # [m/s] a knock's speed, either way (a hard shove is ~5)
+
+
+def _num(event: dict, key: str, default: float, bound: float) -> float:
+    """event[key] (or `default`), a finite number within [-bound, bound]."""
     value = event.get(key, default)
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise WorldError(f"{key}: expected a number, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, int | float) or \
+            not math.isfinite(value) or not -bound <= value <= bound:
+        raise WorldError(f"{key}: expected a number in [{-bound:g}, {bound:g}], got {value!r}")
     return float(value)
 
 
@@ -90,7 +96,7 @@ def _add(world: World, event: dict) -> None:
             not all(isinstance(v, int | float) and 0.25 <= v <= 20 for v in size):
         raise WorldError(f"size: expected [width, height] in [0.25, 20] [m], got {size!r}")
     width, height = float(size[0]), float(size[1])
-    offset, on = _num(event, "offset", 0.0), event.get("on", spec.name)
+    offset, on = _num(event, "offset", 0.0, MAX_OFFSET), event.get("on", spec.name)
     if on == spec.name:
         x, bottom, ignore = _table_spot(world, event, width, height) + offset, spec.height, None
     else:
@@ -131,7 +137,7 @@ def _remove(world: World, event: dict) -> None:
 
 def _knock(world: World, event: dict) -> None:
     block = _standing(world, event)
-    speed = _num(event, "speed", 3.0)
+    speed = _num(event, "speed", 3.0, MAX_KNOCK)
     block.body.velocity = (speed, 0.0)
     block.cause = ""
 

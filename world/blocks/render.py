@@ -16,6 +16,7 @@ from PIL import Image, ImageDraw, ImageFont
 from world.blocks.snapshot import BlocksSnapshot, BlockState, HandState
 from world.blocks.table import FLOOR_MARGIN, floor_span
 from world.errors import WorldError
+from world.pictures import save_animation, save_still, scale_bar, thinning
 
 LEGEND_W = 260      # [px]
 MARGIN = 1.0        # [m] drawn around the scene
@@ -80,6 +81,7 @@ def render_image(snap: BlocksSnapshot, agent: str | None = None, px_per_m: float
         width = held[h.holding].width if h.holding in held else 2.0
         _gripper(draw, view, h, width, COLORS["me"] if h.agent == agent else COLORS["other"])
     _legend(draw, lines, view.size[0], height)
+    scale_bar(draw, 12, height - 14, view.s, max_px=view.size[0] / 4)
     return img
 
 
@@ -140,7 +142,8 @@ def _legend_lines(snap: BlocksSnapshot, agent: str | None) -> list[tuple[str, bo
                     ("gripper: bar and jaws on a cable", False),
                     ("held block: between the jaws", False),
                     (f"table {snap.table.name}: columns 0, 1, ...", False),
-                    (f"floor: {FLOOR_MARGIN:g} m each side, walls", False)]
+                    (f"floor: {FLOOR_MARGIN:g} m each side, walls", False),
+                    ("scale bar: bottom left", False)]
 
 
 def _legend(draw: ImageDraw.ImageDraw, lines: list[tuple[str, bool]], x0: int,
@@ -165,25 +168,21 @@ def _event_text(e: dict) -> str:
 
 def render_png(snap: BlocksSnapshot, path: str | Path, agent: str | None = None,
                px_per_m: float = 28.0) -> Path:
-    """Write one cycle as a PNG; returns the path."""
-    path = Path(path)
-    render_image(snap, agent, px_per_m).save(path, format="PNG")
-    return path
+    """Write one cycle as a PNG or JPEG (by suffix); returns the path."""
+    return save_still(render_image(snap, agent, px_per_m), path)
 
 
 def render_gif(snaps: list[BlocksSnapshot], path: str | Path, agent: str | None = None,
                px_per_m: float = 28.0, frame_ms: int = 500) -> Path:
-    """Write an animated GIF of a run, one frame per snapshot, `frame_ms` [ms] each, all
-    frames drawn to the same height; returns the path."""
+    """Write an animated GIF of a run, one frame per snapshot (thinned to at most
+    pictures.MAX_FRAMES), `frame_ms` [ms] each (a Blocks World cycle is one whole action, so
+    slower than the driving world's 100 ms), all frames drawn to the same height."""
     if not snaps:
         raise WorldError(f"render_gif {path}: no snapshots")
     top = frame_top(snaps, agent, px_per_m)
-    frames = [render_image(s, agent, px_per_m, top).convert("P", palette=Image.Palette.ADAPTIVE)
-              for s in snaps]
-    path = Path(path)
-    frames[0].save(path, format="GIF", save_all=True, append_images=frames[1:],
-                   duration=frame_ms, loop=0)
-    return path
+    chosen = snaps[::thinning(len(snaps))]
+    return save_animation([render_image(s, agent, px_per_m, top) for s in chosen], path,
+                          frame_ms)
 
 
 __all__ = ["frame_top", "render_gif", "render_image", "render_png", "scene_top"]

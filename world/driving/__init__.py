@@ -19,6 +19,7 @@ from typing import Any
 
 from world.domain import Domain
 from world.errors import ConfigError
+from world.pictures import is_animation
 
 VIOLATIONS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
               "speeding_cycles")
@@ -38,10 +39,14 @@ def check_config(table: dict[str, Any], agents: list[str]) -> None:
     package addresses (a building must exist), car starts."""
     from world.driving.city import build_city
     from world.driving.config import load_world_config
+    from world.driving.injection import ID
 
     config = load_world_config(table)
     build_city(config)
     for p in config.packages:
+        if not ID.fullmatch(p.id):
+            raise ConfigError(f"[world] package {p.id!r:.40}: expected an id of letters, digits, "
+                              "'_' or '-' (a letter first, at most 32), as programs name it")
         if p.owner not in agents:
             raise ConfigError(f"[world] package {p.id}: owner {p.owner!r} is not an agent of "
                               f"this run (agents: {', '.join(agents)})")
@@ -62,12 +67,20 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
     from world.driving.snapshot import WorldSnapshot
 
     snaps = [WorldSnapshot.from_dict(s) for s in snapshots]
-    if path.suffix.lower() == ".gif":
+    if is_animation(path):
         render_gif(snaps, path, agent=agent)
         return len(snaps)
     render_png(snaps[-1], path, agent=agent, trail=agent_trail(snaps, agent))
     return 1
 
 
+def restore(blob: bytes):
+    """The Simulation saved by its `checkpoint()` (world/domain.py, restart)."""
+    from world.driving.simulation import restore as restore_simulation
+
+    return restore_simulation(blob)
+
+
 DOMAIN = Domain("driving", "urban driving (seed 000): a city, traffic, pedestrians, packages",
-                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",))
+                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",),
+                restore=restore)

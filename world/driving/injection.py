@@ -6,14 +6,18 @@ Kinds:
    "speed": m/s (default 0), "heading": deg relative to the car (default 90, walking to its left),
    "id": optional}: a pedestrian steps out in front of a car.
 - {"kind": "pedestrian", "x": m, "y": m, "heading": deg absolute, "speed": m/s, "id": optional}.
+  Bounds: speed 0..10 m/s, dist and lateral within 500 m, x and y within 100 m of the grid.
 - {"kind": "block", "segment": SEG} / {"kind": "unblock", "segment": SEG}: close / reopen a road
   segment (traffic and package guidance avoid closed segments).
-- {"kind": "package", "id": ID, "address": N, "street": NAME, "owner": AGENT}: a new package.
+- {"kind": "package", "id": ID, "address": N, "street": NAME, "owner": AGENT}: a new package;
+  the owner must be an agent of the run. Ids are names a program can write: letters, digits,
+  '_' and '-', a letter first, at most 32 characters.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, Protocol
 
 from world.driving.actors import Pedestrian
@@ -34,33 +38,56 @@ class Simulation(Protocol):
     def add_pedestrian(self, p: Pedestrian) -> None: ...
 
 
-def _num(event: dict, key: str, default: float | None = None) -> float:
+MAX_WALK_SPEED = 10.0    # [m/s] a pedestrian's speed (a sprinter runs 10)
+MAX_AHEAD = 500.0        # [m] of `dist` and `lateral` from the car
+MARGIN = 100.0           # [m] around the street grid where a pedestrian may be placed
+MAX_HEADING = 3600.0     # [deg] either way
+ID = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,31}")
+"""An id the programs can name: a symbol of at most 32 characters (a letter first)."""
+
+
+def _num(event: dict, key: str, lo: float, hi: float, default: float | None = None) -> float:
+    """event[key] (or `default`): a finite number in [lo, hi]."""
     value = event.get(key, default)
     if value is None:
         raise WorldError(f"missing number {key!r}")
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise WorldError(f"{key}: expected a number, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, int | float) or \
+            not math.isfinite(value) or not lo <= value <= hi:
+        raise WorldError(f"{key}: expected a number in [{lo:g}, {hi:g}], got {value!r}")
     return float(value)
+
+
+def _ident(value: Any, what: str) -> str:
+    if not isinstance(value, str) or not ID.fullmatch(value):
+        raise WorldError(f"{what}: expected a name of letters, digits, '_' or '-' (a letter "
+                         f"first, at most 32), got {value!r:.60}")
+    return value
 
 
 def _pedestrian(sim: Simulation, event: dict) -> None:
     taken = {p.id for p in sim.walkers}
     fresh = next(f"M{k}" for k in range(len(taken) + 1, 2 * len(taken) + 2) if f"M{k}" not in taken)
-    ident = event.get("id", fresh)
-    if not isinstance(ident, str) or any(p.id == ident for p in sim.walkers):
-        raise WorldError(f"pedestrian id {ident!r} is not a new string id")
-    speed = _num(event, "speed", 0.0)
+    ident = _ident(event.get("id", fresh), "id")
+    if ident in taken:
+        raise WorldError(f"pedestrian id {ident!r} is taken")
+    speed = _num(event, "speed", 0.0, MAX_WALK_SPEED, 0.0)
+    heading = _num(event, "heading", -MAX_HEADING, MAX_HEADING,
+                   90.0 if "ahead_of" in event else 0.0)
     if "ahead_of" in event:
         car = sim.cars.get(event["ahead_of"])
         if car is None:
-            raise WorldError(f"ahead_of: unknown agent {event['ahead_of']!r}")
-        dist, lateral = _num(event, "dist"), _num(event, "lateral", 0.0)
+            raise WorldError(f"ahead_of: unknown agent {event['ahead_of']!r:.60}; agents: "
+                             f"{sorted(sim.cars)}")
+        dist = _num(event, "dist", -MAX_AHEAD, MAX_AHEAD)
+        lateral = _num(event, "lateral", -MAX_AHEAD, MAX_AHEAD, 0.0)
         h = car.body.angle
         x = car.body.position.x + dist * math.cos(h) - lateral * math.sin(h)
         y = car.body.position.y + dist * math.sin(h) + lateral * math.cos(h)
-        heading = math.degrees(h) + _num(event, "heading", 90.0)
+        heading += math.degrees(h)
     else:
-        x, y, heading = _num(event, "x"), _num(event, "y"), _num(event, "heading", 0.0)
+        w, h = sim.city.size
+        x = _num(event, "x", -MARGIN, w + MARGIN)
+        y = _num(event, "y", -MARGIN, h + MARGIN)
     mode = "stand" if speed == 0.0 else "cross"
     sim.add_pedestrian(Pedestrian(ident, x, y, heading, speed=speed, mode=mode))
 
@@ -73,9 +100,12 @@ def _segment(sim: Simulation, event: dict) -> str:
 
 
 def _package(sim: Simulation, event: dict) -> None:
-    for key in ("id", "street", "owner"):
-        if not isinstance(event.get(key), str):
-            raise WorldError(f"{key}: expected a string, got {event.get(key)!r}")
+    _ident(event.get("id"), "id")
+    if not isinstance(event.get("street"), str):
+        raise WorldError(f"street: expected a street name, got {event.get('street')!r:.60}")
+    if event.get("owner") not in sim.cars:
+        raise WorldError(f"owner: expected one of the agents {sorted(sim.cars)}, got "
+                         f"{event.get('owner')!r:.60}")
     address = event.get("address")
     if isinstance(address, bool) or not isinstance(address, int):
         raise WorldError(f"address: expected an integer, got {address!r}")

@@ -1,11 +1,14 @@
 """Top-down pictures of the driving world for people: a PNG of one cycle, a GIF of a run.
 
 Drawn: grass, sidewalks, roads with their five lane lines, street names and segment ids,
-buildings with address numbers, closed segments (red cross), each package's address (purple
-diamond, green once delivered), pedestrians (teal dots; red with a cross when hit), the agent's
-path so far (red line), traffic (blue cars), agent cars (orange, labelled; the chosen one red),
-the chosen agent's perception range (red ring), and a legend with cycle, time, the agent's
-controls, its counters and its packages.
+buildings with address numbers, closed segments (orange cross), each package's address (purple
+diamond, green once delivered), pedestrians (teal dots; gold with a black cross when hit), the
+agent's path so far (indigo line from a start ring, with arrows every 40 m showing the way it
+went), traffic (blue cars), agent cars (orange, labelled; the chosen one red), the chosen
+agent's perception range (black ring), a scale bar, and a legend with cycle, time, the agent's
+controls, its counters, its packages and a key of every colour. Labels (packages, cars) are
+moved aside rather than drawn over another label. Stills are PNG or JPEG, runs GIFs at 10
+frames a second (world/pictures.py).
 """
 
 from __future__ import annotations
@@ -27,16 +30,18 @@ from world.driving.city import (
 from world.driving.snapshot import CarState, WorldSnapshot
 from world.driving.vehicle import CAR_LENGTH, CAR_WIDTH
 from world.errors import WorldError
+from world.pictures import MAX_FRAMES, save_animation, save_still, scale_bar, thinning
 
 MARGIN = BUILDING_FAR + 8.0     # [m] drawn around the street grid
 LEGEND_W = 270                  # [px]
 COLORS = {"grass": (196, 222, 180), "walk": (214, 214, 208), "road": (78, 80, 86),
           "yellow": (246, 200, 40), "white": (240, 240, 240), "curb": (150, 150, 146),
           "building": (206, 170, 126), "outline": (120, 90, 60), "text": (20, 20, 20),
-          "ped": (0, 140, 120), "down": (220, 30, 30), "traffic": (60, 110, 200),
-          "agent": (245, 130, 20), "me": (230, 40, 40), "range": (230, 40, 40),
-          "package": (150, 40, 170), "delivered": (30, 160, 60), "trail": (230, 40, 40),
-          "legend": (250, 250, 246)}
+          "ped": (0, 140, 120), "down": (255, 196, 0), "closed": (255, 90, 0),
+          "traffic": (60, 110, 200), "agent": (245, 130, 20), "me": (220, 20, 30),
+          "range": (20, 20, 20), "package": (150, 40, 170), "delivered": (30, 160, 60),
+          "trail": (75, 50, 220), "legend": (250, 250, 246)}
+ARROW_EVERY = 40.0              # [m] of path between direction arrows
 
 
 Bounds = tuple[float, float, float, float]   # x0, y0, x1, y1 [m]
@@ -53,6 +58,47 @@ class _View:
 
     def __call__(self, x: float, y: float) -> tuple[float, float]:
         return (x - self.x0) * self.s, (self.y1 - y) * self.s
+
+
+class _Labels:
+    """Places text so that no two labels overlap: each label tries spots around its anchor
+    (below, above, right, left and the diagonals, on rings further and further out) and takes
+    the first free one inside the picture; one with no free spot at all (a crowd) is drawn at
+    its first choice."""
+
+    def __init__(self, draw: ImageDraw.ImageDraw, width: int, height: int) -> None:
+        self.draw, self.width, self.height = draw, width, height
+        self.taken: list[tuple[float, float, float, float]] = []
+
+    def reserve(self, box: tuple[float, float, float, float]) -> None:
+        self.taken.append(box)
+
+    def _free(self, box: tuple[float, float, float, float]) -> bool:
+        x0, y0, x1, y1 = box
+        if x0 < 0 or y0 < 0 or x1 > self.width or y1 > self.height:
+            return False
+        return all(x1 <= a or x0 >= c or y1 <= b or y0 >= d for a, b, c, d in self.taken)
+
+    def place(self, x: float, y: float, text: str, gap: float, **style) -> None:
+        """Draw ``text`` near pixel (x, y), ``gap`` [px] away, where it overlaps nothing."""
+        boxes = []
+        for dx, dy, anchor in _SPOTS:
+            at = (x + dx * gap, y + dy * gap)
+            box = self.draw.textbbox(at, text, anchor=anchor, font=style["font"],
+                                     stroke_width=style.get("stroke_width", 0))
+            boxes.append((at, anchor, box))
+            if self._free(box):
+                break
+        else:
+            at, anchor, box = boxes[0]
+        self.reserve(box)
+        self.draw.text(at, text, anchor=anchor, **style)
+
+
+_DIRECTIONS = ((0, 1, "mt"), (0, -1, "mb"), (1, 0, "lm"), (-1, 0, "rm"),
+               (1, 1, "lt"), (-1, 1, "rt"), (1, -1, "lb"), (-1, -1, "rb"))
+_SPOTS = tuple((dx * r, dy * r, anchor) for r in (1.0, 2.5, 4.5, 7.0, 10.0)
+               for dx, dy, anchor in _DIRECTIONS)
 
 
 def scene_bounds(snaps: list[WorldSnapshot]) -> Bounds:
@@ -88,7 +134,7 @@ def _line(draw: ImageDraw.ImageDraw, v: _View, seg: Segment, lat: float, fill: t
         a = b + (step if dash else 0.0)
 
 
-def _streets(draw: ImageDraw.ImageDraw, v: _View, city: City) -> None:
+def _streets(draw: ImageDraw.ImageDraw, v: _View, city: City, labels: _Labels) -> None:
     for seg in city.segments:
         _strip(draw, v, seg, -SIDEWALK_OUTER, seg.length + SIDEWALK_OUTER, -SIDEWALK_OUTER,
                SIDEWALK_OUTER, COLORS["walk"])
@@ -106,10 +152,13 @@ def _streets(draw: ImageDraw.ImageDraw, v: _View, city: City) -> None:
     label = _font(max(9, round(2.8 * v.s)))
     for seg in city.segments:
         x, y = v(*seg.point(seg.length / 2, 0.0))
-        draw.text((x, y), f"{seg.street} {seg.id}", fill=(255, 255, 255), font=label,
+        text = f"{seg.street} {seg.id}"
+        labels.reserve(draw.textbbox((x, y), text, font=label, anchor="mm", stroke_width=2))
+        draw.text((x, y), text, fill=(255, 255, 255), font=label,
                   anchor="mm", stroke_width=2, stroke_fill=COLORS["road"])
     for n in city.intersections:
         x, y = v(n.x, n.y)
+        labels.reserve(draw.textbbox((x, y), n.id, font=font, anchor="mm"))
         draw.text((x, y), n.id, fill=(160, 160, 160), font=font, anchor="mm")
 
 
@@ -130,53 +179,80 @@ def _box(x: float, y: float, heading: float, length: float, width: float) -> lis
                            (-length / 2, -width / 2), (-length / 2, width / 2))]
 
 
-def _car(draw: ImageDraw.ImageDraw, v: _View, car: CarState, fill: tuple, label: bool) -> None:
+def _car(draw: ImageDraw.ImageDraw, v: _View, car: CarState, fill: tuple,
+         labels: _Labels | None) -> None:
     draw.polygon([v(*p) for p in _box(car.x, car.y, car.heading, CAR_LENGTH, CAR_WIDTH)],
                  fill=fill, outline=(20, 20, 20))
     h = math.radians(car.heading)
     nose = (car.x + 0.5 * CAR_LENGTH * math.cos(h), car.y + 0.5 * CAR_LENGTH * math.sin(h))
     draw.line([v(car.x, car.y), v(*nose)], fill=(20, 20, 20), width=max(1, round(0.3 * v.s)))
-    if label:
+    if labels is not None:
         x, y = v(car.x, car.y)
-        draw.text((x, y - 3.5 * v.s), car.id, fill=fill, font=_font(max(10, round(4 * v.s))),
-                  anchor="ms", stroke_width=2, stroke_fill=(255, 255, 255))
+        labels.place(x, y, car.id, 3.5 * v.s, fill=fill, font=_font(max(10, round(4 * v.s))),
+                     stroke_width=2, stroke_fill=(255, 255, 255))
 
 
 def _dynamic(draw: ImageDraw.ImageDraw, v: _View, city: City, snap: WorldSnapshot,
-             agent: str | None) -> None:
+             agent: str | None, labels: _Labels) -> None:
     for seg_id in snap.blocked:
         seg = city.segment(seg_id)
         a, b = v(*seg.point(seg.length * 0.4, 5.0)), v(*seg.point(seg.length * 0.6, -5.0))
         c, d = v(*seg.point(seg.length * 0.4, -5.0)), v(*seg.point(seg.length * 0.6, 5.0))
-        draw.line([a, b], fill=COLORS["down"], width=max(2, round(v.s)))
-        draw.line([c, d], fill=COLORS["down"], width=max(2, round(v.s)))
+        draw.line([a, b], fill=COLORS["closed"], width=max(2, round(v.s)))
+        draw.line([c, d], fill=COLORS["closed"], width=max(2, round(v.s)))
     small = _font(max(9, round(3 * v.s)))
     for p in snap.packages:
         x, y = v(*city.building(p.street, p.address).curb)
         r = 1.8 * v.s
         color = COLORS["delivered"] if p.delivered else COLORS["package"]
         draw.polygon([(x, y - r), (x + r, y), (x, y + r), (x - r, y)], fill=color)
-        draw.text((x, y + r + 2), p.id, fill=color, font=small, anchor="mt",
-                  stroke_width=2, stroke_fill=(255, 255, 255))
+        labels.place(x, y, p.id, r + 2, fill=color, font=small, stroke_width=2,
+                     stroke_fill=(255, 255, 255))
     r = max(2.0, 0.9 * v.s)
     for p in snap.pedestrians:
         x, y = v(p.x, p.y)
-        color = COLORS["down"] if p.mode == "down" else COLORS["ped"]
-        draw.ellipse([x - r, y - r, x + r, y + r], fill=color)
-        if p.mode == "down":
-            draw.line([(x - 2 * r, y - 2 * r), (x + 2 * r, y + 2 * r)], fill=color, width=2)
-            draw.line([(x - 2 * r, y + 2 * r), (x + 2 * r, y - 2 * r)], fill=color, width=2)
+        if p.mode == "down":   # a hit pedestrian: a gold dot under a black cross
+            draw.ellipse([x - 1.6 * r, y - 1.6 * r, x + 1.6 * r, y + 1.6 * r],
+                         fill=COLORS["down"], outline=(0, 0, 0))
+            draw.line([(x - 2 * r, y - 2 * r), (x + 2 * r, y + 2 * r)], fill=(0, 0, 0), width=2)
+            draw.line([(x - 2 * r, y + 2 * r), (x + 2 * r, y - 2 * r)], fill=(0, 0, 0), width=2)
+        else:
+            draw.ellipse([x - r, y - r, x + r, y + r], fill=COLORS["ped"])
     for car in snap.cars:
         if car.kind == "traffic":
-            _car(draw, v, car, COLORS["traffic"], label=False)
+            _car(draw, v, car, COLORS["traffic"], None)
     for car in snap.cars:
         if car.kind == "agent":
-            _car(draw, v, car, COLORS["me"] if car.id == agent else COLORS["agent"], True)
+            _car(draw, v, car, COLORS["me"] if car.id == agent else COLORS["agent"], labels)
     if agent is not None:
         me = snap.car(agent)
         rr = snap.config.perception_range * v.s
         x, y = v(me.x, me.y)
         draw.ellipse([x - rr, y - rr, x + rr, y + rr], outline=COLORS["range"], width=2)
+
+
+def _trail(draw: ImageDraw.ImageDraw, v: _View, trail: list[tuple[float, float]]) -> None:
+    """The path: a line, a ring where it starts, and an arrowhead every ARROW_EVERY metres
+    pointing the way the car went."""
+    color, width = COLORS["trail"], max(2, round(v.s / 2))
+    draw.line([v(x, y) for x, y in trail], fill=color, width=width)
+    sx, sy = v(*trail[0])
+    r = max(5.0, 2.2 * v.s)
+    draw.ellipse([sx - r, sy - r, sx + r, sy + r], outline=color, width=width, fill=(255, 255, 255))
+    draw.text((sx, sy), "S", fill=color, font=_font(max(9, round(1.6 * r))), anchor="mm")
+    run, size = 0.0, max(5.0, 2.5 * v.s)
+    for (x0, y0), (x1, y1) in zip(trail, trail[1:], strict=False):
+        step = math.hypot(x1 - x0, y1 - y0)
+        run += step
+        if run < ARROW_EVERY or step < 1e-6:
+            continue
+        run = 0.0
+        (px, py), (qx, qy) = v(x0, y0), v(x1, y1)
+        a = math.atan2(qy - py, qx - px)
+        tip = (qx, qy)
+        left = (qx - size * math.cos(a - 0.5), qy - size * math.sin(a - 0.5))
+        right = (qx - size * math.cos(a + 0.5), qy - size * math.sin(a + 0.5))
+        draw.polygon([tip, left, right], fill=color)
 
 
 def _legend(img: Image.Image, snap: WorldSnapshot, agent: str | None) -> None:
@@ -203,15 +279,21 @@ def _legend(img: Image.Image, snap: WorldSnapshot, agent: str | None) -> None:
     for text, f in lines:
         draw.text((x0 + 12, y), text, fill=COLORS["text"], font=f)
         y += 22 if f is big else 18
-    for color, text in ((COLORS["me"], f"agent car {agent or ''}"), (COLORS["agent"],
-                        "other agent car"), (COLORS["traffic"], "traffic"),
-                        (COLORS["ped"], "pedestrian"), (COLORS["down"], "pedestrian hit / closed"),
-                        (COLORS["package"], "package address"),
-                        (COLORS["delivered"], "package delivered"),
-                        (COLORS["range"], "perception range (ring), path")):
-        draw.rectangle([x0 + 12, y + 3, x0 + 24, y + 13], fill=color)
+    for color, text in legend_key(agent):
+        draw.rectangle([x0 + 12, y + 3, x0 + 24, y + 13], fill=color, outline=(20, 20, 20))
         draw.text((x0 + 32, y), text, fill=COLORS["text"], font=font)
         y += 18
+
+
+def legend_key(agent: str | None) -> tuple[tuple[tuple, str], ...]:
+    """The legend's key: each colour of the picture and what it shows."""
+    return ((COLORS["me"], f"agent car {agent or ''}"),
+            (COLORS["trail"], "its path: S = start, arrows = way"),
+            (COLORS["range"], "its perception range (ring)"),
+            (COLORS["agent"], "other agent car"), (COLORS["traffic"], "traffic"),
+            (COLORS["ped"], "pedestrian"), (COLORS["down"], "pedestrian hit (black cross)"),
+            (COLORS["closed"], "closed road (cross)"),
+            (COLORS["package"], "package address"), (COLORS["delivered"], "package delivered"))
 
 
 def render_image(snap: WorldSnapshot, agent: str | None = None, px_per_m: float = 3.0,
@@ -227,13 +309,15 @@ def render_image(snap: WorldSnapshot, agent: str | None = None, px_per_m: float 
         raise WorldError(f"render: no agent car {agent!r} in cycle {snap.cycle}; cars: {agents}")
     city = build_city(snap.config)
     v = _View(bounds or scene_bounds([snap]), px_per_m)
-    img = Image.new("RGB", (v.size[0] + LEGEND_W, max(v.size[1], 520)), COLORS["grass"])
+    img = Image.new("RGB", (v.size[0] + LEGEND_W, max(v.size[1], 600)), COLORS["grass"])
     draw = ImageDraw.Draw(img)
-    _streets(draw, v, city)
+    labels = _Labels(draw, v.size[0], img.height)
+    _streets(draw, v, city, labels)
     _buildings(draw, v, city)
     if trail and len(trail) > 1:
-        draw.line([v(x, y) for x, y in trail], fill=COLORS["trail"], width=max(2, round(v.s / 2)))
-    _dynamic(draw, v, city, snap, agent)
+        _trail(draw, v, trail)
+    _dynamic(draw, v, city, snap, agent, labels)
+    scale_bar(draw, 14, img.height - 14, v.s, max_px=min(200, v.size[0] / 3))
     _legend(img, snap, agent)
     return img
 
@@ -250,13 +334,11 @@ def follow_bounds(snap: WorldSnapshot, agent: str | None, window: float) -> Boun
 def render_png(snap: WorldSnapshot, path: str | Path, agent: str | None = None,
                px_per_m: float = 3.0, trail: list[tuple[float, float]] | None = None,
                follow: float | None = None) -> Path:
-    """Write a top-down PNG of one cycle (with the agent's path so far, if given); follow:
-    draw only a square of that side [m] around the agent's car instead of the whole city.
-    Returns the path."""
-    path = Path(path)
+    """Write a top-down PNG or JPEG (by suffix) of one cycle (with the agent's path so far, if
+    given); follow: draw only a square of that side [m] around the agent's car instead of
+    the whole city. Returns the path."""
     bounds = follow_bounds(snap, agent, follow) if follow else None
-    render_image(snap, agent, px_per_m, trail, bounds).save(path, format="PNG")
-    return path
+    return save_still(render_image(snap, agent, px_per_m, trail, bounds), path)
 
 
 def agent_trail(snaps: list[WorldSnapshot], agent: str | None) -> list[tuple[float, float]]:
@@ -270,22 +352,16 @@ def agent_trail(snaps: list[WorldSnapshot], agent: str | None) -> list[tuple[flo
 
 
 def render_gif(snaps: list[WorldSnapshot], path: str | Path, agent: str | None = None,
-               every: int = 1, px_per_m: float = 1.5, max_frames: int = 400,
+               every: int = 1, px_per_m: float = 1.5, max_frames: int = MAX_FRAMES,
                follow: float | None = None) -> Path:
-    """Write an animated GIF of a run (every `every`-th snapshot, thinned to at most max_frames
-    frames; real-time playback, from the snapshots' times); follow: a camera square of that
-    side [m] that moves with the agent's car. Returns the path."""
+    """Write an animated GIF of a run (every `every`-th snapshot, thinned to at most
+    max_frames frames) at pictures.FRAME_MS per frame, a smooth 10 frames/s; follow: a
+    camera square of that side [m] that moves with the agent's car. Returns the path."""
     if not snaps:
         raise WorldError(f"render_gif {path}: no snapshots")
-    every = max(every, math.ceil(len(snaps) / max_frames))
+    every = thinning(len(snaps), every, max_frames)
     chosen = list(snaps[::every])
     trail, whole = agent_trail(snaps, agent), scene_bounds(chosen)
-    frames = [render_image(s, agent, px_per_m, trail[:k * every + 1],
-                           follow_bounds(s, agent, follow) if follow else whole)
-              .convert("P", palette=Image.Palette.ADAPTIVE) for k, s in enumerate(chosen)]
-    gap = chosen[1].time - chosen[0].time if len(chosen) > 1 else snaps[0].config.dt
-    duration = max(20, round(1000 * gap))     # [ms] per frame: plays in real time
-    path = Path(path)
-    frames[0].save(path, format="GIF", save_all=True, append_images=frames[1:],
-                   duration=duration, loop=0)
-    return path
+    return save_animation([render_image(s, agent, px_per_m, trail[:k * every + 1],
+                                        follow_bounds(s, agent, follow) if follow else whole)
+                           for k, s in enumerate(chosen)], path)

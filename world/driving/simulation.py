@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
+import pickle
 import random
 from dataclasses import dataclass, field
 from typing import Any
@@ -295,6 +296,24 @@ class Simulation:
     def snapshot_dict(self) -> dict[str, Any]:
         """``snapshot()`` as plain data (the World protocol, world/domain.py)."""
         return self.snapshot().to_dict()
+
+    # -- restart (world/domain.py, Restartable) -------------------------------------------------
+    def checkpoint(self) -> bytes:
+        """The whole simulation as a pickle: the pymunk space (bodies, shapes and its cached
+        contacts, so a contact under way is not counted twice), the random generator, the
+        traffic, walkers, packages and counters."""
+        return pickle.dumps(self, protocol=pickle.HIGHEST_PROTOCOL)
+
+
+def restore(blob: bytes) -> Simulation:
+    """The Simulation saved by `Simulation.checkpoint` (raises WorldError if it is not one)."""
+    try:
+        sim = pickle.loads(blob)
+    except (pickle.UnpicklingError, EOFError, AttributeError, ImportError, TypeError) as exc:
+        raise WorldError(f"restore: not a driving checkpoint: {exc}") from exc
+    if not isinstance(sim, Simulation):
+        raise WorldError(f"restore: expected a driving Simulation, got {type(sim).__name__}")
+    return sim
 
 
 def _deg(rad: float) -> float:

@@ -21,6 +21,7 @@ from world.office.floor import Floor, build_floor
 from world.office.physics import PERSON_RADIUS
 from world.office.routes import ROBOT_RADIUS
 from world.office.snapshot import OfficeSnapshot
+from world.pictures import MAX_FRAMES, save_animation, save_still, scale_bar, thinning
 
 LEGEND_W = 300     # [px]
 MARGIN = 1.0       # [m]
@@ -202,6 +203,7 @@ def render_image(snap: OfficeSnapshot, agent: str | None = None, px_per_m: float
     _things(draw, v, floor, snap)
     _robots(draw, v, snap, agent, trail or [])
     _legend(img, snap, agent)
+    scale_bar(draw, 12, img.height - 14, v.s, max_px=v.size[0] / 4)
     return img
 
 
@@ -217,28 +219,19 @@ def robot_trail(snaps: list[OfficeSnapshot], agent: str | None) -> list[tuple[fl
 
 def render_png(snaps: list[OfficeSnapshot], path: str | Path, agent: str | None = None,
                px_per_m: float = 14.0) -> Path:
-    """Write a PNG of the last snapshot with the robot's path over all of them."""
+    """Write a PNG or JPEG (by suffix) of the last snapshot with the robot's path over all."""
     if not snaps:
         raise WorldError(f"render_png {path}: no snapshots")
-    path = Path(path)
-    render_image(snaps[-1], agent, px_per_m, robot_trail(snaps, agent)).save(path, format="PNG")
-    return path
+    return save_still(render_image(snaps[-1], agent, px_per_m, robot_trail(snaps, agent)), path)
 
 
 def render_gif(snaps: list[OfficeSnapshot], path: str | Path, agent: str | None = None,
-               px_per_m: float = 10.0, max_frames: int = 300) -> Path:
-    """Write an animated GIF of a run (thinned to at most max_frames frames, played in real
-    time from the snapshots' times)."""
+               px_per_m: float = 10.0, max_frames: int = MAX_FRAMES) -> Path:
+    """Write an animated GIF of a run: thinned to at most max_frames frames, at
+    pictures.FRAME_MS per frame (a smooth 10 frames/s, faster than real time)."""
     if not snaps:
         raise WorldError(f"render_gif {path}: no snapshots")
-    every = max(1, math.ceil(len(snaps) / max_frames))
-    chosen = list(range(0, len(snaps), every))
+    chosen = range(0, len(snaps), thinning(len(snaps), max_frames=max_frames))
     trail = robot_trail(snaps, agent)
-    frames = [render_image(snaps[k], agent, px_per_m, trail[:k + 1])
-              .convert("P", palette=Image.Palette.ADAPTIVE) for k in chosen]
-    gap = snaps[chosen[1]].time - snaps[chosen[0]].time if len(chosen) > 1 else \
-        snaps[0].config.dt
-    path = Path(path)
-    frames[0].save(path, format="GIF", save_all=True, append_images=frames[1:],
-                   duration=max(20, round(1000 * gap)), loop=0)
-    return path
+    return save_animation([render_image(snaps[k], agent, px_per_m, trail[:k + 1])
+                           for k in chosen], path)

@@ -31,17 +31,17 @@ def test_figure_6_the_second_request_is_merged_with_the_remaining_steps(figure6)
     assert figure6.executed() == FIGURE_6
     assert {r for _, r in figure6.results()} == {"verified"}
     assert [g for g in figure6.run.records[-1]["ME"]["goals"]] == [
-        ("s1", "satisfied"), ("s2", "satisfied")]
+        ("g1", "satisfied"), ("g2", "satisfied")]
     # jhm's request arrived at cycle 10, after <goto-pickup-loc mitchell r-5303> was sent
     # (cycle 0) and before it ended; it was planned at the next decision point
     head = figure6.planner.head
     assert head[0].sent == 0 and head[0].ended > 10
-    assert "cycle 10: request s2 (delivered fax-jhm r-5313) (priority 5) added to the " \
+    assert "cycle 10: request g2 (delivered fax-jhm r-5313) (priority 5) added to the " \
            "pending goals" in figure6.log()
     # a single trip to r-5313, serving both requests
     assert [c for c in figure6.commands() if c[0] == "*goto"] == [
         ["*goto", "r-5303"], ["*goto", "r-5311"], ["*goto", "r-5313"]]
-    assert head[4].tasks == ("s1", "s2")
+    assert head[4].tasks == ("g1", "g2")
 
 
 def test_figure_6_travel_against_first_come_first_served(figure6):
@@ -79,9 +79,9 @@ def test_table_2_a_compatible_request_is_interleaved_an_incompatible_one_waits(t
     assert rich[1] < min(mmv) and max(mmv) < rich[2]      # on the way, between rich's steps
     assert min(joseph) > max(rich)                          # after the top one is done
     log = table2.log()
-    waits = next(e for e in log if e.startswith("cycle 0: s3 waiting"))
-    assert "adds" in waits and "s1" in waits
-    assert any(e.startswith("cycle 0: s2 selected: compatible with s1: adds") for e in log)
+    waits = next(e for e in log if e.startswith("cycle 0: g3 waiting"))
+    assert "adds" in waits and "g1" in waits
+    assert any(e.startswith("cycle 0: g2 selected: compatible with g1: adds") for e in log)
     assert set(table2.statuses().values()) == {"achieved"}
     assert table2.planner.travel.executed_m < table2.planner.travel.fcfs_m
 

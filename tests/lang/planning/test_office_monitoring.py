@@ -24,7 +24,7 @@ def test_a_false_navigation_success_is_detected_by_a_second_observation(confused
                           "observation): replanning from there")
     assert confused.counters()["false_successes"] == 1
     log = confused.log()
-    assert any("s1 replanned (<goto-pickup-loc mitchell r-5303> did not achieve "
+    assert any("g1 replanned (<goto-pickup-loc mitchell r-5303> did not achieve "
                "(robot-in-room r-5303))" in e for e in log)
     # the same operator again, from where the robot really is; then Figure 6 as before
     assert confused.executed()[1:] == FIGURE_6
@@ -46,7 +46,7 @@ def test_a_door_blocked_on_the_way_leads_to_another_action(blocked):
     log = blocked.log()
     k = next(i for i, e in enumerate(log) if "<goto-deliver-loc mitchell r-5313> failed" in e)
     blocked_events = [e for e in log[k:] if " blocked: r-5313 is unreachable" in e]
-    assert {e.split()[2] for e in blocked_events} == {"s1", "s2"}
+    assert {e.split()[2] for e in blocked_events} == {"g1", "g2"}
     # another action: sven's request, then back to the mail room once the door is seen open
     steps = blocked.executed()
     assert steps[5:9] == ["<goto-pickup-loc sven r-5307>", "<acquire-item r-5307 sven "
@@ -65,8 +65,8 @@ def coffee():
 
 def test_coffee_that_went_cold_while_suspended_is_made_hot_again(coffee):
     log = coffee.log()
-    assert any(e.startswith("cycle 44: s1 waiting: waits: adds") for e in log)
-    replanned = next(e for e in log if "s1 replanned" in e)
+    assert any(e.startswith("cycle 44: g1 waiting: waits: adds") for e in log)
+    replanned = next(e for e in log if "g1 replanned" in e)
     assert "<serve-coffee r-5315 reid coffee-1>: (hot coffee-1) does not hold" in replanned
     assert replanned.endswith("added <goto-kitchen r-5302> <refill-coffee r-5302 coffee-1>")
     steps = coffee.executed()
@@ -82,8 +82,8 @@ def test_a_step_the_world_made_unnecessary_is_skipped():
                                                 "to": "r-5313"}),))
     # at cycle 100 the robot is on its way to jhm (sent at cycle 88): someone else took the
     # fax to the mail room; the goto is abandoned, the rest of jhm's plan skipped
-    skipped = next(e for e in gift.log() if "s2 (delivered fax-jhm r-5313) achieved" in e)
-    assert skipped == ("cycle 100: s2 (delivered fax-jhm r-5313) achieved; steps made "
+    skipped = next(e for e in gift.log() if "g2 (delivered fax-jhm r-5313) achieved" in e)
+    assert skipped == ("cycle 100: g2 (delivered fax-jhm r-5313) achieved; steps made "
                        "unnecessary by the world, skipped: <acquire-item r-5311 jhm fax-jhm> "
                        "<goto-deliver-loc jhm r-5313> <deliver-item r-5313 jhm fax-jhm>")
     assert [r for r in gift.results() if r[1] != "verified"] == [

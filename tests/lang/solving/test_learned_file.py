@@ -94,7 +94,9 @@ def test_simulate_refuses_a_learned_file_for_another_program(learned_file):
 def test_simulate_writes_the_learned_file(tmp_path):
     out = tmp_path / "out.tlp"
     result = invoke("simulate", ROOT / "scenarios" / "driving_demo.toml", "--cycles", "2",
-                    "--learned-out", out)
+                    "--learned-out", out, "--json")
     assert result.exit_code == 0, result.output
-    assert json.loads(result.output)["learned"] == {"ME": []}
-    assert out.read_text().startswith("; teleo learned skills for programs/driving.tlp")
+    assert json.loads(result.stdout)["learned"] == {"ME": {"file": str(out), "skills": []}}
+    # the program as the scenario names it, found from any directory (an absolute path)
+    assert out.read_text().splitlines()[0].startswith("; teleo learned skills for ")
+    assert out.read_text().splitlines()[0].endswith("programs/driving.tlp")

@@ -36,7 +36,7 @@ def test_figure3_ends_with_a_clear_and_b_in_the_hand(figure3):
     engine = Engine(load_program(scenario.agents[0].program))
     beliefs = {str(b) for b in engine.infer(perceive(run.final, "ME"))}
     assert {"(clear A)", "(holding B)", "(ontable C T)", "(ontable A T)"} <= beliefs
-    assert dict(run.records[-1]["ME"]["goals"])["s1"] in ("satisfied", "achieved")
+    assert dict(run.records[-1]["ME"]["goals"])["g1"] in ("satisfied", "achieved")
 
 
 def test_the_random_scenario_puts_every_block_on_the_table():
@@ -45,7 +45,7 @@ def test_the_random_scenario_puts_every_block_on_the_table():
     blocks = [p for p in perceive(run.final, "ME") if p[0] == "block"]
     assert len(blocks) == 6 and all(p[5] == 2 for p in blocks)
     assert run.final["counters"]["ME"]["blocks_moved"] >= 1
-    assert dict(run.records[-1]["ME"]["goals"])["s1"] in ("satisfied", "achieved")
+    assert dict(run.records[-1]["ME"]["goals"])["g1"] in ("satisfied", "achieved")
 
 
 def test_the_mishaps_drill_reports_the_slip_and_the_falls_and_a_is_cleared():

@@ -34,7 +34,7 @@ def test_the_errand_goes_to_the_mail_room_acquires_and_delivers():
             counters["bumps"]) == (1, 1, 0, 0)
     mail = next(i for i in run.final["items"] if i["id"] == "mail-reid")
     assert mail["holder"] == "reid"
-    assert run.records[-1]["ME"]["goals"] == [("s1", "satisfied")]
+    assert run.records[-1]["ME"]["goals"] == [("g1", "satisfied")]
 
 
 def test_the_errand_runs_the_same_twice():

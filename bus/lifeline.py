@@ -1,0 +1,67 @@
+"""A child process of `teleo launch` never outlives its launcher.
+
+The launcher puts its pid in TELEO_PARENT_PID for every child. `hold_on_to_parent()`, called
+first thing in each child, asks Linux to send SIGTERM when the parent dies
+(prctl(PR_SET_PDEATHSIG), through ctypes) and starts a watchdog thread that notices the same
+by polling the parent pid (other systems, and the race where the parent died before the
+prctl). The child's SIGTERM handler then stops it in an orderly way; if it has not exited
+`GRACE_S` seconds later, the watchdog ends it with `os._exit`. So a launcher killed by any
+signal (SIGKILL, SIGHUP of a closed terminal) takes its whole run with it within a second or
+two (docs/faults.md). A stopped (SIGSTOPped) child runs nothing until continued: it exits when
+it is.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import logging
+import os
+import signal
+import sys
+import threading
+import time
+
+log = logging.getLogger(__name__)
+ENV_PARENT = "TELEO_PARENT_PID"
+POLL_S = 0.2    # [s] how often the watchdog looks at the parent pid
+GRACE_S = 1.5   # [s] from the parent's death to a forced exit
+EXIT_ORPHANED = 75  # exit status of a child forced out after its launcher died
+_PR_SET_PDEATHSIG = 1
+
+
+def hold_on_to_parent(environ: dict[str, str] | None = None) -> int | None:
+    """Tie this process's life to the launcher named in TELEO_PARENT_PID (no-op without it);
+    returns that pid. Call it from the main thread after the signal handlers are installed."""
+    env = os.environ if environ is None else environ
+    text = env.get(ENV_PARENT, "")
+    if not text.isdigit():
+        return None
+    parent = int(text)
+    _set_pdeathsig(signal.SIGTERM)
+    threading.Thread(target=_watch, args=(parent,), name="lifeline", daemon=True).start()
+    if os.getppid() != parent:  # died before the prctl took effect
+        os.kill(os.getpid(), signal.SIGTERM)
+    return parent
+
+
+def _set_pdeathsig(sig: int) -> bool:
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
+        return libc.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0
+    except (OSError, AttributeError) as exc:
+        log.warning("prctl(PR_SET_PDEATHSIG) unavailable (%s); polling the parent only", exc)
+        return False
+
+
+def _watch(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(POLL_S)
+    log.warning("launcher (pid %d) is gone: stopping", parent)
+    os.kill(os.getpid(), signal.SIGTERM)  # a second SIGTERM after PDEATHSIG is harmless
+    time.sleep(GRACE_S)
+    log.error("still running %.1f s after the launcher died: exiting now", GRACE_S)
+    logging.shutdown()
+    os._exit(EXIT_ORPHANED)

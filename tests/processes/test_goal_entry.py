@@ -1,0 +1,108 @@
+"""The goal-entry process's verdicts (issue 12, items 6 and 7): the priority rule, cancelling
+an achieved goal, and the hint for a goal about an object no percept mentions."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import pytest
+
+from agents.processes.goal_store import GoalState, rank_problem
+from agents.processes.goals import GoalEntry, engine_validator, standing_goals
+from agents.processes.hints import absent, with_hints
+from bus.messages import Envelope, GoalRequest
+from world.run_scenario import load_scenario
+
+ROOT = Path(__file__).resolve().parents[2]
+DEMO = ROOT / "scenarios" / "driving_demo.toml"   # programs/driving.tlp: 5 standing goals
+ENV = Envelope(1, "r", -1, "cli", 0)
+
+
+@pytest.fixture
+def entry(tmp_path) -> GoalEntry:
+    scenario = load_scenario(DEMO)
+    return GoalEntry(scenario, tmp_path / "goals.json", engine_validator(scenario),
+                     logging.getLogger("test"), standing=standing_goals(scenario))
+
+
+def ask(entry: GoalEntry, op: str, goal: str = "", priority: int = 0, goal_id: str = "",
+        force: bool = False) -> tuple[bool, str]:
+    ok, reason, _goals, _cycle = entry.answer(GoalRequest(ENV, op, "ME", goal, priority,
+                                                          goal_id, force))
+    return ok, reason
+
+
+def test_the_rule_names_the_standing_goals_a_priority_would_outrank():
+    laws = ("(not-hitting-pedestrians ME)", "(keeping-distance ME)", "(at-desired-speed ME)",
+            "(in-right-lane ME)", "(at-cruising-speed ME)")
+    assert rank_problem(laws, 5) == "" and rank_problem(laws, 100) == ""
+    assert rank_problem(laws, 4).startswith(
+        "priority 4 ranks the goal above the program's standing goal p5 (at-cruising-speed ME)")
+    assert "p2 (keeping-distance ME), p3 (at-desired-speed ME), p4 (in-right-lane ME) and 1 " \
+           "more" in rank_problem(laws, 1)
+    assert rank_problem((), 1) == ""          # a program without goals: nothing to outrank
+
+
+def test_a_post_above_the_driving_laws_is_refused_unless_forced(entry):
+    ok, reason = ask(entry, "post", "(package-delivered PACKET2)", 2)
+    assert not ok
+    assert "above the program's standing goals p3 (at-desired-speed ME)" in reason
+    assert "give priority 5 or more" in reason and "--force" in reason
+    assert entry.store.goals == ()
+    ok, reason = ask(entry, "post", "(package-delivered PACKET2)", 2, force=True)
+    assert ok and reason.startswith("posted g1 for ME: (package-delivered PACKET2)")
+    assert "forced: priority 2 ranks the goal above" in reason
+    assert entry.store.get("g1").priority == 2
+
+
+def test_raising_a_goal_above_the_laws_is_refused_unless_forced(entry):
+    assert ask(entry, "post", "(package-delivered PACKET2)", 100)[0]
+    ok, reason = ask(entry, "priority", priority=2, goal_id="g1")
+    assert not ok and "p3 (at-desired-speed ME)" in reason
+    assert entry.store.get("g1").priority == 100
+    assert ask(entry, "priority", priority=5, goal_id="g1") == (
+        True, "g1 now has priority 5 (from cycle 0)")
+    assert ask(entry, "priority", priority=2, goal_id="g1", force=True)[0]
+
+
+def test_cancelling_an_achieved_goal_is_refused_like_a_cancelled_one(entry):
+    assert ask(entry, "post", "(package-delivered PACKET1)", 5)[0]
+    entry.store = entry.store.update_from_intention(
+        "ME", {"goals": [{"id": "g1", "status": "satisfied"}]}, 213)
+    assert entry.store.get("g1").status is GoalState.ACHIEVED
+    ok, reason = ask(entry, "cancel", goal_id="g1")
+    assert not ok and reason == ("g1: already achieved (cycle 213); an achieved goal stays "
+                                 "achieved (force the cancel to stop the agent keeping it)")
+    assert entry.store.get("g1").status is GoalState.ACHIEVED
+    assert ask(entry, "cancel", goal_id="g1", force=True)[0]      # withdrawn all the same
+    assert entry.store.get("g1").status is GoalState.CANCELLED
+    assert entry.store.get("g1").note == "achieved at cycle 213, then withdrawn"
+    assert ask(entry, "post", "(package-delivered PACKET2)", 5)[0]
+    assert ask(entry, "cancel", goal_id="g2")[0]
+    assert ask(entry, "cancel", goal_id="g2") == (False, "g2: already cancelled")
+
+
+def test_a_goal_naming_an_object_no_percept_mentions_gets_a_hint():
+    percepts = [["self", "ME", "speed", 3.0], ["package", "PACKET1", "address", 6]]
+    assert absent("(package-delivered PACKET9)", percepts) == ["PACKET9"]
+    assert absent("(package-delivered PACKET1)", percepts) == []
+    assert absent("(on ?x 3)", percepts) == []            # variables and numbers are no names
+    decision = {"goals": [
+        {"id": "g1", "goal": "(package-delivered PACKET9)", "status": "pending",
+         "note": "no path with free resources"},
+        {"id": "g2", "goal": "(package-delivered PACKET8)", "status": "satisfied", "note": ""},
+        {"id": "g3", "goal": "(package-delivered PACKET7)", "status": "failed", "note": ""}]}
+    notes = [g["note"] for g in with_hints(decision, percepts)["goals"]]
+    assert notes == ["no path with free resources; no percept mentions PACKET9: is there such "
+                     "an object?", "", "no percept mentions PACKET7: is there such an object?"]
+
+
+def test_the_store_mirrors_a_pending_goals_note_so_goal_list_shows_the_hint(entry):
+    assert ask(entry, "post", "(package-delivered PACKET9)", 5)[0]
+    hint = "no percept mentions PACKET9: is there such an object?"
+    entry.store = entry.store.update_from_intention(
+        "ME", {"goals": [{"id": "g1", "status": "pending", "note": hint}]}, 3)
+    assert entry.store.get("g1").note == hint
+    listed = entry.answer(GoalRequest(ENV, "list", "ME"))[2]
+    assert listed[0]["note"] == hint

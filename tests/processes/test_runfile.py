@@ -1,0 +1,95 @@
+"""The run registry (tools/runfile.py): one file per run, readable by its owner only, found
+the same way by every tool from any directory; a second run never takes over the first's
+file; a run whose launcher has exited is told apart."""
+
+from __future__ import annotations
+
+import stat
+import subprocess
+import sys
+
+import pytest
+
+from tools import runfile
+
+
+@pytest.fixture
+def registry(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    return tmp_path / "active"
+
+
+@pytest.fixture
+def launcher():
+    """A live process standing in for a launcher (only its pid matters here)."""
+    proc = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    yield proc.pid
+    proc.kill()
+    proc.wait()
+
+
+def exited_pid() -> int:
+    proc = subprocess.Popen([sys.executable, "-c", "pass"])
+    proc.wait()
+    return proc.pid
+
+
+def info(run: str, pid: int, started: float = 1.0) -> runfile.RunInfo:
+    return runfile.RunInfo(run, "tcp/127.0.0.1:1", pid, ("ME",), f"/runs/{run}", "s.toml",
+                           started=started)
+
+
+def test_each_run_has_its_own_file_readable_by_its_owner_only(registry, launcher):
+    runfile.write(info("a", launcher))
+    runfile.write(info("b", launcher, started=2.0))
+    assert sorted(p.name for p in registry.iterdir()) == ["a.json", "b.json"]
+    assert stat.S_IMODE(registry.stat().st_mode) == 0o700
+    assert stat.S_IMODE((registry / "a.json").stat().st_mode) == 0o600
+    assert [i.run for i, up in runfile.all_runs()] == ["a", "b"]
+    runfile.remove(info("a", launcher))
+    assert [i.run for i, _ in runfile.all_runs()] == ["b"]
+
+
+def test_find_takes_the_only_run_or_the_one_named(registry, launcher):
+    runfile.write(info("a", launcher))
+    assert runfile.find().run == "a"
+    runfile.write(info("b", launcher, started=2.0))
+    with pytest.raises(runfile.NoRunningLaunch, match=r"2 runs are running \(a, b\)"):
+        runfile.find()
+    assert runfile.find("b").run == "b"
+    with pytest.raises(runfile.NoRunningLaunch, match="no run 'c' in .*active"):
+        runfile.find("c")
+
+
+def test_a_run_whose_launcher_exited_is_stale(registry):
+    runfile.write(info("gone", exited_pid()))
+    with pytest.raises(runfile.NoRunningLaunch, match="1 stale: see `teleo ps`"):
+        runfile.find()
+    with pytest.raises(runfile.NoRunningLaunch, match="has exited"):
+        runfile.find("gone")
+    assert runfile.all_runs()[0][1] is False
+
+
+def test_without_teleo_run_dir_the_registry_is_the_users_own(tmp_path, launcher,
+                                                               monkeypatch):
+    monkeypatch.delenv("TELEO_RUN_DIR", raising=False)
+    monkeypatch.delenv("XDG_RUNTIME_DIR", raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    here, there = tmp_path / "here", tmp_path / "there"
+    here.mkdir()
+    there.mkdir()
+    monkeypatch.chdir(here)
+    runfile.write(info("a", launcher))
+    monkeypatch.chdir(there)
+    assert runfile.find().run == "a"
+    assert runfile.registry() == tmp_path / "home" / ".local" / "state" / "teleo" / "active"
+    assert runfile.base_dir() == there / "out"  # run folders go where the launch runs
+
+
+def test_a_secured_run_gives_tools_the_operators_credentials(registry, launcher):
+    runfile.write(info("a", launcher))
+    assert runfile.bus_config(runfile.find()).credentials == ""
+    secured = runfile.RunInfo("s", "tls/127.0.0.1:1", launcher, ("ME",), "/r", "s.toml",
+                              credentials="/r/secrets/operator.cred.json")
+    cfg = runfile.bus_config(secured)
+    assert cfg.mode.value == "client" and cfg.credentials.endswith("operator.cred.json")

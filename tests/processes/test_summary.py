@@ -1,0 +1,121 @@
+"""The run summary tells the truth from the run folder's files, whatever happened to the
+world (drill F5: a killed world was reported as "0 cycles"), and its status says whether
+the run failed (docs/faults.md, "What counts as a failed run")."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import click
+from click.testing import CliRunner
+
+from bus.cycle import CycleReport
+from tools import summary
+from world.domain import get_domain
+from world.recorder import Recorder
+
+BASE = {"run": "r1", "scenario": "s.toml", "mode": "lockstep", "seed": 7,
+        "cycles_requested": 50}
+
+
+def write_run(folder: Path, cycles: int, reports: dict[int, CycleReport] | None = None,
+              finish: bool = True) -> None:
+    """A run folder as the world process leaves it, with the real recorder and world."""
+    world = get_domain("driving").create({}, 1, ["ME"])
+    rec = Recorder(folder, render_every=10)
+    rec.event("ready", cycle=0)
+    for t in range(cycles):
+        report = (reports or {}).get(t, CycleReport(t, {"ME": ()}))
+        applied = {"ME": world.safe_actions("ME") if "ME" in report.noop else [["*gas", 20]]}
+        snap = world.snapshot_dict()
+        world.apply_actions("ME", applied["ME"])
+        world.step()
+        rec.cycle(t, snap, applied, [], report, 0.0)
+    if finish:
+        rec.finish(cycles >= 50, 1.0, "done")
+    else:
+        for f in (rec.trace, rec.snaps, rec.health):
+            f.close()
+
+
+def goals(folder: Path, *entries) -> None:
+    (folder / summary.GOALS_FILE).write_text(json.dumps({"version": 1, "goals": list(entries)}))
+
+
+def goal(gid: str, status: str) -> dict:
+    return {"id": gid, "agent": "ME", "goal": f"(package-delivered {gid})", "priority": 5,
+            "status": status}
+
+
+def test_a_clean_run_completes(tmp_path):
+    write_run(tmp_path, 50)
+    goals(tmp_path, goal("g1", "achieved"))
+    s = summary.build(tmp_path, BASE, {"goals": 0})
+    assert (s["status"], s["cycles"], s["failures"], summary.exit_code(s)) == (
+        "completed", 50, [], 0)
+
+
+def test_a_killed_world_still_counts_every_cycle_that_ran(tmp_path):
+    write_run(tmp_path, 31, finish=False)  # no world-final.json, as after a SIGKILL
+    s = summary.build(tmp_path, BASE, {"world": 3}, left_down=("world",),
+                      ended="the world exited with code -9 and was not restarted")
+    assert s["cycles"] == 31 and s["status"] == "failed" and summary.exit_code(s) == 1
+    assert "world gave up (left down after 3 restart(s))" in s["failures"]
+    assert s["counters"]["ME"]["deliveries"] == 0  # the last cycle's counters, from the trace
+
+
+def test_uncontrolled_cycles_stalls_and_dead_stages_are_counted_and_shown(tmp_path):
+    reports = {
+        10: CycleReport(10, {"ME": ()}, late=("ME.inference",), noop=("ME",)),
+        11: CycleReport(11, {"ME": ()}, dead=("ME.inference",), noop=("ME",)),
+        20: CycleReport(20, {"ME": ()}, stalled=("ME.inference",), elapsed_ms=2100.0),
+    }
+    write_run(tmp_path, 50, reports)
+    s = summary.build(tmp_path, BASE, {"ME.inference": 1})
+    assert s["uncontrolled"] == {"ME": 2}
+    assert s["late_stages"] == {"ME.inference": 1} and s["dead_stages"] == {"ME.inference": 1}
+    assert s["stalls"] == [{"cycle": 20, "seconds": 2.1, "stages": ["ME.inference"]}]
+    assert s["status"] == "failed" and s["failures"] == [
+        "ME uncontrolled for 2 cycle(s) (the world applied its safe action)"]
+    printed = CliRunner().invoke(_echo, [json.dumps(s)]).output
+    assert "run r1 FAILED: 50 cycles" in printed
+    assert "dead stages: 1 cycle(s) (ME.inference 1)" in printed
+    assert "stalls: 1 (ME.inference 2.1 s at cycle 20)" in printed
+    # the safe action is what the trace says was applied in those cycles
+    lines = (tmp_path / "trace.jsonl").read_text().splitlines()
+    assert json.loads(lines[10])["actions"] == {"ME": [["*brake", 100]]}
+
+
+def test_a_failed_goal_fails_the_run_and_an_impasse_does_not(tmp_path):
+    write_run(tmp_path, 50)
+    goals(tmp_path, goal("g1", "failed") | {"note": "no path"}, goal("g2", "impasse"))
+    s = summary.build(tmp_path, BASE, {})
+    assert s["failures"] == ["goal g1 (package-delivered g1) could not be kept: failed "
+                             "(no path)"]
+
+
+def test_a_stop_asked_for_before_the_end_is_an_interruption(tmp_path):
+    write_run(tmp_path, 20)
+    stopped = summary.build(tmp_path, BASE, {}, requested_stop=True)
+    assert stopped["status"] == "interrupted" and summary.exit_code(stopped) == 130
+    died = summary.build(tmp_path, BASE, {})
+    assert died["status"] == "failed" and "the world stopped at cycle 20 of 50" in \
+        died["failures"][0]
+    forever = summary.build(tmp_path, BASE | {"cycles_requested": 0}, {}, requested_stop=True)
+    assert forever["status"] == "completed"
+
+
+def test_a_goal_store_of_the_wrong_shape_does_not_break_the_summary(tmp_path):
+    write_run(tmp_path, 50)
+    for bad in ('{"version": 1, "goals": [1, "x", null]}', "[]", "null", '{"goals": 3}',
+                "not json"):
+        (tmp_path / summary.GOALS_FILE).write_text(bad)
+        s = summary.build(tmp_path, BASE, {})
+        assert s["goals"] == [] and s["status"] == "completed", bad
+
+
+@click.command()
+@click.argument("doc")
+def _echo(doc: str) -> None:
+    summary.echo(json.loads(doc))

@@ -1,0 +1,131 @@
+"""`teleo check SCENARIO` checks a scenario fully before anything runs (issue 12, item 5), and
+scenario files that are not text, nested too deep or hold values no message can carry are
+refused with file:line:col or the key, never a traceback (item 1)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from tools.check_commands import is_scenario
+from tools.cli import cli
+from tools.scenario_check import load_checked
+from world.run_scenario import ScenarioError, load_scenario
+
+ROOT = Path(__file__).resolve().parents[2]
+DEMO = (ROOT / "scenarios" / "driving_demo.toml").read_text()
+DRIVING = ROOT / "programs" / "driving.tlp"
+
+
+def scenario(tmp_path: Path, text: str, name: str = "s.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(text.replace('"programs/driving.tlp"', f'"{DRIVING}"'))
+    return path
+
+
+def invoke(*args):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+@pytest.mark.parametrize("change, message", [
+    (("address = 6,", "address = 99,"), r"\[world\] package PACKET1: no address 99 on B"),
+    (('goal = "(package-delivered PACKET1)"', 'goal = "(flying ME)"'),
+     r"\[\[goals\]\] #1: goal \(flying ME\): undefined concept 'flying'"),
+    (("priority = 5\nat_cycle = 0", "priority = 2\nat_cycle = 0"),
+     r"\[\[goals\]\] #1: priority 2 ranks the goal above the program's standing goals p3"),
+    (("priority = 5\nat_cycle = 0", "priority = 0\nat_cycle = 0"),
+     r"\[\[goals\]\] #1: priority: expected an integer in 1..1000000, got 0"),
+    (('id = "PACKET2"', 'id = "PACKET 2"'), r"\[world\] package 'PACKET 2': expected an id"),
+    (('owner = "ME" },  #', 'owner = "YOU" },  #'),
+     r"package PACKET2: owner 'YOU' is not an agent of this run"),
+])
+def test_every_part_of_a_scenario_is_checked_before_it_runs(tmp_path, change, message):
+    path = scenario(tmp_path, DEMO.replace(*change))
+    with pytest.raises(ScenarioError, match=message):
+        load_checked(path)
+    result = invoke("check", path)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    assert result.output.count("\n") == 1, result.output        # one line, not 219
+
+
+def test_a_goal_above_the_laws_is_accepted_when_the_scenario_forces_it(tmp_path):
+    path = scenario(tmp_path, DEMO.replace("priority = 5\nat_cycle = 0",
+                                           "priority = 2\nforce = true\nat_cycle = 0"))
+    loaded, _ = load_checked(path)
+    assert loaded.goals[0].force and loaded.goals[0].priority == 2
+
+
+def test_an_unknown_event_kind_is_an_error_for_each_domain(tmp_path):
+    path = scenario(tmp_path, DEMO + '\n[[events]]\nat_cycle = 3\nkind = "teleport"\n')
+    with pytest.raises(ScenarioError, match=r"#1.kind: expected one of \['pedestrian', "):
+        load_checked(path)
+    blocks = (ROOT / "scenarios" / "blocks_figure3.toml").read_text().replace(
+        '"programs/blocks.tlp"', f'"{ROOT / "programs" / "blocks.tlp"}"')
+    path = scenario(tmp_path, blocks + '\n[[events]]\nat_cycle = 3\nkind = "teleport"\n', "b.toml")
+    with pytest.raises(ScenarioError, match=r"kind: expected one of \[.*got 'teleport'"):
+        load_checked(path)
+
+
+def test_check_recognises_scenarios_and_checks_every_shipped_one():
+    shipped = sorted((ROOT / "scenarios").glob("*.toml"))
+    result = CliRunner().invoke(cli, ["check", *map(str, shipped)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    assert result.output.count(": ok (scenario, ") == len(shipped)
+    assert "driving_demo.toml: ok (scenario, driving world; agents ME (programs/driving.tlp)" \
+        in result.output
+
+
+def test_a_scenario_without_the_toml_suffix_is_recognised_by_its_text(tmp_path):
+    path = scenario(tmp_path, "# a scenario\n\n" + DEMO, "demo.scenario")
+    assert is_scenario(str(path)) and not is_scenario(str(DRIVING))
+    result = invoke("check", path)
+    assert result.exit_code == 0 and ": ok (scenario, driving world" in result.output
+
+
+def test_check_json_gives_each_files_verdict_and_errors(tmp_path):
+    bad = scenario(tmp_path, DEMO.replace("address = 6,", "address = 99,"))
+    result = invoke("check", "--json", DRIVING, bad)
+    assert result.exit_code == 1
+    doc = json.loads(result.output)
+    assert doc["ok"] is False
+    program, scen = doc["files"]
+    assert (program["kind"], program["ok"], program["goals"]) == ("program", True, 5)
+    assert (scen["kind"], scen["ok"]) == ("scenario", False)
+    assert "no address 99 on B" in scen["errors"][0]["message"]
+    broken = tmp_path / "broken.tlp"
+    broken.write_text("(concepts ((a ?x) :percepts ((o ?x)) :relations ((b ?x)))))")
+    doc = json.loads(invoke("check", "--json", broken).output)
+    error = doc["files"][0]["errors"][0]
+    assert (error["file"], error["line"], error["col"]) == (str(broken), 1, 50)
+    assert error["message"].startswith("undefined concept 'b'")
+
+
+@pytest.mark.parametrize("data, message", [
+    (b'[run]\nname = "x\xff"\n', r"s.toml:2:10: not UTF-8: byte 0xff"),
+    (b"a = " + b"[" * 5000 + b"]" * 5000, r"s.toml:1:37: arrays or inline tables nested "
+                                          r"deeper than 32 levels"),
+    (b"[run]\ndeadline = nan\n", r"\[run\].deadline: expected a finite number, got nan"),
+    (b'[[events]]\nat_cycle = 1\nkind = "block"\nsegment = "S1"\nspeed = inf\n',
+     r"\[\[events\]\] #1.speed: expected a finite number, got inf"),
+    (b"[[events]]\nat_cycle = 1\nwhen = 1979-05-27\n", r"#1.when: expected a string, number"),
+    (b"[run]\nseed = 99999999999999999999\n", r"\[run\].seed: integer out of range"),
+    (b"[run]\ncycles = 1\n" + b"# " + b"x" * (1 << 20) + b"\n", r"longer than the limit"),
+])
+def test_hostile_scenario_files_get_one_line_naming_where(tmp_path, data, message):
+    path = tmp_path / "s.toml"
+    path.write_bytes(data)
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(path)
+    for command in ("check", "simulate", "launch"):
+        result = invoke(command, path)
+        assert result.exit_code != 0 and "Traceback" not in result.output, result.output
+        assert not isinstance(result.exception, (RecursionError, UnicodeDecodeError))
+
+
+def test_nesting_inside_strings_and_comments_is_not_counted(tmp_path):
+    path = scenario(tmp_path, DEMO.replace("[run]", '[run]\n# ' + "[" * 100 + "\n")
+                    .replace('name = "driving-demo"', 'name = "' + "{" * 60 + '"'))
+    assert load_scenario(path).run.name == "{" * 60

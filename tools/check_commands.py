@@ -1,0 +1,159 @@
+"""`teleo check FILE...`: check programs, files of learned skills and scenarios, each by what
+it is, without running anything.
+
+A scenario (a `.toml` file, or text that starts as TOML does: a `[table]` header or a
+`key = value` line) is checked fully by tools/scenario_check.py: its world table against its
+domain, every agent's program, every scripted goal against its agent's program and the
+priority rule, every scripted event's kind. A file of learned skills is checked against the
+program named before it. Anything else is read as a program. `--json` prints one object
+for scripts: {"ok": bool, "files": [{"file", "kind", "ok", "errors", "warnings", ...}]}.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+from typing import Any
+
+import click
+
+from agents.lang import Diagnostic, ProgramError, load_program
+from agents.lang.loader import read_text
+from agents.lang.solving.learned import is_learned_text, read_learned
+from tools.lang_commands import include_option
+
+# The first line that is not blank nor a comment, as TOML starts: [table], [[array]], key =
+_TOML_START = re.compile(r"\s*(\[\[?\s*[A-Za-z0-9_\"'.-]+\s*\]\]?|[A-Za-z0-9_\"'.-]+\s*=)")
+
+
+def is_scenario(path: str) -> bool:
+    """Whether ``path`` is a scenario: a .toml name, or text that begins as TOML does
+    (programs begin with `(` or a `;` comment)."""
+    if path.endswith(".toml"):
+        return True
+    try:
+        text = read_text(path)
+    except ProgramError:
+        return False
+    for line in text.splitlines():
+        if line.strip() and not line.lstrip().startswith("#"):
+            return bool(_TOML_START.match(line))
+    return False
+
+
+def _diag(d: Diagnostic) -> dict[str, Any]:
+    return {"file": d.source, "line": d.line, "col": d.col, "message": d.message}
+
+
+def _program(path: str, includes: tuple[str, ...]) -> tuple[dict[str, Any], Any]:
+    try:
+        program = load_program(path, *includes)
+    except ProgramError as exc:
+        return {"file": path, "kind": "program", "ok": False,
+                "errors": [_diag(d) for d in exc.errors],
+                "warnings": [_diag(d) for d in exc.diagnostics if d.severity != "error"]}, None
+    n_concepts = sum(len(c) for c in program.concepts.values())
+    return {"file": path, "kind": "program", "ok": True, "errors": [],
+            "warnings": [_diag(w) for w in program.warnings], "concepts": n_concepts,
+            "skills": len(program.skills), "goals": len(program.goals)}, program
+
+
+def _learned(path: str, program: Any) -> dict[str, Any]:
+    result = {"file": path, "kind": "learned", "ok": False, "warnings": []}
+    if program is None:
+        return {**result, "errors": [_diag(Diagnostic(
+            path, 1, 1, "a file of learned skills: name the valid program it was learned "
+                        "with before it (teleo check PROGRAM LEARNED)"))]}
+    try:
+        clauses = read_learned(program, read_text(path), path)
+    except ProgramError as exc:
+        return {**result, "errors": [_diag(d) for d in exc.errors]}
+    return {**result, "ok": True, "errors": [], "skills": len(clauses),
+            "program": program.sources[0]}
+
+
+def _scenario(path: str) -> dict[str, Any]:
+    from tools.scenario_check import load_checked
+    from world.run_scenario import ScenarioError
+
+    result = {"file": path, "kind": "scenario", "ok": False, "warnings": []}
+    try:
+        scenario, programs = load_checked(path)
+    except ScenarioError as exc:
+        return {**result, "errors": [{"file": path, "line": 0, "col": 0, "message": str(exc)}]}
+    return {**result, "ok": True, "errors": [], "domain": scenario.domain,
+            "agents": {a.id: str(a.program) for a in scenario.agents},
+            "goals": len(scenario.goals), "events": len(scenario.events),
+            "warnings": [_diag(w) for p in programs.values() for w in p.warnings]}
+
+
+def _is_learned(path: str) -> bool:
+    try:
+        return is_learned_text(read_text(path))
+    except ProgramError:
+        return False
+
+
+def _echo(result: dict[str, Any]) -> None:
+    """One file's result for a person: errors and warnings on stderr, the verdict."""
+    path = result["file"]
+    for item in result["errors"] + result["warnings"]:
+        where = f"{item['file']}:{item['line']}:{item['col']}: " if item["line"] else ""
+        tag = "warning: " if item in result["warnings"] else ""
+        click.echo(f"{where}{tag}{item['message']}", err=True)
+    if not result["ok"]:
+        if result["kind"] == "program":
+            n = len(result["errors"])
+            click.echo(f"{path}: {n} error{'s' if n != 1 else ''}", err=True)
+        return
+    if result["kind"] == "program":
+        click.echo(f"{path}: ok ({result['concepts']} concepts, {result['skills']} skills, "
+                   f"{result['goals']} goals)")
+    elif result["kind"] == "learned":
+        click.echo(f"{path}: ok ({result['skills']} learned skills for {result['program']})")
+    else:
+        agents = ", ".join(f"{a} ({_shown(p)})" for a, p in result["agents"].items())
+        click.echo(f"{path}: ok (scenario, {result['domain']} world; agents {agents}; "
+                   f"{result['goals']} scripted goals, {result['events']} events)")
+
+
+@click.command()
+@click.argument("files", metavar="FILE...", nargs=-1, required=True, type=click.Path())
+@include_option
+@click.option("--json", "as_json", is_flag=True,
+              help="Print one JSON object (ok, and each file's errors and warnings).")
+def check(files: tuple[str, ...], includes: tuple[str, ...], as_json: bool) -> None:
+    """Check programs, learned skills and scenarios without running them.
+
+    Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
+    fully: world table, programs, scripted goals and events. A file of learned skills is
+    checked against the program named before it (PROGRAM LEARNED)."""
+    results, program = [], None
+    for path in files:
+        if _is_learned(path):
+            results.append(_learned(path, program))
+        elif is_scenario(path):
+            results.append(_scenario(path))
+        else:
+            result, program = _program(path, includes)
+            results.append(result)
+    ok = all(r["ok"] for r in results)
+    if as_json:
+        click.echo(json.dumps({"ok": ok, "files": results}, indent=1))
+    else:
+        for result in results:
+            _echo(result)
+    sys.exit(0 if ok else 1)
+
+
+commands = [check]
+
+
+def _shown(path: str) -> str:
+    """A path as a person reads it: relative to the current folder when it is inside it."""
+    try:
+        return str(Path(path).resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return path

@@ -1,0 +1,147 @@
+"""What one `teleo launch` starts, and with which bus settings (tools/launch.py runs it).
+
+A scenario's processes are the goal-entry process, each agent's perception, inference and
+executive, and the world; a launch also starts the router unless it joins another launch's
+run (`--join ENDPOINT --run RUN`). `--only` picks a subset by name: `world`, `goals`, an
+agent id (its three stages) or a full process name (`ME.executive`), so that the processes of
+one run can be spread over several hosts (docs/faults.md, "Across hosts").
+
+Bus settings: on one host, in the open, every process is a zenoh peer that meets the others
+at the router and then talks to them directly (the fastest). A secured run (`--secure`), a
+router listening beyond loopback, or a joining launch makes every process a client of the
+router: the router is then the only thing listening, it authenticates each process with its
+own user and password over TLS and applies the run's access-control list (bus/security.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from bus.config import BusConfig, Mode
+from tools.run_secrets import RunSecrets, host_of
+from tools.supervisor import ProcSpec, module_argv
+from world.run_scenario import AGENT_STAGES, AgentSpec, Scenario
+
+_MODULES = {"perception": "agents.processes.perception",
+            "inference": "agents.processes.inference",
+            "executive": "agents.processes.executive"}
+_LOOPBACK = ("127.0.0.1", "localhost", "::1")
+RESUME_ARGS = ("--resume",)
+
+
+class PlanError(ValueError):
+    """A launch that cannot be planned (an unknown name in --only, a missing secret)."""
+
+
+@dataclass(frozen=True)
+class Plan:
+    """Everything needed to start the processes of one launch."""
+
+    scenario: Scenario
+    run: str
+    run_dir: Path
+    cycles: int
+    seed: int
+    mode: str
+    local: tuple[str, ...]          # process names started here (router excluded)
+    endpoint: str = ""              # the router's, once known (or the one joined)
+    listen: str = "tcp/127.0.0.1:0"  # where the router listens (port 0: any free port)
+    secrets: RunSecrets | None = None
+    client: bool = False            # processes are clients of the router
+    joined: bool = False
+    ready_timeout: float = 60.0     # [s] the world waits for every stage
+    learned: str | None = None      # skills learned in an earlier run, for every executive
+    record: bool = True             # write the run record (record.mcap; the world's host only)
+
+    @property
+    def runs_world(self) -> bool:
+        return "world" in self.local
+
+
+def all_processes(scenario: Scenario) -> list[str]:
+    """Every process of a scenario in start order (the world last: it is the clock)."""
+    names = ["goals"]
+    for agent in scenario.agents:
+        names += [f"{agent.id}.{stage}" for stage in AGENT_STAGES]
+    return names + ["world"]
+
+
+def select(scenario: Scenario, only: str | None) -> tuple[str, ...]:
+    """The processes named by --only (comma-separated), in start order; all without it."""
+    every = all_processes(scenario)
+    if not only:
+        return tuple(every)
+    wanted: set[str] = set()
+    for name in (n.strip() for n in only.split(",") if n.strip()):
+        if name in every:
+            wanted.add(name)
+        elif name in scenario.agent_ids:
+            wanted |= {f"{name}.{stage}" for stage in AGENT_STAGES}
+        else:
+            raise PlanError(f"--only: unknown process or agent {name!r}; expected world, goals, "
+                            f"an agent ({', '.join(scenario.agent_ids)}) or one of {every}")
+    return tuple(n for n in every if n in wanted)
+
+
+def uses_clients(secure: bool, joined: bool, listen: str) -> bool:
+    """Whether the processes are clients of the router (module doc)."""
+    host = host_of(listen)
+    return secure or joined or host not in _LOOPBACK
+
+
+def bus_config(plan: Plan, user: str) -> BusConfig:
+    """The bus settings of one process of the plan (`user`: its process name)."""
+    if not plan.client:
+        return BusConfig(connect=(plan.endpoint,))
+    cred = str(plan.secrets.credentials(user)) if plan.secrets else ""
+    return BusConfig(mode=Mode.CLIENT, connect=(plan.endpoint,), listen=(), credentials=cred)
+
+
+def process_specs(plan: Plan) -> list[ProcSpec]:
+    """The command of every local process of the plan, in start order."""
+    sc = plan.scenario
+    path = str(sc.path.resolve())
+    specs = []
+    for name in plan.local:
+        common = ["--run", plan.run, *bus_config(plan, name).to_args()]
+        if name == "goals":
+            specs.append(ProcSpec(name, module_argv(
+                "agents.processes.goals", *common, "--scenario", path,
+                "--store", str(plan.run_dir / "goals.json")), sc.run.goals_respawn))
+        elif name == "world":
+            specs.append(ProcSpec(name, module_argv(
+                "world.process", *common, "--scenario", path, "--cycles", str(plan.cycles),
+                "--seed", str(plan.seed), "--run-mode", plan.mode, "--out", str(plan.run_dir),
+                "--ready-timeout", str(plan.ready_timeout)), 3, restart_args=RESUME_ARGS))
+        else:
+            agent, _, stage = name.rpartition(".")
+            spec = sc.agent(agent)
+            extra = [] if stage == "perception" else ["--program", str(spec.program.resolve())]
+            if stage == "executive":
+                extra += _executive_args(plan, spec)
+            specs.append(ProcSpec(name, module_argv(_MODULES[stage], *common, "--agent", agent,
+                                                    *extra), spec.max_restarts(stage)))
+    return specs
+
+
+def _executive_args(plan: Plan, spec: AgentSpec) -> list[str]:
+    """Each executive keeps its engine state and learned skills in the run folder
+    (summary.state_file, summary.learned_file), starting from `plan.learned` if given."""
+    from tools import summary
+
+    return ["--state", str(summary.state_file(plan.run_dir, spec.id)),
+            "--learned-out", str(summary.learned_file(plan.run_dir, spec.id)),
+            *(["--learned", plan.learned] if plan.learned else []),
+            *([] if spec.solver else ["--no-solver"]),
+            *(["--mechanism", spec.mechanism] if spec.mechanism != "means-ends" else [])]
+
+
+def check_secrets(plan: Plan) -> None:
+    """Raise PlanError when the secrets folder lacks a file a local process needs."""
+    if plan.secrets is None:
+        return
+    try:
+        plan.secrets.check([*plan.local, "launch", "operator"])
+    except FileNotFoundError as exc:
+        raise PlanError(f"--secrets: {exc}") from exc

@@ -1,0 +1,57 @@
+"""The summary of a `teleo simulate` run in the form of `teleo launch`'s (tools/summary.py):
+the same keys, the same goal records (ids g1, g2, ... from the goal store, statuses as the
+goal-entry process reports them), so a script reads either the same way; `mode` is
+"simulate" and nothing is late, dead or restarted in one process."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from agents.lang.solving.learned import clause_heads
+from tools.summary import finish_status
+from tools.summary_agents import bodies, planner_section
+from world.domain import get_domain
+
+
+def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = None,
+          learned_files: dict[str, Path] | None = None) -> dict[str, Any]:
+    """The summary dict of ``run`` (a tools.simulate.SimRun) of ``scenario``."""
+    spec = get_domain(scenario.domain)
+    counters: dict[str, dict[str, int]] = run.final.get("counters", {})
+    goals = [g.to_dict() for g in run.goals.goals]
+    done = len(run.records)
+    learned_files = learned_files or {}
+    summary = {
+        "run": scenario.run.name, "scenario": str(scenario.path), "mode": "simulate",
+        "seed": seed, "cycles_requested": cycles,
+        "completed": done == cycles, "cycles": done,
+        "elapsed_s": round(run.elapsed_s, 3),
+        "cycles_per_s": round(done / run.elapsed_s, 2) if run.elapsed_s > 0 else 0.0,
+        "uncontrolled": {}, "late_stages": {}, "dead_stages": {}, "stalls": [],
+        "restarts": {}, "world_resumes": [], "left_down": [],
+        "goals": goals,
+        "goals_achieved": sum(1 for g in goals if g["status"] == "achieved"),
+        "goal_store_incidents": [], "goals_lost": False,
+        "domain": scenario.domain,
+        "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
+                         for a, c in counters.items()},
+        "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
+                           for a, c in counters.items()},
+        "counters": counters,
+        "learned": {a: {"file": str(learned_files.get(a, "")),
+                        "skills": clause_heads("\n".join(run.learned[a]))}
+                    for a in scenario.agent_ids if run.learned.get(a) or a in learned_files},
+        "bodies": {a: b for a, m in sorted(run.memory.items()) if (b := bodies(m))},
+        "planner": planner_section({a: _planner(st) for a, st in run.states.items()},
+                                   counters),
+        "trace": str(trace) if trace else "",
+        "world_reason": "done",
+    }
+    return finish_status(summary)
+
+
+def _planner(state: Any) -> dict[str, Any]:
+    """The saved form of an agent's planner state ({} without the ROGUE mechanism)."""
+    doc = state.to_dict() if hasattr(state, "to_dict") else {}
+    return doc.get("planner") or {}

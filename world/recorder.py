@@ -1,0 +1,182 @@
+"""The files a world process keeps in its run folder (docs/faults.md, "What a run records").
+
+trace.jsonl      one line per cycle run: the actions applied to each agent (its own, or the
+                 world's safe action when they did not arrive), the counters, a digest of the
+                 state, the outcomes of injected events and each agent memory that changed.
+                 Nothing that depends on timing, so two lockstep runs with one seed give the
+                 same file; it is also what a restarted world replays.
+health.jsonl     what did depend on timing: every cycle that was not clean (agents given the
+                 safe action, late, dead or stalled stages, re-sent states, how long it took),
+                 each start of the world (and from which cycle it resumed), a progress line
+                 about once a second, and the end. The run's summary is built from it, so it
+                 stays true when the world is killed.
+snapshots.jsonl  every `render_every`-th snapshot and the last (for rendering)
+checkpoint.pkl   the simulation every CHECKPOINT_EVERY cycles (World.checkpoint), so a
+                 restarted world replays at most that many cycles
+world-final.json the totals of a world that ended by itself or by a signal
+
+Lines are written whole and flushed at once; a process killed mid-line leaves a partial last
+line, which `complete_lines` ignores and `truncate_partial` removes before appending.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import pickle
+import time
+from collections import Counter
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any, Protocol, TextIO
+
+from world.trace import trace_line
+
+TRACE, HEALTH, SNAPSHOTS = "trace.jsonl", "health.jsonl", "snapshots.jsonl"
+CHECKPOINT, WORLD_FINAL = "checkpoint.pkl", "world-final.json"
+CHECKPOINT_EVERY = 100   # [cycles]
+PROGRESS_EVERY_S = 1.0   # [s] between progress lines in health.jsonl
+
+
+class CycleReport(Protocol):
+    """What the recorder reads of the clock's report of a cycle (bus.cycle.CycleReport; the
+    world reaches the bus only through world/process.py)."""
+
+    noop: Sequence[str]
+    late: Sequence[str]
+    dead: Sequence[str]
+    stalled: Sequence[str]
+    republished: int
+    elapsed_ms: float
+    stage_ms: Mapping[str, float]
+    clean: bool
+
+
+def complete_lines(path: Path) -> list[str]:
+    """The whole lines of a JSON-lines file (a partial last line is left out)."""
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        return []
+    end = data.rfind(b"\n")
+    return data[:end + 1].decode(errors="replace").splitlines() if end >= 0 else []
+
+
+def truncate_partial(path: Path) -> None:
+    """Cut a partial last line off `path` (left by a process killed while writing it)."""
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        return
+    end = data.rfind(b"\n") + 1
+    if end != len(data):
+        with path.open("r+b") as f:
+            f.truncate(end)
+
+
+def read_jsonl(path: Path) -> list[dict[str, Any]]:
+    """The JSON objects of the complete lines of `path` (unreadable lines skipped)."""
+    out = []
+    for line in complete_lines(path):
+        try:
+            doc = json.loads(line)
+        except ValueError:
+            continue
+        if isinstance(doc, dict):
+            out.append(doc)
+    return out
+
+
+class Recorder:
+    """Writes the run folder's files (see the module doc) for one world process."""
+
+    def __init__(self, out: Path, render_every: int, resumed_at: int = 0) -> None:
+        out.mkdir(parents=True, exist_ok=True)
+        self.out = out
+        self.render_every = render_every
+        mode = "a" if resumed_at else "w"
+        for name in (TRACE, SNAPSHOTS, HEALTH):
+            if resumed_at:
+                truncate_partial(out / name)
+        self.trace: TextIO = (out / TRACE).open(mode, buffering=1)  # whole lines
+        self.snaps: TextIO = (out / SNAPSHOTS).open(mode)
+        self.health: TextIO = (out / HEALTH).open("a" if resumed_at else "w", buffering=1)
+        self.totals = {k: Counter() for k in ("late", "dead", "noop", "stalled")}
+        self.stage_ms: Counter[str] = Counter()
+        self.cycle_ms = self.world_ms = 0.0
+        self.cycles = resumed_at
+        self.last_snapshot: dict[str, Any] | None = None
+        self.last_written = -1
+        self._progress_at = 0.0
+        if resumed_at:
+            self._reload_totals()
+
+    def _reload_totals(self) -> None:
+        for doc in read_jsonl(self.out / HEALTH):
+            if doc.get("kind") == "cycle":
+                for k, counter in self.totals.items():
+                    counter.update(doc.get(k, ()))
+
+    def event(self, kind: str, **fields: Any) -> None:
+        """A health line: start, resume, end, progress, ... with the wall time [s]."""
+        line = {"kind": kind, "t": round(time.time(), 3), **fields}
+        self.health.write(json.dumps(line, sort_keys=True) + "\n")
+
+    def cycle(self, t: int, snap: dict[str, Any], applied: dict[str, list],
+              injected: list[dict[str, Any]], report: CycleReport, world_ms: float,
+              memory: dict[str, Any] | None = None) -> None:
+        """Record cycle `t`: its trace line, a health line if it was not clean, totals.
+        `memory`: the agents whose memory changed this cycle, with the new one."""
+        self.trace.write(trace_line(t, snap, applied, injected, memory))
+        if not report.clean or report.stalled or report.republished:
+            self.event("cycle", cycle=t, noop=list(report.noop), late=list(report.late),
+                       dead=list(report.dead), stalled=list(report.stalled),
+                       republished=report.republished,
+                       elapsed_s=round(report.elapsed_ms / 1e3, 3))
+        for k, names in (("late", report.late), ("dead", report.dead), ("noop", report.noop),
+                         ("stalled", report.stalled)):
+            self.totals[k].update(names)
+        self.stage_ms.update(report.stage_ms)
+        self.cycle_ms += report.elapsed_ms
+        self.world_ms += world_ms
+        self.cycles = t + 1
+        self.last_snapshot = snap
+        if t % self.render_every == 0:
+            self._snapshot(t, snap)
+        now = time.monotonic()
+        if now - self._progress_at >= PROGRESS_EVERY_S:
+            self._progress_at = now
+            self.event("progress", cycle=t)
+
+    def _snapshot(self, t: int, snap: dict[str, Any]) -> None:
+        self.snaps.write(json.dumps(snap) + "\n")
+        self.last_written = t
+
+    def checkpoint(self, next_cycle: int, blob: bytes, outcomes: dict[str, list]) -> None:
+        """Save the simulation as it is before cycle `next_cycle` (atomic replace)."""
+        tmp = self.out / (CHECKPOINT + ".tmp")
+        with tmp.open("wb") as f:
+            pickle.dump({"version": 1, "cycle": next_cycle, "world": blob,
+                         "outcomes": outcomes}, f)
+        os.replace(tmp, self.out / CHECKPOINT)
+
+    def finish(self, completed: bool, elapsed_s: float, reason: str,
+               memory: dict[str, Any] | None = None) -> None:
+        """Close the files and write world-final.json (totals of the whole run, and each
+        agent's last memory)."""
+        if self.last_snapshot is not None and self.last_written != self.cycles - 1:
+            self._snapshot(self.cycles - 1, self.last_snapshot)
+        self.event("end", cycle=self.cycles, completed=completed, reason=reason)
+        for f in (self.trace, self.snaps, self.health):
+            f.close()
+        final = {
+            "completed": completed, "cycles": self.cycles, "elapsed_s": elapsed_s,
+            "reason": reason, **{k: dict(v) for k, v in self.totals.items()},
+            "counters": (self.last_snapshot or {}).get("counters", {}),
+            "timing_ms": {"cycle": self.cycle_ms, "world": self.world_ms,
+                          "stages": dict(self.stage_ms)},
+            "memory": memory or {},
+        }
+        tmp = self.out / (WORLD_FINAL + ".tmp")
+        tmp.write_text(json.dumps(final, indent=1))
+        tmp.replace(self.out / WORLD_FINAL)
