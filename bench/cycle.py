@@ -2,7 +2,8 @@
 router, world, goal entry and, per agent, perception, inference and executive as separate
 processes on zenoh (bench/fleet.py: one agent-independent program, each car its own package).
 
-    .venv/bin/python bench/cycle.py [--cycles 300] [--agents 1,2,4,8] [--record]
+    .venv/bin/python bench/cycle.py [--cycles 300] [--agents 1,2,4,8] [--shared 0,all]
+                                    [--record]
 
 For each agent count it writes the fleet scenario, runs `teleo launch --cycles N` (without
 the run record unless --record) and reads the summary and the world's timing totals
@@ -12,6 +13,10 @@ processes' wake-ups), and the resident memory of the agents' processes per agent
 (sampled every 0.2 s; the peak). It checks that every agent acted (sent actions in most
 cycles) and delivered its package (its goal achieved, its deliveries counter 1); a count
 that fails the check is reported and the bench exits 1. Delivery takes about 215 cycles.
+
+--shared: the launch layouts to compare, as `teleo launch --agents-per-process K` values: 0 a
+process per stage (3 per agent), 1 a process per agent, `all` every agent in one process
+(agents/processes/shared.py). The first layout is the baseline of the "x" column.
 """
 
 from __future__ import annotations
@@ -62,13 +67,14 @@ def _agent_rss_kib(pid: int) -> float:
     return total
 
 
-def run_once(scenario: Path, cycles: int, record: bool) -> dict:
+def run_once(scenario: Path, cycles: int, record: bool, per_process: int) -> dict:
     """One launch; returns its summary, the world's timing totals and the agents' peak RSS."""
     tmp = scenario.parent
     env = {**os.environ, "TELEO_RUN_DIR": str(tmp)}
     teleo = str(Path(sys.executable).parent / "teleo")
     cmd = [teleo, "launch", str(scenario), "--cycles", str(cycles),
-           "--summary", f"{tmp}/s.json", *(() if record else ("--no-record",))]
+           "--summary", f"{tmp}/s.json", "--agents-per-process", str(per_process),
+           *(() if record else ("--no-record",))]
     proc = subprocess.Popen(cmd, cwd=ROOT, env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     peak = [0.0]
@@ -125,18 +131,19 @@ def stage_means(result: dict) -> dict[str, float]:
     return means
 
 
-def report(agents: int, result: dict) -> None:
+def report(agents: int, layout: str, result: dict, base: float) -> None:
     cycles = max(result["cycles"], 1)
     cycle_ms = (result["timing_ms"]["cycle"] + result["timing_ms"]["world"]) / cycles
     delivered = sum(c.get("deliveries", 0) for c in result["counters"].values())
-    click.echo(f"{agents} agent(s): {result['cycles_per_s']:.1f} cycles/s, "
+    click.echo(f"{agents} agent(s), {layout}: {result['cycles_per_s']:.1f} cycles/s "
+               f"(x {result['cycles_per_s'] / base:.2f}), "
                f"{cycle_ms:.2f} ms per cycle, late stages "
                f"{sum(result['late_stages'].values())}, deliveries {delivered}/{agents}, "
                f"agents' memory {result['rss_kib'] / 1024 / agents:.1f} MiB per agent")
     means = stage_means(result)
     for kind in STAGES:
         ms = means.get(kind, 0.0)
-        note = f" (sum over {agents} agents' processes)" if (
+        note = f" (sum over {agents} agents)" if (
             agents > 1 and kind in ("perception", "inference", "executive")) else ""
         click.echo(f"  {kind:<11} {ms:7.3f} ms  {100 * ms / cycle_ms:5.1f} %{note}")
     rest = cycle_ms - sum(means.values())
@@ -149,22 +156,28 @@ def report(agents: int, result: dict) -> None:
               help="Cycles per launch (delivery takes about 215).")
 @click.option("--agents", default="1,2,4,8", show_default=True,
               help="Agent counts, comma-separated (1..32).")
+@click.option("--shared", default="0,all", show_default=True,
+              help="Layouts: --agents-per-process values (0, 1, ..., all), comma-separated.")
 @click.option("--record", is_flag=True, help="Keep the run record (record.mcap) on.")
-def main(cycles: int, agents: str, record: bool) -> None:
+def main(cycles: int, agents: str, shared: str, record: bool) -> None:
     """Print end-to-end lockstep cycle rates of N delivering cars and each stage's share."""
     load = os.getloadavg()[0]
     click.echo(f"fleet of cars on programs/driving.tlp bound through self, {cycles} cycles, "
                f"lockstep, {os.cpu_count()} CPUs, load average {load:.1f}")
     bad = []
     for n in (int(x) for x in agents.split(",")):
-        with tempfile.TemporaryDirectory() as tmp:
-            result = run_once(write_fleet(Path(tmp), n, cycles), cycles, record)
-        report(n, result)
-        bad += [f"{n} agents: {f}" for f in failures(n, result)]
+        base = 0.0
+        for k in dict.fromkeys(n if x == "all" else int(x) for x in shared.split(",")):
+            layout = {0: "a process per stage", 1: "a process per agent"}.get(
+                k, f"{k} agents per process")
+            with tempfile.TemporaryDirectory() as tmp:
+                result = run_once(write_fleet(Path(tmp), n, cycles), cycles, record, k)
+            base = base or result["cycles_per_s"]
+            report(n, layout, result, base)
+            bad += [f"{n} agents, {layout}: {f}" for f in failures(n, result)]
     for line in bad:
         click.echo(f"FAILED {line}")
     sys.exit(1 if bad else 0)
-
 
 if __name__ == "__main__":
     main()
