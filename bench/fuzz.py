@@ -12,7 +12,8 @@ input's time. With --out, each crashing input is written there to replay.
 
 The readers: program (bytes -> decode_text -> load_program_text), percepts (bytes ->
 decode_text -> parse_percepts), goal (parse_goal against programs/driving.tlp), event (the
-JSON argument of `teleo event`), request (bytes -> bus.codec.decode -> the goal-entry
+JSON argument of `teleo event`), scenario (bytes -> a scenario file, read and checked fully
+as `teleo launch` does), request (bytes -> bus.codec.decode -> the goal-entry
 process's answer, with the scenarios/driving_demo.toml agents and a real store file).
 """
 
@@ -196,6 +197,30 @@ def event_reader() -> Reader:
     return Reader(make, feed, (click.ClickException,), minimal)
 
 
+def scenario_reader(tmp: Path) -> Reader:
+    """Scenario files: bytes written to a file in `tmp` (program paths there made absolute
+    so that the shipped programs are found), read and checked fully as `teleo launch` does."""
+    from tools.scenario_check import load_checked
+    from world.errors import WorldError
+
+    bases = [text.replace('program = "programs/', f'program = "{ROOT}/programs/')
+             for text in corpus("scenarios/*.toml")]
+    path = tmp / "fuzz.toml"
+
+    def make(rng: random.Random) -> bytes:
+        return to_bytes(mutate(rng.choice(bases), rng), rng)
+
+    def feed(data: bytes) -> bool:
+        path.write_bytes(data)
+        load_checked(path)
+        return True
+
+    minimal = (b"a = " + b"[" * 5000 + b"]" * 5000, b"[run]\nseed = " + b"9" * 5000,
+               b"[run]\ndeadline = nan\n", b"[run]\ndeadline = inf\n", b"\xff\xfe[run]\n",
+               b"[world]\ndomain = \"nowhere\"\n", b"[[agents]]\nid = \"ME\"\n")
+    return Reader(make, feed, (WorldError,), minimal)
+
+
 def request_reader(tmp: Path) -> Reader:
     from agents.processes.goals import GoalEntry, engine_validator
     from bus import keys
@@ -279,7 +304,8 @@ def fuzz(name: str, reader: Reader, n: int, seed: int) -> Tally:
 
 def make_readers(tmp: Path) -> dict[str, Callable[[], Reader]]:
     return {"program": program_reader, "percepts": percept_reader, "goal": goal_reader,
-            "event": event_reader, "request": lambda: request_reader(tmp)}
+            "event": event_reader, "scenario": lambda: scenario_reader(tmp),
+            "request": lambda: request_reader(tmp)}
 
 
 def describe(item: object) -> str:
@@ -291,7 +317,8 @@ def describe(item: object) -> str:
 @click.option("--n", default=100_000, show_default=True, help="Inputs per reader.")
 @click.option("--seed", default=1, show_default=True)
 @click.option("--reader", "names", multiple=True,
-              type=click.Choice(["program", "percepts", "goal", "event", "request"]),
+              type=click.Choice(["program", "percepts", "goal", "event", "scenario",
+                                 "request"]),
               help="Only these readers (repeatable; default: all).")
 @click.option("--out", type=click.Path(file_okay=False), help="Write crashing inputs here.")
 def main(n: int, seed: int, names: tuple[str, ...], out: str | None) -> None:

@@ -166,11 +166,8 @@ class Node:
 
         def on_query(query: zenoh.Query) -> None:
             qkey = str(query.key_expr)
-            try:
-                request = decode(qkey, b"" if query.payload is None else query.payload.to_bytes())
-            except CodecError as exc:
-                log.warning("bad query: %s", exc)
-                query.reply_err(str(exc))
+            request = decode_query(query)
+            if request is None:
                 return
             try:
                 reply = handler(request)
@@ -224,3 +221,15 @@ def open_node(cfg: BusConfig, run: str, process: str) -> Iterator[Node]:
             node.close()
     finally:
         session.close()
+
+
+def decode_query(query: zenoh.Query) -> Message | None:
+    """The request a query carries, or None after answering a bad one with an error reply
+    naming the key and what is wrong (a serving process never crashes on bad input)."""
+    qkey = str(query.key_expr)
+    try:
+        return decode(qkey, b"" if query.payload is None else query.payload.to_bytes())
+    except CodecError as exc:
+        log.warning("bad query: %s", exc)
+        query.reply_err(str(exc))
+        return None

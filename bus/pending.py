@@ -21,9 +21,9 @@ from dataclasses import dataclass
 
 import zenoh
 
-from bus.codec import decode, encode
-from bus.errors import CodecError
+from bus.codec import encode
 from bus.messages import Message
+from bus.node import decode_query
 
 log = logging.getLogger(__name__)
 __all__ = ["Pending", "PendingQueries", "serve_later"]
@@ -63,11 +63,8 @@ class PendingQueries:
     def _on_query(self, query: zenoh.Query) -> None:
         """zenoh's callback thread: decode and queue; a bad request is answered at once."""
         qkey = str(query.key_expr)
-        try:
-            request = decode(qkey, b"" if query.payload is None else query.payload.to_bytes())
-        except CodecError as exc:
-            log.warning("bad query: %s", exc)
-            query.reply_err(str(exc))
+        request = decode_query(query)
+        if request is None:
             query.drop()
             return
         self._queue.put(Pending(request, qkey, query))

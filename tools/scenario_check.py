@@ -30,7 +30,7 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
         if agent.mechanism not in SOLVERS:
             raise ScenarioError(f"{where}: agent {agent.id}: mechanism: expected one of "
                                 f"{list(SOLVERS)}, got {agent.mechanism!r}")
-        if not Path(agent.program).is_file():
+        if not _is_file(Path(agent.program)):
             raise ScenarioError(f"{where}: agent {agent.id}: program {agent.program} not found")
         try:
             programs[agent.id] = load_program(str(agent.program))
@@ -68,6 +68,15 @@ def _goal_problem(goal: ScriptedGoal, program: Program) -> str:
         if problem:
             return f"{problem} (force = true)"
     return ""
+
+
+def _is_file(path: Path) -> bool:
+    """Whether `path` is a file; a path the system cannot even look up (too long, a NUL
+    byte) is not one."""
+    try:
+        return path.is_file()
+    except (OSError, ValueError):
+        return False
 
 
 def load_checked(path: str | Path) -> tuple[Scenario, dict[str, Program]]:

@@ -28,7 +28,8 @@ def echo_agents(summary: dict[str, Any]) -> None:
     _echo_planner(summary)
     for agent, learned in summary.get("learned", {}).items():
         heads = learned["skills"]
-        click.echo(f"  {agent}: learned skills {len(heads)} ({learned['file']})"
+        where = learned["file"] or "not saved: --learned-out FILE saves them"
+        click.echo(f"  {agent}: learned skills {len(heads)} ({where})"
                    + "".join(f"\n    {h}" for h in heads))
     for agent, b in summary.get("bodies", {}).items():
         _echo_bodies(agent, b)

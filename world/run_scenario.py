@@ -231,8 +231,11 @@ def _resolve(program: str, scenario_path: Path) -> Path:
     if candidate.is_absolute():
         return candidate
     for folder in scenario_path.resolve().parents:
-        if (folder / candidate).exists():
-            return folder / candidate
+        try:
+            if (folder / candidate).exists():
+                return folder / candidate
+        except (OSError, ValueError):  # a name too long to look up, a NUL byte: not there
+            return candidate
     return candidate
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import datetime
 import math
 import re
+import sys
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -49,6 +50,9 @@ def read_toml(path: Path) -> dict[str, Any]:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise TomlTextError(f"{path}: not valid TOML: {exc}") from None
+    except ValueError:  # an integer of more digits than Python converts (4300)
+        raise TomlTextError(f"{path}: an integer of more than {sys.get_int_max_str_digits()} "
+                            "digits; no setting takes a number that large") from None
     except RecursionError:  # not reached: _check_depth bounds the nesting first
         raise TomlTextError(f"{path}: nested too deeply") from None
     _check_values(doc, str(path), ())

@@ -1,7 +1,7 @@
 """Commands that change a running system report its verdict (issue 12, items 2, 6, 7, 11):
 the goal-entry process refuses a goal ranked above the driving laws unless forced, a goal
 about a package that does not exist gets a hint, and `teleo goal list --json` serves scripts.
-The demo scenario (programs/driving.tlp: five laws, p1..p5) in realtime."""
+The demo scenario (programs/driving.tlp: five laws, p1..p5), lockstep without a cycle limit."""
 
 from __future__ import annotations
 
@@ -18,8 +18,20 @@ def goals(teleo) -> dict[str, dict]:
     return {g["id"]: g for g in json.loads(listed.stdout)}
 
 
-def test_priorities_above_the_laws_need_force_and_a_missing_package_gets_a_hint(teleo):
-    launcher = teleo.start("launch", str(DEMO), "--mode", "realtime", "--cycles", "0")
+def demo_without_scripted_goals(folder) -> str:
+    """The demo's scenario with only its first goal, g1 (PACKET1): every later id is the
+    test's own, however fast the run goes."""
+    text = DEMO.read_text().replace('program = "programs/driving.tlp"',
+                                    f'program = "{ROOT / "programs" / "driving.tlp"}"')
+    first, _, _ = text.partition('goal = "(package-delivered PACKET2)"')
+    path = folder / "demo.toml"
+    path.write_text(first.rsplit("[[goals]]", 1)[0])
+    return str(path)
+
+
+def test_priorities_above_the_laws_need_force_and_a_missing_package_gets_a_hint(teleo,
+                                                                                tmp_path):
+    launcher = teleo.start("launch", demo_without_scripted_goals(tmp_path), "--cycles", "0")
     try:
         teleo.run_info()
         refused = teleo("goal", "post", "(package-delivered PACKET2)", "--priority", "2")
@@ -48,5 +60,8 @@ def test_priorities_above_the_laws_need_force_and_a_missing_package_gets_a_hint(
         assert "PACKET2" not in listed["g2"]["note"]       # a package that exists: no hint
         table = teleo("goal", "list")
         assert "-- " in table.stdout and "no percept mentions PACKET9" in table.stdout
+        # the user withdraws the goal that cannot be kept; the run then ends completed
+        withdrawn = teleo("goal", "cancel", "g3")
+        assert withdrawn.returncode == 0, withdrawn.stderr
     finally:
         assert interrupt(launcher) == 0, teleo.launch_output()

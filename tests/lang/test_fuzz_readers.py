@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+import tempfile
+from pathlib import Path
 
 import pytest
 
@@ -21,7 +23,9 @@ def load_fuzz():
 
 fuzz = load_fuzz()
 READERS = {"program": fuzz.program_reader, "percepts": fuzz.percept_reader,
-           "goal": fuzz.goal_reader, "event": fuzz.event_reader}
+           "goal": fuzz.goal_reader, "event": fuzz.event_reader,
+           "scenario": lambda: fuzz.scenario_reader(TMP)}
+TMP = Path(tempfile.mkdtemp(prefix="teleo-fuzz-"))
 
 
 @pytest.mark.parametrize("name", sorted(READERS))
