@@ -86,8 +86,8 @@ def _catch_signals() -> None:
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 @click.option("--agents-per-process", type=click.IntRange(min=0), default=0, metavar="K",
               help="Run K agents' perception, inference and executive in one process "
-                   "(0: a process per stage). Not with --secure, --join or --listen beyond "
-                   "this host.")
+                   "(0: a process per stage). Not with --secure, --only, --join or --listen "
+                   "beyond this host.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
@@ -108,9 +108,9 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
                      hosts, only, join, run_id, secrets_dir)
         plan = replace(plan, learned=learned, record=not no_record or bool(plot_file),
                        agents_per_process=agents_per_process)
-        if agents_per_process and plan.client:
-            raise PlanError("--agents-per-process: only for an open run on one host (each "
-                            "process of a secured or spread run has its own user)")
+        if agents_per_process and (plan.client or only):
+            raise PlanError("--agents-per-process: only for a whole open run on one host "
+                            "(not with --secure, --only, --join or --listen beyond it)")
     except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,

@@ -54,5 +54,5 @@ def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):
     done = teleo("launch", _two_cars(tmp_path), "--secure", "--agents-per-process", "1",
                  timeout=120)
     assert done.returncode == 1
-    assert "--agents-per-process: only for an open run on one host" in done.stderr
+    assert "--agents-per-process: only for a whole open run on one host" in done.stderr
     assert "Traceback" not in done.stderr
