@@ -156,6 +156,30 @@ def test_incremental_inference_equals_inference_from_scratch(text, rows, changes
         rows = apply(change, rows, rnd)
 
 
+MODEL = [["c0", "O1"], ["c0", "O3"], ["c0", 2], ["c1", "O1", "O2"], ["c1", "O2", "O2"],
+         ["c1", "O4", 3], ["asserted", "O1"]]  # world-model facts (seed 002: SCS bodies)
+
+
+@settings(max_examples=150, deadline=None)
+@given(programs(), st.lists(ROW, min_size=2, max_size=8),
+       st.lists(st.tuples(CHANGE, st.lists(st.sampled_from(MODEL), max_size=4)), min_size=1,
+                max_size=10), st.randoms(use_true_random=False))
+def test_world_model_facts_changing_with_the_percepts_give_scratch_results(text, rows, changes,
+                                                                         rnd):
+    """Base facts (the agent's world model) join the percepts' inference and change cycle by
+    cycle; an asserted fact that a concept also infers holds while either does."""
+    program = load_program_text(text, "random.tlp")
+    engine, model = Engine(program), []
+    for change, next_model in [(("same",), []), *changes]:
+        got = engine.infer(rows, model)
+        want = Engine(program).infer(rows, model)
+        assert got == want, (text, rows, model, engine.last_infer_stats)
+        assert got.store.beliefs() == want.store.beliefs()
+        assert_indexes_kept(engine)
+        assert ("(asserted O1)" in shown(got)) == (["asserted", "O1"] in model)
+        rows, model = apply(change, rows, rnd), next_model
+
+
 VALUES = load_program_text("(concepts ((seen ?v) :percepts ((obj ?x v ?v))))", "values.tlp")
 
 
