@@ -21,6 +21,8 @@ import signal
 import sys
 import threading
 import time
+from collections.abc import Callable
+from typing import NoReturn
 
 log = logging.getLogger(__name__)
 ENV_PARENT = "TELEO_PARENT_PID"
@@ -65,3 +67,36 @@ def _watch(parent: int) -> None:
     log.error("still running %.1f s after the launcher died: exiting now", GRACE_S)
     logging.shutdown()
     os._exit(EXIT_ORPHANED)
+
+
+def run_then_exit(main: Callable[[], object]) -> NoReturn:
+    """Run a process's `main` (a click command), then leave at once with its exit status,
+    skipping the interpreter's finalisation: zenoh's native threads can still call into
+    Python while it finalises, which aborts the process ("FATAL: exception not rethrown",
+    status -6) after its work was done. Every file is closed and logging flushed first."""
+    code = 1
+    try:
+        main()
+        code = 0
+    except SystemExit as exc:
+        code = _status(exc.code)
+    except KeyboardInterrupt:
+        code = 130
+    finally:
+        logging.shutdown()
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):  # a closed pipe: nothing more can be said
+                pass
+    os._exit(code)
+
+
+def _status(code: object) -> int:
+    """sys.exit's argument as a process status (a message is printed, as Python does)."""
+    if code is None:
+        return 0
+    if isinstance(code, int):
+        return code & 0xFF
+    sys.stderr.write(f"{code}\n")  # what Python prints for SystemExit("message")
+    return 1

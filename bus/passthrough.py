@@ -85,4 +85,6 @@ def main(run_id: str, agent: str, stage: str, log_path: str | None, die_at: int 
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

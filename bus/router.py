@@ -181,4 +181,6 @@ def _read_line(proc: subprocess.Popen, timeout: float) -> str:
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

@@ -85,4 +85,8 @@ _register()
 
 
 def main() -> None:
-    cli()
+    """The `teleo` console command: run it, then exit without Python's finalisation (see
+    bus.lifeline.run_then_exit: zenoh's threads could otherwise abort a finished command)."""
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(cli)

@@ -24,7 +24,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
     learned_files = learned_files or {}
     summary = {
         "run": scenario.run.name, "scenario": str(scenario.path), "mode": "simulate",
-        "seed": seed, "cycles_requested": cycles,
+        "seed": seed, "cycles_requested": cycles, "secured": False,
         "completed": done == cycles, "cycles": done,
         "elapsed_s": round(run.elapsed_s, 3),
         "cycles_per_s": round(done / run.elapsed_s, 2) if run.elapsed_s > 0 else 0.0,

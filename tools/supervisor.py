@@ -149,8 +149,8 @@ class Supervisor:
             codes.update(self._stop_group([name], timeout))
         return codes
 
-    def stop_all(self, first: list[str], last: Iterable[str] = (), first_s: float = 1.0,
-                 rest_s: float = 0.6, last_s: float = 0.3) -> dict[str, int | None]:
+    def stop_all(self, first: list[str], last: Iterable[str] = (), first_s: float = 0.8,
+                 rest_s: float = 0.5, last_s: float = 0.2) -> dict[str, int | None]:
         """Stop `first` (in order, `first_s` [s] in all), then every other process at once
         (`rest_s`), then `last` (`last_s`); each group's stragglers are killed."""
         last = [n for n in last if n in self._children]

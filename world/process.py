@@ -210,4 +210,6 @@ def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

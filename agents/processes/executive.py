@@ -174,4 +174,6 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: 
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

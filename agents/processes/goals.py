@@ -247,4 +247,6 @@ def main(run: str, scenario_file: str, store_file: str, bus_config: BusConfig) -
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

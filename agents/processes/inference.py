@@ -51,4 +51,6 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

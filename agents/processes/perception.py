@@ -44,4 +44,6 @@ def main(run: str, agent: str, bus_config: BusConfig) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)

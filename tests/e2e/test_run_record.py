@@ -85,8 +85,8 @@ def test_the_mcap_holds_every_key_of_every_cycle_from_cycle_0(demo):
     run = summary["run"]
     expected = {keys.world_state(run), keys.percepts(run, "ME"), keys.beliefs(run, "ME"),
                 keys.actions(run, "ME"), keys.intention(run, "ME"), keys.goal_list(run, "ME"),
-                keys.stats(run, "goals")} | {keys.stats(run, f"ME.{s}") for s in
-                                             ("perception", "inference", "executive")}
+                keys.stats(run, "goals"), keys.stats(run, "world")} | {
+        keys.stats(run, f"ME.{s}") for s in ("perception", "inference", "executive")}
     assert counts == {key: CYCLES for key in expected}
     assert set(first.values()) == {0}
     assert all(c.message_encoding == "json" for c in stats.channels.values())
@@ -193,7 +193,7 @@ def test_a_replayed_record_shows_in_the_view(demo, tmp_path):
             played = teleo("replay", str(path), "--connect", router.endpoint, "--speed", "0",
                            "--wait", "30", timeout=300)
             assert played.returncode == 0, played.stderr
-            assert f"replayed {CYCLES * 10} messages of run {summary['run']} to router " \
+            assert f"replayed {CYCLES * 11} messages of run {summary['run']} to router " \
                    f"{router.endpoint}" in played.stderr
 
             def status() -> dict:
