@@ -110,4 +110,6 @@ def main(run: str, name: str, agents_json: str, bus_config: BusConfig) -> None:
         raise click.ClickException(str(exc)) from exc
 
 if __name__ == "__main__":
-    main()
+    from bus.lifeline import run_then_exit
+
+    run_then_exit(main)
