@@ -3,8 +3,11 @@ lockstep cycle through the clock and three pass-through stages with 200 percepts
 
     .venv/bin/python bench/bus.py [--rounds 2000] [--cycles 500] [--runs 1]
 
-(c) the same four hops forwarding raw bytes is the transport floor. The machine is shared
-and noisy: compare medians of several runs (`--runs 5`), never single figures.
+(c) the same four hops forwarding raw bytes is the transport floor; (d) the same lockstep
+cycle with the three stages in ONE process (`teleo launch --agents-per-process`): the clock's
+two hops, the stages' messages handed over in memory (no decode between stages; still
+published, with each stage's stats). The machine is shared and noisy: compare medians of
+several runs (`--runs 5`), never single figures.
 """
 
 from __future__ import annotations
@@ -27,10 +30,11 @@ from bus import keys  # noqa: E402
 from bus.clock import Clock  # noqa: E402
 from bus.codec import encode  # noqa: E402
 from bus.config import BusConfig, bus_options  # noqa: E402
-from bus.messages import Beliefs, Envelope, Percepts, WorldState  # noqa: E402
+from bus.messages import Beliefs, Envelope, Percepts, ProcessStats, WorldState  # noqa: E402
 from bus.node import open_node  # noqa: E402
-from bus.passthrough import STAGES  # noqa: E402
+from bus.passthrough import STAGES, make_step, wiring  # noqa: E402
 from bus.router import spawn_router  # noqa: E402
+from bus.stage import Stage  # noqa: E402
 
 RUN, AGENT = "bench", "A"
 
@@ -80,9 +84,10 @@ def round_trips(cfg: BusConfig, n: int) -> list[float]:
         pong.wait(10)
 
 
-def cycles(cfg: BusConfig, n: int) -> list[float]:
-    procs = [spawn("-m", "bus.passthrough", "--run", RUN, "--agent", AGENT, "--stage", s,
-                   *cfg.to_args()) for s in STAGES]
+def cycles(cfg: BusConfig, n: int, shared: bool = False) -> list[float]:
+    procs = [spawn(__file__, "chain", *cfg.to_args())] if shared else [
+        spawn("-m", "bus.passthrough", "--run", RUN, "--agent", AGENT, "--stage", s,
+              *cfg.to_args()) for s in STAGES]
     pipeline = [f"{AGENT}.{s}" for s in STAGES]
     snapshot = {"percepts": {AGENT: percepts_200()}}
     try:
@@ -135,9 +140,11 @@ def one_run(cfg: BusConfig, rounds: int, n_cycles: int) -> list[tuple[str, list[
     rt = round_trips(cfg, rounds)
     cyc = cycles(cfg, n_cycles)
     raw = raw_cycles(cfg, n_cycles)
+    one = cycles(cfg, n_cycles, shared=True)
     return [("round trip, 2 processes (peers meshed via a router hub)", rt),
             ("lockstep cycle, clock + 3 stages, 200 percepts", cyc),
-            ("  same 4 hops, raw bytes forwarded (no codec, no Stage)", raw)]
+            ("  same 4 hops, raw bytes forwarded (no codec, no Stage)", raw),
+            ("lockstep cycle, clock + the 3 stages in one process", one)]
 
 
 def raw_cycles(cfg: BusConfig, n: int) -> list[float]:
@@ -189,6 +196,31 @@ def forward(key_in: str, key_out: str, name: str, bus_config: BusConfig) -> None
             item = inbox.receive(0.1)
             if item is not None:
                 node.put_raw(key_out, item.payload)
+
+
+@main.command()
+@bus_options
+def chain(bus_config: BusConfig) -> None:
+    """The three pass-through stages in one process, handing messages over in memory."""
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    names = [f"{AGENT}.{s}" for s in STAGES]
+    with open_node(bus_config, RUN, f"{AGENT}.chain") as node:
+        steps = [(make_step(node, AGENT, s, None, None), wiring(RUN, AGENT, s)[0],
+                  f"{AGENT}.{s}", keys.stats(RUN, f"{AGENT}.{s}")) for s in STAGES]
+
+        def step(cycle: int, inputs: dict) -> list:
+            outs, msg = [], inputs[keys.world_state(RUN)]
+            for fn, in_key, name, stats_key in steps:
+                t0 = time.perf_counter()
+                (key, msg), = fn(cycle, {in_key: msg})
+                ms = (time.perf_counter() - t0) * 1e3
+                outs += [(stats_key, ProcessStats(node.envelope(cycle), name, ms, 0)),
+                         (key, msg)]
+            return outs
+
+        Stage(node, f"{AGENT}.chain", [keys.world_state(RUN)], step,
+              outputs=[keys.actions(RUN, AGENT)], stages=names).run(stop)
 
 
 @main.command()

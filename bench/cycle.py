@@ -1,13 +1,22 @@
-"""End-to-end lockstep cycle rate of the full stack: router, world, goal entry and, per
-agent, perception, inference and executive as separate processes on zenoh.
+"""End-to-end lockstep cycle rate of the full stack with N cars that really drive and deliver:
+router, world, goal entry and, per agent, perception, inference and executive as separate
+processes on zenoh (bench/fleet.py: one agent-independent program, each car its own package).
 
-    .venv/bin/python bench/cycle.py [--cycles 300] [--agents 1,4] [--program FILE]
+    .venv/bin/python bench/cycle.py [--cycles 300] [--agents 1,2,4,8] [--shared 0,all]
+                                    [--record]
 
-For each agent count it writes a scenario, runs `teleo launch --cycles N` in lockstep and
-reads the world's timing totals (world-final.json): cycles per second, the mean cycle time
-[ms], and each stage's mean compute time per cycle [ms] with its share of the cycle. The
-rest of the cycle is the bus (zenoh, msgpack) and the processes' wake-ups. The program is
-programs/driving.tlp when it exists, else the end-to-end tests' hold-speed program.
+For each agent count it writes the fleet scenario, runs `teleo launch --cycles N` (without
+the run record unless --record) and reads the summary and the world's timing totals
+(world-final.json): cycles per second, the mean cycle time [ms], each stage's mean compute
+time per cycle [ms] with its share of the cycle (the rest is the bus: zenoh, msgpack, and the
+processes' wake-ups), and the resident memory of the agents' processes per agent [MiB]
+(sampled every 0.2 s; the peak). It checks that every agent acted (sent actions in most
+cycles) and delivered its package (its goal achieved, its deliveries counter 1); a count
+that fails the check is reported and the bench exits 1. Delivery takes about 215 cycles.
+
+--shared: the launch layouts to compare, as `teleo launch --agents-per-process K` values: 0 a
+process per stage (3 per agent), 1 a process per agent, `all` every agent in one process
+(agents/processes/shared.py). The first layout is the baseline of the "x" column.
 """
 
 from __future__ import annotations
@@ -17,37 +26,99 @@ import os
 import subprocess
 import sys
 import tempfile
+import threading
 from pathlib import Path
 
 import click
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "bench"))
+
+from fleet import write_fleet  # noqa: E402
+
 STAGES = ("world", "goals", "perception", "inference", "executive")
+PAGE_KIB = os.sysconf("SC_PAGE_SIZE") / 1024
 
 
-def scenario_text(agents: int, program: Path, cycles: int) -> str:
-    """A city with `agents` cars (default start places), pedestrians and traffic."""
-    lines = ['[run]', 'name = "bench"', 'mode = "lockstep"', f"cycles = {cycles}", "seed = 1",
-             "", "[world]", "grid = [4, 4]", "pedestrians = 12", "traffic = 4", ""]
-    for k in range(agents):
-        lines += ["[[agents]]", f'id = "A{k + 1}"', f'program = "{program}"', ""]
-    return "\n".join(lines)
+def _tree(pid: int) -> list[int]:
+    """``pid`` and all its descendants (Linux /proc)."""
+    out, todo = [], [pid]
+    while todo:
+        p = todo.pop()
+        out.append(p)
+        for task in Path(f"/proc/{p}/task").glob("*"):
+            try:
+                todo += [int(c) for c in (task / "children").read_text().split()]
+            except OSError:
+                pass
+    return out
 
 
-def run_once(agents: int, program: Path, cycles: int) -> dict:
-    """One launch; returns its summary plus the world's timing totals."""
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "bench.toml"
-        path.write_text(scenario_text(agents, program, cycles))
-        env = {**os.environ, "TELEO_RUN_DIR": tmp}
-        teleo = str(Path(sys.executable).parent / "teleo")
-        done = subprocess.run([teleo, "launch", str(path), "--summary", f"{tmp}/s.json"],
-                              cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
-        if done.returncode != 0:
-            raise click.ClickException(f"launch failed:\n{done.stdout}\n{done.stderr}")
-        summary = json.loads(Path(f"{tmp}/s.json").read_text())
-        final = json.loads((Path(summary["trace"]).parent / "world-final.json").read_text())
-    return {**summary, "timing_ms": final["timing_ms"]}
+def _agent_rss_kib(pid: int) -> float:
+    """Resident memory [KiB] of the processes under ``pid`` that serve an agent."""
+    total = 0.0
+    for p in _tree(pid):
+        try:
+            if b"--agent" not in Path(f"/proc/{p}/cmdline").read_bytes():
+                continue
+            total += int(Path(f"/proc/{p}/statm").read_text().split()[1]) * PAGE_KIB
+        except (OSError, IndexError, ValueError):
+            pass
+    return total
+
+
+def run_once(scenario: Path, cycles: int, record: bool, per_process: int) -> dict:
+    """One launch; returns its summary, the world's timing totals and the agents' peak RSS."""
+    tmp = scenario.parent
+    env = {**os.environ, "TELEO_RUN_DIR": str(tmp)}
+    teleo = str(Path(sys.executable).parent / "teleo")
+    cmd = [teleo, "launch", str(scenario), "--cycles", str(cycles),
+           "--summary", f"{tmp}/s.json", "--agents-per-process", str(per_process),
+           *(() if record else ("--no-record",))]
+    proc = subprocess.Popen(cmd, cwd=ROOT, env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    peak = [0.0]
+    done = threading.Event()
+
+    def sample() -> None:
+        while not done.wait(0.2):
+            peak[0] = max(peak[0], _agent_rss_kib(proc.pid))
+
+    sampler = threading.Thread(target=sample, daemon=True)
+    sampler.start()
+    out, err = proc.communicate(timeout=1800)
+    done.set()
+    sampler.join()
+    if proc.returncode != 0:
+        raise click.ClickException(f"launch failed ({proc.returncode}):\n{out}\n{err}")
+    summary = json.loads(Path(f"{tmp}/s.json").read_text())
+    run_dir = Path(summary["trace"]).parent
+    final = json.loads((run_dir / "world-final.json").read_text())
+    acted = _cycles_with_actions(run_dir / "trace.jsonl")
+    return {**summary, "timing_ms": final["timing_ms"], "rss_kib": peak[0], "acted": acted}
+
+
+def _cycles_with_actions(trace: Path) -> dict[str, int]:
+    """Per agent, the cycles whose trace line applied at least one action of it."""
+    counts: dict[str, int] = {}
+    for line in trace.read_text().splitlines():
+        for agent, acts in json.loads(line)["actions"].items():
+            counts[agent] = counts.get(agent, 0) + bool(acts)
+    return counts
+
+
+def failures(agents: int, result: dict) -> list[str]:
+    """What the run did not do: an agent that did not act or did not deliver."""
+    out = []
+    achieved = {g["agent"] for g in result["goals"] if g["status"] == "achieved"}
+    for k in range(1, agents + 1):
+        a = f"A{k}"
+        if result["acted"].get(a, 0) < result["cycles"] // 2:
+            out.append(f"{a} acted in {result['acted'].get(a, 0)} of {result['cycles']} cycles")
+        delivered = result["counters"].get(a, {}).get("deliveries", 0)
+        if a not in achieved or delivered < 1:
+            out.append(f"{a} did not deliver P{k} (deliveries {delivered})")
+    return out
 
 
 def stage_means(result: dict) -> dict[str, float]:
@@ -60,36 +131,53 @@ def stage_means(result: dict) -> dict[str, float]:
     return means
 
 
-def report(agents: int, result: dict) -> None:
+def report(agents: int, layout: str, result: dict, base: float) -> None:
     cycles = max(result["cycles"], 1)
     cycle_ms = (result["timing_ms"]["cycle"] + result["timing_ms"]["world"]) / cycles
-    click.echo(f"{agents} agent(s): {result['cycles_per_s']:.1f} cycles/s, "
-               f"{cycle_ms:.2f} ms per cycle, late stages {sum(result['late_stages'].values())}")
+    delivered = sum(c.get("deliveries", 0) for c in result["counters"].values())
+    click.echo(f"{agents} agent(s), {layout}: {result['cycles_per_s']:.1f} cycles/s "
+               f"(x {result['cycles_per_s'] / base:.2f}), "
+               f"{cycle_ms:.2f} ms per cycle, late stages "
+               f"{sum(result['late_stages'].values())}, deliveries {delivered}/{agents}, "
+               f"agents' memory {result['rss_kib'] / 1024 / agents:.1f} MiB per agent")
     means = stage_means(result)
     for kind in STAGES:
         ms = means.get(kind, 0.0)
-        note = f" (sum of {agents} agents' processes, which run in parallel)" if (
+        note = f" (sum over {agents} agents)" if (
             agents > 1 and kind in ("perception", "inference", "executive")) else ""
         click.echo(f"  {kind:<11} {ms:7.3f} ms  {100 * ms / cycle_ms:5.1f} %{note}")
-    if agents == 1:
-        rest = cycle_ms - sum(means.values())
+    rest = cycle_ms - sum(means.values())
+    if rest > 0:
         click.echo(f"  {'bus+waits':<11} {rest:7.3f} ms  {100 * rest / cycle_ms:5.1f} %")
 
 
 @click.command()
-@click.option("--cycles", default=300, show_default=True)
-@click.option("--agents", default="1,4", show_default=True, help="Agent counts, comma-separated.")
-@click.option("--program", type=click.Path(exists=True, dir_okay=False), default=None)
-def main(cycles: int, agents: str, program: str | None) -> None:
-    """Print end-to-end lockstep cycle rates and each stage's share of the cycle."""
-    driving = ROOT / "programs" / "driving.tlp"
-    fallback = ROOT / "tests" / "e2e" / "fixtures" / "hold_speed.tlp"
-    prog = Path(program) if program else (driving if driving.exists() else fallback)
-    click.echo(f"program {prog.relative_to(ROOT) if prog.is_relative_to(ROOT) else prog}, "
-               f"{cycles} cycles, lockstep, {os.cpu_count()} CPUs")
+@click.option("--cycles", default=300, show_default=True,
+              help="Cycles per launch (delivery takes about 215).")
+@click.option("--agents", default="1,2,4,8", show_default=True,
+              help="Agent counts, comma-separated (1..32).")
+@click.option("--shared", default="0,all", show_default=True,
+              help="Layouts: --agents-per-process values (0, 1, ..., all), comma-separated.")
+@click.option("--record", is_flag=True, help="Keep the run record (record.mcap) on.")
+def main(cycles: int, agents: str, shared: str, record: bool) -> None:
+    """Print end-to-end lockstep cycle rates of N delivering cars and each stage's share."""
+    load = os.getloadavg()[0]
+    click.echo(f"fleet of cars on programs/driving.tlp bound through self, {cycles} cycles, "
+               f"lockstep, {os.cpu_count()} CPUs, load average {load:.1f}")
+    bad = []
     for n in (int(x) for x in agents.split(",")):
-        report(n, run_once(n, prog.resolve(), cycles))
-
+        base = 0.0
+        for k in dict.fromkeys(n if x == "all" else int(x) for x in shared.split(",")):
+            layout = {0: "a process per stage", 1: "a process per agent"}.get(
+                k, f"{k} agents per process")
+            with tempfile.TemporaryDirectory() as tmp:
+                result = run_once(write_fleet(Path(tmp), n, cycles), cycles, record, k)
+            base = base or result["cycles_per_s"]
+            report(n, layout, result, base)
+            bad += [f"{n} agents, {layout}: {f}" for f in failures(n, result)]
+    for line in bad:
+        click.echo(f"FAILED {line}")
+    sys.exit(1 if bad else 0)
 
 if __name__ == "__main__":
     main()

@@ -47,6 +47,7 @@ class Node:
         self._encodings: dict[str, zenoh.Encoding] = {}
         self._entities: list[object] = []  # subscribers/queryables kept alive until close
         self._token: zenoh.LivelinessToken | None = None
+        self._aliases: list[zenoh.LivelinessToken] = []
         self._presence: Presence | None = None
         self._lock = threading.Lock()
 
@@ -136,11 +137,15 @@ class Node:
         return RingInbox(sub)
 
     # -- liveliness -------------------------------------------------------------------
-    def announce(self) -> None:
-        """Declare the liveliness token teleo/<run>/proc/<process>. Call it after all
-        publishers and subscribers are declared: it means "ready"."""
+    def announce(self, also: Iterable[str] = ()) -> None:
+        """Declare the liveliness token teleo/<run>/proc/<process>, and one for each name in
+        `also` (the stages a shared process runs). Call it after all publishers and
+        subscribers are declared: it means "ready"."""
         if self._token is None:
-            self._token = self.session.liveliness().declare_token(keys.proc(self.run, self.process))
+            liveliness = self.session.liveliness()
+            self._token = liveliness.declare_token(keys.proc(self.run, self.process))
+            self._aliases = [liveliness.declare_token(keys.proc(self.run, keys.check_chunk(
+                name, "process"))) for name in also]
 
     @property
     def presence(self) -> Presence:
@@ -192,6 +197,9 @@ class Node:
 
     def close(self) -> None:
         """Undeclare the token first (so peers see us go at once), then everything else."""
+        for token in self._aliases:
+            token.undeclare()
+        self._aliases = []
         if self._token is not None:
             self._token.undeclare()
             self._token = None

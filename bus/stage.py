@@ -58,10 +58,14 @@ class Stage:
 
     outputs: keys that must have a subscriber before the stage announces itself (the
     start-up barrier); other keys returned by `step_fn` are declared on first use.
+    stages: the stage processes this Stage runs the steps of, when it runs several (a shared
+    process: agents/processes/shared.py); they are announced with the node, and `step_fn`
+    returns their ProcessStats itself.
     """
 
     def __init__(self, node: Node, process: str, inputs: Sequence[str], step_fn: StepFn,
-                 outputs: Sequence[str] = (), ready_timeout: float = 10.0) -> None:
+                 outputs: Sequence[str] = (), ready_timeout: float = 10.0,
+                 stages: Sequence[str] = ()) -> None:
         self.node = node
         self.process = keys.check_chunk(process, "process")
         self.step_fn = step_fn
@@ -73,6 +77,7 @@ class Stage:
         self._stats_key = keys.stats(node.run, self.process)
         self._cache: list[tuple[str, Message]] = []
         self._inbox: Inbox | None = None
+        self.stages = tuple(stages)
 
     @property
     def inbox(self) -> Inbox:
@@ -91,7 +96,7 @@ class Stage:
             log.warning("%s: no subscriber yet on %s after %.1f s; announcing anyway",
                         self.process, sorted(unmatched), self.ready_timeout)
         self._inbox = inbox
-        self.node.announce()
+        self.node.announce(self.stages)
 
     def run(self, stop: threading.Event, poll_s: float = 0.1) -> None:
         """Handle cycles until `stop` is set (checked every `poll_s` [s] when idle)."""
@@ -128,6 +133,9 @@ class Stage:
             self._cache = outs
             self.cycles_done += 1
         self.joiner.done(joined.cycle)
+        if self.stages:
+            self.node.publish_many(outs)
+            return
         # stats first, so the clock has every stage's figures when the actions arrive;
         # encoded together and put back to back (see Node.publish_many)
         stats = ProcessStats(self.node.envelope(joined.cycle), self.process, compute_ms,

@@ -84,13 +84,18 @@ def _catch_signals() -> None:
 @click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
               help="Plot the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
+@click.option("--agents-per-process", type=click.IntRange(min=0), default=0, metavar="K",
+              help="Run K agents' perception, inference and executive in one process "
+                   "(0: a process per stage). Not with --secure, --only, --join or --listen "
+                   "beyond this host.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
            summary_file: str | None, render_file: str | None, secure: bool,
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
            run_id: str | None, secrets_dir: str | None, learned: str | None,
-           plot_file: str | None, no_record: bool, as_json: bool) -> None:
+           plot_file: str | None, no_record: bool, agents_per_process: int,
+           as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run."""
     _catch_signals()
     try:
@@ -101,7 +106,11 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
-        plan = replace(plan, learned=learned, record=not no_record or bool(plot_file))
+        plan = replace(plan, learned=learned, record=not no_record or bool(plot_file),
+                       agents_per_process=agents_per_process)
+        if agents_per_process and (plan.client or only):
+            raise PlanError("--agents-per-process: only for a whole open run on one host "
+                            "(not with --secure, --only, --join or --listen beyond it)")
     except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,

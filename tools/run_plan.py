@@ -15,6 +15,7 @@ own user and password over TLS and applies the run's access-control list (bus/se
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,6 +54,7 @@ class Plan:
     ready_timeout: float = 60.0     # [s] the world waits for every stage
     learned: str | None = None      # skills learned in an earlier run, for every executive
     record: bool = True             # write the run record (record.mcap; the world's host only)
+    agents_per_process: int = 0     # > 0: that many agents' stages share a process (shared.py)
 
     @property
     def runs_world(self) -> bool:
@@ -103,7 +105,13 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
     sc = plan.scenario
     path = str(sc.path.resolve())
     specs = []
+    shared = _shared_specs(plan) if plan.agents_per_process > 0 else {}
     for name in plan.local:
+        agent, _, stage = name.rpartition(".")
+        if agent in shared:  # its stages run in its group's process, listed at the first
+            if shared[agent] is not None and stage == "perception":
+                specs.append(shared[agent])
+            continue
         common = ["--run", plan.run, *bus_config(plan, name).to_args()]
         if name == "goals":
             specs.append(ProcSpec(name, module_argv(
@@ -123,6 +131,31 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
             specs.append(ProcSpec(name, module_argv(_MODULES[stage], *common, "--agent", agent,
                                                     *extra), spec.max_restarts(stage)))
     return specs
+
+
+def _shared_specs(plan: Plan) -> dict[str, ProcSpec | None]:
+    """Agent id -> the process its stages share with the next `plan.agents_per_process - 1`
+    agents' (agents/processes/shared.py) for the first agent of each group, None for the
+    others."""
+    from tools import summary
+
+    agents = [a for a in plan.scenario.agents if f"{a.id}.perception" in plan.local]
+    out: dict[str, ProcSpec | None] = {}
+    size = plan.agents_per_process
+    for i in range(0, len(agents), size):
+        group, name = agents[i:i + size], f"agents{i // size + 1}"
+        specs = [{"agent": a.id, "program": str(a.program.resolve()),
+                  "state": str(summary.state_file(plan.run_dir, a.id)),
+                  "learned_out": str(summary.learned_file(plan.run_dir, a.id)),
+                  "learned": plan.learned, "solver": a.solver, "mechanism": a.mechanism}
+                 for a in group]
+        argv = module_argv("agents.processes.shared", "--run", plan.run,
+                           *bus_config(plan, name).to_args(), "--name", name,
+                           "--agents", json.dumps(specs))
+        restarts = min(a.max_restarts(s) for a in group for s in AGENT_STAGES)
+        out.update({a.id: None for a in group})
+        out[group[0].id] = ProcSpec(name, argv, restarts)
+    return out
 
 
 def _executive_args(plan: Plan, spec: AgentSpec) -> list[str]:

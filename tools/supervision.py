@@ -82,10 +82,11 @@ def supervise(plan: Plan) -> Outcome:
             # subscribed before any process starts, so the record holds cycle 0
             recorder = start_run_recorder(bus_config(plan, "operator"), plan.run,
                                           plan.run_dir, plan.scenario)
-        for spec in process_specs(plan):
+        specs = process_specs(plan)
+        for spec in specs:
             sup.start(spec)
         where = "joined router" if plan.joined else "router"
-        click.echo(f"run {plan.run}: {len(plan.local)} processes, {where} {plan.endpoint}"
+        click.echo(f"run {plan.run}: {len(specs)} processes, {where} {plan.endpoint}"
                    f"{', secured' if plan.secrets else ''}, logs in {plan.run_dir / 'logs'}")
         info = _loop(plan, sup, journal, outcome)
     except KeyboardInterrupt:

@@ -11,16 +11,17 @@ from .executive import Executive, ImpasseHandler
 from .explanation import Decision
 from .extend import extend_program
 from .goals import GoalEntry, enumerable, parse_goal
-from .inference import Inference
+from .inference import Inference, InferStats
+from .intake import PerceptCache, frame_of
 from .outcomes import as_outcomes
 from .planning.rogue import RoguePlanner
 from .program import Program
-from .reuse import InferStats
 from .scs.state import model_of
 from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, FactStore, PerceptIndex, store_of
 from .terms import Percept
+from .tracker import check_frame
 
 
 @dataclass(frozen=True, slots=True)
@@ -45,9 +46,10 @@ own facts, added to the beliefs the walk judges goals by) and ``finish(decision,
 
 
 class Engine:
-    """Runs a Program cycle by cycle. Holds compiled program data and the inference memo
-    (``Inference.memo``: last cycle's per-stratum inputs and facts), which only saves work:
-    every result is exactly what a fresh Engine would give (docs/language.md, Performance).
+    """Runs a Program cycle by cycle. Holds compiled program data and what inference carries
+    from cycle to cycle (``Inference``: last cycle's percept relations, facts and derivation
+    counts), which only saves work: every result is exactly what a fresh Engine would give
+    (docs/language.md, Performance).
     ``solver``: what answers an impasse, a name in SOLVERS (default: the means-ends problem
     solver), an ImpasseHandler, or None (an impasse stays an impasse)."""
 
@@ -58,6 +60,8 @@ class Engine:
         self.solver = SOLVERS[solver]() if isinstance(solver, str) else solver
         self.inference = Inference(program)
         self.executive = Executive(program, self.solver)
+        self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
+        self._percepts = PerceptCache(self._checked)  # and the Percepts made from them
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------
@@ -112,29 +116,46 @@ class Engine:
     # -- cycle ---------------------------------------------------------------------------
     @property
     def last_infer_stats(self) -> InferStats:
-        """Strata evaluated vs reused by the last ``infer``/``cycle`` (for tests and bench)."""
+        """What the last ``infer``/``cycle`` did: strata evaluated and reused, percept tuples
+        changed, derivations computed, concepts changed (for tests and bench)."""
         return self.inference.last_stats
 
     def infer(self, percepts: Iterable, model: Iterable = ()) -> BeliefSet:
-        """Every concept instance that holds for this cycle's percepts and the agent's world
-        model (``model``: facts as neutral lists or tuples, asserted by SCS bodies; in the
-        processes they come back with the world state, docs/bus.md "Agent memory")."""
-        return self.inference.beliefs(_index(percepts), model_of(model))
+        """Every concept instance that holds for this cycle's percepts (neutral lists as they
+        come from the bus, Percepts, or a PerceptIndex; LangError names a bad one) and the
+        agent's world model (``model``: facts as neutral lists or tuples, asserted by SCS
+        bodies; in the processes they come back with the world state, docs/bus.md "Agent
+        memory")."""
+        beliefs = self.inference.beliefs(percepts, model_of(model))
+        self.inference.frame = None  # hold no percept list past the call (fewer GC passes)
+        return beliefs
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
         """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
         on the previous cycle's actions (Outcome values or neutral dicts)."""
-        return self._decide(state, _index(percepts), store_of(beliefs), outcomes)
+        return self._decide(state, self._index(percepts), store_of(beliefs), outcomes)
 
     def cycle(self, state: EngineState, percepts: Iterable,
               outcomes: Iterable = ()) -> CycleResult:
         """infer + decide on the same percepts; the state's world model (facts asserted by
         SCS bodies in earlier cycles) joins inference as base facts."""
-        index = _index(percepts)
-        beliefs = self.inference.beliefs(index, state.scs.model)
+        beliefs = self.inference.beliefs(percepts, state.scs.model)
+        index, self.inference.frame = self.inference.frame.index, None
         decision, new_state = self._decide(state, index, beliefs.store, outcomes)
         return CycleResult(beliefs, decision, new_state)
+
+    def _index(self, percepts: Iterable) -> PerceptIndex:
+        """The executive's index of ``percepts``, every value checked."""
+        if isinstance(percepts, PerceptIndex):
+            return percepts
+        frame = frame_of(percepts)
+        if not frame.checked:
+            check_frame(frame, self._checked)
+            frame.cache = self._percepts  # Percepts of unchanged rows are last cycle's
+        else:
+            self._checked.clear()
+        return frame.index
 
     def _decide(self, state: EngineState, index: PerceptIndex, store: FactStore,
                 outcomes: Iterable) -> tuple[Decision, EngineState]:
@@ -146,8 +167,3 @@ class Engine:
         finish = getattr(self.solver, "finish", None)
         return (decision, new_state) if finish is None else finish(decision, new_state)
 
-
-def _index(percepts: Iterable) -> PerceptIndex:
-    if isinstance(percepts, PerceptIndex):
-        return percepts
-    return PerceptIndex(as_percepts(percepts))

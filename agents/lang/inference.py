@@ -1,160 +1,235 @@
-"""Bottom-up inference to fixpoint over stratified concepts (seed 000, "Inference and Execution
-Mechanisms"): strata in dependency order, one pass for a non-recursive stratum, semi-naive
-iteration for a recursive one. Results depend only on the set of percepts, never their order.
+"""Bottom-up inference over stratified concepts (seed 000, "Inference and Execution
+Mechanisms"), kept up to date cycle by cycle: work follows what changed.
 
-Work is reused across cycles per stratum (see ``reuse.py``): a stratum whose inputs (percepts of
-the types its clauses read, facts of the lower concepts it reads) equal last cycle's keeps last
-cycle's facts instead of being evaluated again; the result is the same as from scratch."""
+The first run (and a run after ``forget``, or one where most percept tuples changed) evaluates
+every stratum from scratch: one pass for a non-recursive stratum, counting derivations,
+semi-naive iteration for a recursive one. Later
+runs read which percept relations changed (``tracker.py``: per object and attribute, strictly)
+and bring each stratum that reads a changed relation up to date (``maintain.py``); a stratum
+that reads nothing changed costs nothing. The facts are always exactly those a run from
+scratch gives (tests/lang/test_incremental.py). Results never depend on percept order.
+
+Values equal to ``==`` but of another type or zero sign (``3``, ``3.0``) need care, because a
+fact keeps the variant it was derived with: when last cycle's and this cycle's values clash the
+changes are applied in two passes (deletions, then insertions), and after a cycle that held
+clashing values itself (whose results depend on evaluation order even from scratch) the facts
+are computed from scratch again."""
 
 from __future__ import annotations
 
+import gc
+from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from .codegen import compile_clause
+from .base import BASE, BaseFacts, base_rule
+from .codegen import Estimator, variants
+from .columns import EMPTY, summarize_values
+from .intake import Frame, PerceptCache, frame_of
+from .maintain import Maintainer
 from .program import Program
-from .reuse import EMPTY_MEMO, InferStats, Memo, lower_facts, unchanged_types
-from .store import BeliefSet, FactStore, PerceptIndex
-from .terms import Percept
+from .rules import Rule
+from .store import BeliefSet, Delta, FactStore
+from .terms import Belief, Var
+from .tracker import PerceptTracker
+
+_new_tuple = tuple.__new__
+_REPLAN_EVERY = 8  # runs between looks at whether join plans were made for other sizes
+_SCRATCH_ABOVE = 256  # percept tuples above which a change of most of them starts from scratch
+
+
+@dataclass(frozen=True, slots=True)
+class InferStats:
+    """What one run did. ``mode``: "scratch" (every stratum evaluated), "changes" (strata
+    reading a changed relation brought up to date), "two-pass" (the same, deletions first) or
+    "unchanged" (no percept relation changed: nothing evaluated). ``evaluated`` of ``strata``
+    strata did any work; ``percept_changes`` tuples entered or left percept relations;
+    ``derivations`` head derivations were computed; ``changed`` names the concepts whose
+    facts changed."""
+
+    strata: int
+    evaluated: int
+    mode: str = "scratch"
+    percept_changes: int = 0
+    derivations: int = 0
+    changed: tuple[str, ...] = ()
+
+    @property
+    def reused(self) -> int:
+        """Strata that did no work (their facts carried over unchanged)."""
+        return self.strata - self.evaluated
 
 
 @dataclass(frozen=True, slots=True)
 class Stratum:
-    """One SCC of concepts, compiled: its rules and what it reads from outside itself."""
+    """One SCC of concepts: its rules (with their compiled variants) and what it reads."""
 
     preds: tuple[str, ...]
     recursive: bool
-    rules: tuple  # (head pred, full rule, delta rules)
-    types: tuple[str, ...]  # percept types its clauses match
-    deps: tuple[str, ...]  # concepts of lower strata its clauses read (positive or negated)
+    rules: tuple  # ((Rule, variants), ...)
+    reads: frozenset  # relations read from below (percept relations and lower concepts)
 
 
-def compile_stratum(program: Program, preds: tuple[str, ...], recursive: bool) -> Stratum:
-    """Compile the clauses of one SCC (delta variants for semi-naive iteration if recursive)."""
-    clauses = [c for p in preds for c in program.concepts[p]]
-    members = set(preds)
-    rules = []
-    for c in clauses:
-        deltas = []
-        if recursive:
-            deltas = [compile_clause(c, i) for i, r in enumerate(c.relations)
-                      if not r.negated and r.pred in members]
-        rules.append((c.head.pred, compile_clause(c), deltas))
-    types = sorted({pp.type for c in clauses for pp in c.percepts})
-    deps = sorted({r.pred for c in clauses for r in c.relations} - members)
-    return Stratum(tuple(preds), recursive, tuple(rules), tuple(types), tuple(deps))
+def build_strata(program: Program) -> list[Stratum]:
+    """The program's strata, each concept with its clauses and its base rule."""
+    out = []
+    for preds, recursive in program.strata:
+        rules = [*(r for p in preds for r in map(Rule.of, program.concepts[p])),
+                 *(base_rule(p, program.arity[p]) for p in preds)]
+        rules = tuple((r, variants(r)) for r in rules)
+        reads = frozenset(rel for r, _ in rules for rel in r.reads()) - set(preds)
+        out.append(Stratum(tuple(preds), recursive, rules, reads))
+    return out
 
 
-def _reusable(stratum: Stratum, memo: Memo, i: int, same: dict[str, bool],
-              facts: tuple) -> bool:
-    """True when stratum ``i`` reads exactly last cycle's percepts and lower fact sets."""
-    if memo.store is None or not all(same[t] for t in stratum.types):
-        return False
-    return all(a is b for a, b in zip(facts, memo.deps[i], strict=True))
+def _constants(strata: list[Stratum]) -> list:
+    return [a for s in strata for r, _ in s.rules for a in r.head if not isinstance(a, Var)]
 
 
 class Inference:
-    """Compiled inference for one program; ``run`` is a pure function of the percepts.
-
-    It holds one mutable attribute besides compiled code: ``memo``, last cycle's stratum inputs
-    and facts, replaced (never changed in place) by each run. The memo never changes a result,
-    only how much is recomputed: a stratum is reused only when its inputs are exactly last
-    cycle's, and then evaluating it would give exactly last cycle's facts. ``last_stats`` says
-    how many strata the last run evaluated (for tests and benchmarks). Runs from several
-    threads stay correct (each reads the memo once and replaces it whole; a memo is consistent
-    in itself), though ``last_stats`` is then the last finisher's."""
+    """Compiled inference for one program, holding last cycle's percept relations, facts and
+    derivation counts; ``run`` is a pure function of the percepts all the same (the state
+    only saves work). ``last_stats`` tells what the last run did. Not for concurrent use."""
 
     def __init__(self, program: Program):
         self.program = program
-        self.plan = [compile_stratum(program, preds, rec) for preds, rec in program.strata]
-        self.types = sorted({t for s in self.plan for t in s.types})
-        self.memo: Memo = EMPTY_MEMO
+        self.plan = build_strata(program)
         self.last_stats = InferStats(len(self.plan), 0)
-        self._base: tuple = ()                # the base facts of the last run
-        self._base_sets: dict[str, set] = {}  # pred -> its base facts (same objects while equal)
+        self.runs = 0
+        self.forget()
 
     def forget(self) -> None:
-        """Drop the memo, so that the next run evaluates every stratum (from-scratch timings)."""
-        self.memo = EMPTY_MEMO
+        """Drop what was carried over, so that the next run evaluates every stratum."""
+        rels = {e.rel for s in self.plan for r, _ in s.rules for e in r.elems
+                if e.percept and e.rel[0] != BASE}
+        consts = _constants(self.plan)
+        self.tracker = PerceptTracker(rels, summarize_values(consts) if consts else EMPTY)
+        self.percepts = PerceptCache(self.tracker.cols)
+        self.base = BaseFacts(self.program.concepts)
+        self.edb = FactStore()
+        self.idb = FactStore()
+        self.counts: dict[str, dict] = {}
+        self.fresh = True
+        self.frame: Frame | None = None
+        self._beliefs: set = set()
+        self._result: BeliefSet | None = None
 
-    def run(self, percepts: Iterable[Percept], base: tuple[tuple, ...] = ()) -> FactStore:
-        """Every concept instance that holds for ``percepts`` and the ``base`` facts
-        ((pred, arg, ...) tuples: the agent's world model, asserted by SCS bodies, seed 002),
-        as a FactStore (read-only: its fact sets may be shared with the previous and next
-        cycles' stores). Base facts are facts before the first stratum; a concept that has
-        clauses too gets its inferred instances joined with them."""
-        index = percepts if isinstance(percepts, PerceptIndex) else PerceptIndex(percepts)
-        if base != self._base:
-            self._set_base(base)
-        memo = self.memo
-        same = unchanged_types(index, self.types, memo)
-        store = FactStore()
-        for pred, facts in self._base_sets.items():
-            store.facts[pred] = set(facts) if pred in self.program.concepts else facts
-        deps = []
-        evaluated = 0
-        for i, stratum in enumerate(self.plan):
-            facts = lower_facts(store, stratum.deps)
-            if _reusable(stratum, memo, i, same, facts):
-                store.adopt(memo.store, stratum.preds)
-            else:
-                self._evaluate(stratum, index, store)
-                evaluated += 1
-            deps.append(facts)
-        if not evaluated and memo.store is not None:
-            store = memo.store  # every stratum reused: same facts, keep the built indexes
-        sigs = {t: index.signature(t) for t in self.types}
-        self.memo = Memo(store, sigs, tuple(deps), memo.beliefs if store is memo.store else None)
-        self.last_stats = InferStats(len(self.plan), evaluated)
-        return store
+    def run(self, percepts: Iterable, base: tuple[tuple, ...] = ()) -> FactStore:
+        """Every concept instance that holds for ``percepts`` (neutral lists, Percepts, a
+        PerceptIndex or a Frame) and the ``base`` facts ((pred, arg, ...) tuples: the agent's
+        world model, asserted by SCS bodies, seed 002; see ``base.py``), as the live FactStore
+        (valid until the next run).
 
-    def _set_base(self, base: tuple[tuple, ...]) -> None:
-        """New base facts: every stratum may read them, so nothing of the memo is reused."""
-        sets: dict[str, set] = {}
-        for row in base:
-            sets.setdefault(row[0], set()).add(tuple(row[1:]))
-        self._base, self._base_sets, self.memo = tuple(base), sets, EMPTY_MEMO
+        The garbage collector is paused meanwhile (and left as it was): a run allocates in
+        bursts (a column per attribute, a tuple per changed object), and each burst would start
+        a collection walking every young object, this cycle's percept lists among them; a run
+        makes no reference cycles, so nothing waits for the collector."""
+        if not gc.isenabled():
+            return self._run(percepts, base)
+        gc.disable()
+        try:
+            return self._run(percepts, base)
+        finally:
+            gc.enable()
 
-    def _evaluate(self, stratum: Stratum, index: PerceptIndex, store: FactStore) -> None:
-        """Add the facts of one stratum to ``store``."""
-        empty = FactStore()
-        new: dict[str, set] = {}
-        for pred, full, _ in stratum.rules:
-            out = new.setdefault(pred, set())
-            full(index, store, empty, out.add)
-        for pred, ts in new.items():
-            if ts:
-                store.add(pred, ts)
-        if stratum.recursive:
-            self._fixpoint(index, store, new, stratum.rules)
+    def _run(self, percepts: Iterable, base: tuple[tuple, ...]) -> FactStore:
+        frame = self.frame = frame_of(percepts)
+        summary = self.base.summary_of(base)
+        change = self.tracker.update(frame, self.edb, summary)
+        frame.cache = self.percepts
+        deltas = change.deltas
+        self.base.update(base, self.edb, self.idb, deltas)
+        moved = sum(len(d.dels) + len(d.ins) for d in deltas.values())
+        if self.fresh or (change.was_mixed and not change.mixed) or self._most(moved):
+            self._apply(deltas)
+            self._scratch()
+            return self.idb
+        if not deltas:
+            self.last_stats = InferStats(len(self.plan), 0, "unchanged")
+            return self.idb
+        self.runs += 1
+        est = Estimator(self.edb, self.idb, check=self.runs % _REPLAN_EVERY == 0)
+        m = Maintainer(self.edb, self.idb, self.counts, est)
+        if change.clash:
+            passes = [{r: Delta(d.dels, []) for r, d in deltas.items() if d.dels},
+                      {r: Delta([], d.ins) for r, d in deltas.items() if d.ins}]
+            mode = "two-pass"
+        else:
+            passes, mode = [deltas], "changes"
+        evaluated, changed = set(), []
+        for changes in passes:
+            self._apply(changes)
+            changed += [(r, d) for r, d in changes.items() if r.__class__ is str]
+            for k, stratum in enumerate(self.plan):
+                if stratum.reads.isdisjoint(changes):
+                    continue
+                evaluated.add(k)
+                got = m.dred(stratum, changes) if stratum.recursive else \
+                    m.counting(stratum, changes)
+                for pred, d in got.items():
+                    if d:
+                        changes[pred] = d
+                        changed.append((pred, d))
+        if changed:
+            self.idb.version += 1
+            for pred, d in changed:
+                self._beliefs.difference_update([_new_tuple(Belief, (pred, t)) for t in d.dels])
+                self._beliefs.update([_new_tuple(Belief, (pred, t)) for t in d.ins])
+            self._result = None
+        names = tuple(sorted({p for p, _ in changed}))
+        self.last_stats = InferStats(len(self.plan), len(evaluated), mode, moved, m.derivations,
+                                     names)
+        return self.idb
 
-    @staticmethod
-    def _fixpoint(index: PerceptIndex, store: FactStore, delta: dict[str, set], rules) -> None:
-        """Semi-naive iteration: each round joins at least one literal against the last delta."""
-        while any(delta.values()):
-            dstore = FactStore({p: ts for p, ts in delta.items() if ts})
-            found: dict[str, set] = {}
-            for pred, _, deltas in rules:
-                out = found.setdefault(pred, set())
-                for rule in deltas:
-                    rule(index, store, dstore, out.add)
-            delta = {}
-            for pred, ts in found.items():
-                fresh = ts - store.get(pred)
-                if fresh:
-                    delta[pred] = fresh
-                    store.add(pred, fresh)
+    def _most(self, moved: int) -> bool:
+        """True when more than half the percept tuples changed (from scratch is cheaper)."""
+        held = sum(map(len, self.edb.facts.values()))
+        return held > _SCRATCH_ABOVE and moved > held
 
-    def beliefs(self, percepts: Iterable[Percept], base: tuple[tuple, ...] = ()) -> BeliefSet:
-        """``run`` as a frozenset of Belief (carrying its FactStore); last cycle's BeliefSet
-        itself when every stratum was reused."""
-        store = self.run(percepts, base)
-        memo = self.memo
-        if memo.beliefs is not None and memo.beliefs.store is store:
-            return memo.beliefs
-        beliefs = BeliefSet(store)
-        if memo.store is store and not self.last_stats.evaluated:
-            # kept only when nothing changed: holding every cycle's beliefs for one more cycle
-            # costs garbage-collection time when the percepts keep changing
-            self.memo = memo.with_beliefs(beliefs)
-        return beliefs
+    def _apply(self, deltas: dict) -> None:
+        """Apply the changes of percept and base relations (asserted-only predicates: facts)."""
+        for rel, d in deltas.items():
+            store = self.idb if rel.__class__ is str else self.edb
+            store.delete(rel, d.dels)
+            store.insert(rel, d.ins)
+
+    def _scratch(self) -> None:
+        """Evaluate every stratum from the percept relations alone."""
+        idb = self.idb = FactStore()
+        for pred, facts in self.base.plain().items():
+            idb.insert(pred, list(facts))
+        self.counts = {}
+        est = Estimator(self.edb, idb)
+        stores = (idb, self.edb)
+        m = Maintainer(self.edb, idb, self.counts, est)
+        derivations = 0
+        for stratum in self.plan:
+            found: dict = {p: [] for p in stratum.preds}
+            for rule, vs in stratum.rules:
+                vs[None].get(est)(tuple(stores[e.percept] for e in rule.elems), None,
+                                  found[rule.pred].append)
+            derivations += sum(map(len, found.values()))
+            if not stratum.recursive:
+                pred = stratum.preds[0]
+                c = self.counts[pred] = Counter(found[pred])
+                idb.insert(pred, list(c))
+                continue
+            delta = {p: m._fresh(p, found[p]) for p in stratum.preds}
+            while any(delta.values()):
+                found = m._from_delta(stratum, delta, stores)
+                delta = {p: m._fresh(p, found[p]) for p in stratum.preds}
+        self.fresh = False
+        self._beliefs = {_new_tuple(Belief, (p, t)) for p, ts in idb.facts.items() for t in ts}
+        self._result = None
+        self.last_stats = InferStats(len(self.plan), len(self.plan), "scratch",
+                                     sum(map(len, self.edb.facts.values())),
+                                     derivations + m.derivations,
+                                     tuple(sorted(p for p, ts in idb.facts.items() if ts)))
+
+    def beliefs(self, percepts: Iterable, base: tuple[tuple, ...] = ()) -> BeliefSet:
+        """``run`` as a frozenset of Belief carrying its FactStore; the same object as last
+        cycle's when no fact changed."""
+        self.run(percepts, base)
+        if self._result is None:
+            self._result = BeliefSet(self._beliefs, self.idb)
+        return self._result

@@ -1,159 +1,257 @@
-"""Indexed stores of percepts (by type, id, attribute value) and of facts (by bound argument
-positions), shared by inference and the executive. Indexes are built lazily and cached."""
+"""Relation stores shared by inference and the executive: named sets of argument tuples with
+indexes on bound positions that are built on first use and then kept up to date as tuples are
+inserted and deleted (never rebuilt). ``OldView`` reads a store as it was before this pass's
+changes, which incremental inference needs (docs/language.md, Performance)."""
 
 from __future__ import annotations
 
-import marshal
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from itertools import chain
+from operator import itemgetter
 
-from .terms import Belief, Percept
+from .intake import MISSING, PerceptIndex
+from .terms import Belief
 
-MISSING = object()
+__all__ = ["MISSING", "BeliefSet", "Delta", "FactStore", "OldView", "PerceptIndex", "store_of"]
 
-
-class TypeSig:
-    """The percepts of one type in one cycle, comparable with another cycle's (``same``).
-
-    Two cycles' percepts are the same when they are equal as sets (order and duplicates do not
-    matter to inference) *and* each value has the same type and bits: 3 == 3.0 and 0.0 == -0.0
-    in Python, but a belief taking the value prints differently. The cheap set comparison comes
-    first (it settles most changed cycles); only equal sets are compared strictly, encoding each
-    percept with ``marshal`` format 2 (exact str, int, float, bool only; floats in binary; no
-    shared references, so the encoding does not depend on how strings were built)."""
-
-    __slots__ = ("tuples", "lax", "_strict")
-
-    def __init__(self, percepts: Iterable[Percept]):
-        self.tuples = [(p.type, p.id, p.attrs) for p in percepts]
-        try:
-            self.lax: frozenset | None = frozenset(self.tuples)
-        except TypeError:  # an unhashable value: never the same
-            self.lax = None
-        self._strict: frozenset | None | bool = False  # False: not computed yet
-
-    def strict(self) -> frozenset | None:
-        """The exact encodings of the percepts (cached), or None if one cannot be encoded."""
-        if self._strict is False:
-            try:
-                self._strict = frozenset([marshal.dumps(t, 2) for t in self.tuples])
-            except ValueError:
-                self._strict = None
-        return self._strict  # type: ignore[return-value]
-
-    def same(self, old: TypeSig) -> bool:
-        """True when these percepts are exactly ``old``'s, up to order and duplicates."""
-        if self is old:
-            return True
-        if self.lax is None or self.lax != old.lax:
-            return False
-        mine = self.strict()
-        return mine is not None and mine == old.strict()
+_EMPTY: frozenset = frozenset()
+_new_tuple = tuple.__new__
 
 
-class PerceptIndex:
-    """Percepts of one cycle indexed by type, (type, id) and, on demand, (type, attr) -> value."""
-
-    __slots__ = ("by_type", "by_id", "_attr", "_sig")
-
-    def __init__(self, percepts: Iterable[Percept]):
-        self.by_type: dict[str, list[Percept]] = {}
-        self.by_id: dict[tuple, list[Percept]] = {}
-        self._attr: dict[tuple, dict] = {}
-        self._sig: dict[str, TypeSig] = {}
-        for p in percepts:
-            self.by_type.setdefault(p.type, []).append(p)
-            self.by_id.setdefault((p.type, p.id), []).append(p)
-
-    def attr_index(self, type_: str, attr: str) -> dict:
-        """value -> percepts of ``type_`` whose ``attr`` has that value."""
-        key = (type_, attr)
-        ix = self._attr.get(key)
-        if ix is None:
-            ix = {}
-            for p in self.by_type.get(type_, ()):
-                v = p._map.get(attr, MISSING)
-                if v is not MISSING:
-                    ix.setdefault(v, []).append(p)
-            self._attr[key] = ix
-        return ix
-
-    def signature(self, type_: str) -> TypeSig:
-        """The percepts of ``type_`` in a canonical, order-independent form (cached)."""
-        sig = self._sig.get(type_)
-        if sig is None:
-            sig = self._sig[type_] = TypeSig(self.by_type.get(type_, ()))
-        return sig
+def key_getter(positions: tuple[int, ...]):
+    """Function giving a tuple's index key: the tuple of its values at ``positions``."""
+    if len(positions) == 1:
+        p = positions[0]
+        return lambda t: (t[p],)
+    return itemgetter(*positions)
 
 
 class FactStore:
-    """Facts as pred -> set of argument tuples, with cached indexes on bound positions."""
+    """Relations as name -> set of argument tuples, with maintained indexes on bound positions.
 
-    __slots__ = ("facts", "_ix")
+    Concept facts are keyed by predicate (str); the percept relations that inference builds are
+    keyed by (type, attrs). ``version`` counts the runs that changed the store."""
 
-    def __init__(self, facts: dict[str, set] | None = None):
-        self.facts: dict[str, set] = facts if facts is not None else {}
+    __slots__ = ("facts", "_ix", "_by_rel", "version")
+
+    def __init__(self, facts: dict | None = None):
+        self.facts: dict = facts if facts is not None else {}
         self._ix: dict[tuple, dict] = {}
+        self._by_rel: dict[object, list] = {}  # rel -> [(key function, index), ...]
+        self.version = 0
 
-    def get(self, pred: str) -> set:
-        """All argument tuples of ``pred`` (empty set if none)."""
-        return self.facts.get(pred) or _EMPTY
+    def get(self, rel: object) -> set | frozenset:
+        """All argument tuples of ``rel`` (an empty set if none)."""
+        return self.facts.get(rel) or _EMPTY
 
-    def add(self, pred: str, tuples: Iterable[tuple]) -> None:
-        """Add facts of ``pred`` and drop its cached indexes."""
-        self.facts.setdefault(pred, set()).update(tuples)
-        for key in [k for k in self._ix if k[0] == pred]:
-            del self._ix[key]
-
-    def index(self, pred: str, positions: tuple[int, ...]) -> dict:
-        """key tuple (values at ``positions``) -> list of argument tuples."""
-        key = (pred, positions)
-        ix = self._ix.get(key)
+    def index(self, rel: object, positions: tuple[int, ...]) -> dict:
+        """key tuple (values at ``positions``) -> set of argument tuples; kept up to date."""
+        ix = self._ix.get((rel, positions))
         if ix is None:
-            ix = {}
-            for t in self.facts.get(pred, ()):
-                ix.setdefault(tuple(t[i] for i in positions), []).append(t)
-            self._ix[key] = ix
+            ix = self._ix[(rel, positions)] = {}
+            key = key_getter(positions)
+            _fill(ix, key, self.facts.get(rel, ()))
+            self._by_rel.setdefault(rel, []).append((key, ix))
         return ix
 
-    def adopt(self, old: FactStore, preds: Iterable[str]) -> None:
-        """Take ``old``'s fact sets and cached indexes for ``preds`` (no copy): used when a
-        stratum's result is reused from the previous cycle. Sound because inference never
-        changes a pred's set after its stratum is done, so both stores read the same facts."""
-        wanted = {p for p in preds if p in old.facts}
-        for p in wanted:
-            self.facts[p] = old.facts[p]
-        for key, ix in old._ix.items():
-            if key[0] in wanted:
-                self._ix[key] = ix
+    def has_index(self, rel: object, positions: tuple[int, ...]) -> bool:
+        return (rel, positions) in self._ix
+
+    def insert(self, rel: object, tuples: list) -> None:
+        """Add ``tuples``, none of them present yet, keeping the indexes up to date."""
+        if not tuples:
+            return
+        s = self.facts.get(rel)
+        if s is None:
+            s = self.facts[rel] = set()
+        s.update(tuples)
+        for key, ix in self._by_rel.get(rel, ()):
+            _fill(ix, key, tuples)
+
+    def delete(self, rel: object, tuples: list) -> None:
+        """Remove ``tuples``, all of them present, keeping the indexes up to date."""
+        if not tuples:
+            return
+        s = self.facts[rel]
+        s.difference_update(tuples)
+        for key, ix in self._by_rel.get(rel, ()):
+            for t in tuples:
+                k = key(t)
+                bucket = ix[k]
+                bucket.discard(t)
+                if not bucket:
+                    del ix[k]
+
+    def replace(self, rel: object, tuples: Iterable[tuple]) -> None:
+        """Make ``rel`` hold exactly ``tuples`` (its indexes are dropped and built again on use)."""
+        self.facts[rel] = set(tuples)
+        for _key, ix in self._by_rel.pop(rel, ()):
+            ix.clear()
+        for k in [k for k in self._ix if k[0] == rel]:
+            del self._ix[k]
+
+    def add(self, rel: object, tuples: Iterable[tuple]) -> None:
+        """Add facts of ``rel`` (those already present are skipped)."""
+        have = self.get(rel)
+        self.insert(rel, [t for t in set(tuples) if t not in have])
 
     def beliefs(self) -> frozenset[Belief]:
-        return frozenset(Belief(p, t) for p, ts in self.facts.items() for t in ts)
+        return frozenset(_new_tuple(Belief, (p, t)) for p, ts in self.facts.items() for t in ts)
 
 
-_EMPTY: set = set()
+def _fill(ix: dict, key, tuples) -> None:
+    """Add ``tuples`` to index ``ix`` (key -> set of tuples)."""
+    for t in tuples:
+        k = key(t)
+        bucket = ix.get(k)
+        if bucket is None:
+            ix[k] = {t}
+        else:
+            bucket.add(t)
+
+
+class Delta:
+    """The set-level change of one relation in one pass: tuples deleted and inserted."""
+
+    __slots__ = ("dels", "ins", "_dset", "_iset", "_dix")
+
+    def __init__(self, dels: list, ins: list):
+        self.dels = dels
+        self.ins = ins
+        self._dset: set | None = None
+        self._iset: set | None = None
+        self._dix: dict = {}
+
+    def __bool__(self) -> bool:
+        return bool(self.dels or self.ins)
+
+    def __repr__(self) -> str:
+        return f"Delta(dels={self.dels!r}, ins={self.ins!r})"
+
+    @property
+    def dset(self) -> set:
+        if self._dset is None:
+            self._dset = set(self.dels)
+        return self._dset
+
+    @property
+    def iset(self) -> set:
+        if self._iset is None:
+            self._iset = set(self.ins)
+        return self._iset
+
+    def dels_index(self, positions: tuple[int, ...]) -> dict:
+        ix = self._dix.get(positions)
+        if ix is None:
+            ix = self._dix[positions] = {}
+            key = key_getter(positions)
+            for t in self.dels:
+                ix.setdefault(key(t), []).append(t)
+        return ix
+
+
+class _OldSet:
+    """A relation as it was before a Delta: current tuples minus inserted plus deleted."""
+
+    __slots__ = ("cur", "d")
+
+    def __init__(self, cur: set, d: Delta):
+        self.cur = cur
+        self.d = d
+
+    def __contains__(self, t: tuple) -> bool:
+        return (t in self.cur and t not in self.d.iset) or t in self.d.dset
+
+    def __iter__(self) -> Iterator[tuple]:
+        iset = self.d.iset
+        return chain([t for t in self.cur if t not in iset], self.d.dels)
+
+    def __len__(self) -> int:
+        return len(self.cur) - len(self.d.ins) + len(self.d.dels)
+
+    def __bool__(self) -> bool:
+        return len(self) > 0
+
+
+class _OldIndex:
+    """An index as it was before a Delta (``get`` only)."""
+
+    __slots__ = ("cur", "d", "positions")
+
+    def __init__(self, cur: dict, d: Delta, positions: tuple[int, ...]):
+        self.cur = cur
+        self.d = d
+        self.positions = positions
+
+    def get(self, key: tuple, default: object = ()) -> list:
+        bucket = self.cur.get(key)
+        iset = self.d.iset
+        out = [t for t in bucket if t not in iset] if bucket else []
+        old = self.d.dels_index(self.positions).get(key)
+        if old:
+            out += old
+        return out
+
+
+class OldView:
+    """Read-only view of a store as it was before ``changes`` (rel -> Delta) were applied."""
+
+    __slots__ = ("store", "changes")
+
+    def __init__(self, store: FactStore, changes: dict):
+        self.store = store
+        self.changes = changes
+
+    def get(self, rel: object):
+        d = self.changes.get(rel)
+        cur = self.store.get(rel)
+        return cur if d is None else _OldSet(cur, d)
+
+    def index(self, rel: object, positions: tuple[int, ...]):
+        d = self.changes.get(rel)
+        cur = self.store.index(rel, positions)
+        return cur if d is None else _OldIndex(cur, d, positions)
 
 
 class BeliefSet(frozenset):
-    """frozenset of Belief that also carries the FactStore it came from (saves re-indexing)."""
+    """frozenset of Belief that also gives the FactStore it came from (saves re-indexing).
 
-    store: FactStore
+    Inference keeps one live store and changes it in place each cycle, so ``store`` is that live
+    store while it still holds these beliefs, and otherwise a store built from them (once)."""
 
-    def __new__(cls, store: FactStore):
-        new = tuple.__new__
-        self = super().__new__(cls, (new(Belief, (p, t)) for p, ts in store.facts.items()
-                                     for t in ts))
-        self.store = store
+    def __new__(cls, beliefs: Iterable[Belief] | FactStore, live: FactStore | None = None):
+        if isinstance(beliefs, FactStore):
+            live, beliefs = beliefs, beliefs.beliefs()
+        self = super().__new__(cls, beliefs)
+        self._live = live
+        self._version = live.version if live is not None else -1
+        self._own = None
         return self
 
+    @property
+    def store(self) -> FactStore:
+        live = self._live
+        if live is not None and live.version == self._version:
+            return live
+        if self._own is None:
+            self._own = _store_from(self)
+        return self._own
 
-def store_of(beliefs: Iterable[Belief]) -> FactStore:
-    """The FactStore behind ``beliefs`` (built if they are a plain collection)."""
-    store = getattr(beliefs, "store", None)
-    if isinstance(store, FactStore):
-        return store
+
+def _store_from(beliefs: Iterable) -> FactStore:
     facts: dict[str, set] = {}
     for b in beliefs:
         if not isinstance(b, Belief):
             b = Belief.from_list(b)
         facts.setdefault(b.pred, set()).add(tuple(b.args))
     return FactStore(facts)
+
+
+def store_of(beliefs: Iterable[Belief]) -> FactStore:
+    """The FactStore behind ``beliefs`` (built if they are a plain collection)."""
+    if isinstance(beliefs, BeliefSet):
+        return beliefs.store
+    store = getattr(beliefs, "store", None)
+    if isinstance(store, FactStore):
+        return store
+    return _store_from(beliefs)

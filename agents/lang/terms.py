@@ -123,20 +123,77 @@ class Test:
         return self.expr.variables()
 
 
-@dataclass(frozen=True)
 class Percept:
-    """An observed object ``(type id attr value ...)`` (seed 000, Table 3)."""
+    """An observed object ``(type id attr value ...)`` (seed 000, Table 3). Immutable; equal and
+    hashed by (type, id, attrs). A plain slotted class rather than a frozen dataclass because the
+    executive's percept index makes one per object per cycle (``Percept.of_row``): ``attrs``
+    and the attribute map are then built on first use."""
 
-    type: str
-    id: object
-    attrs: tuple = ()  # ((attr, value), ...) in the order given
+    __slots__ = ("type", "id", "_row", "_attrs", "_m")
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "_map", dict(self.attrs))
+    def __init__(self, type: str, id: object, attrs: tuple = ()) -> None:  # noqa: A002
+        _set(self, "type", type)
+        _set(self, "id", id)
+        _set(self, "_row", None)
+        _set(self, "_attrs", tuple(attrs))
+        _set(self, "_m", None)
+
+    @classmethod
+    def of_row(cls, row: list | tuple) -> Percept:
+        """From an already validated neutral list (no checks: used after ``intake``)."""
+        self = _new(cls)
+        _set(self, "type", row[0])
+        _set(self, "id", row[1])
+        _set(self, "_row", tuple(row))
+        _set(self, "_attrs", None)
+        _set(self, "_m", None)
+        return self
+
+    @property
+    def attrs(self) -> tuple:
+        """((attr, value), ...) in the order given."""
+        a = self._attrs
+        if a is None:
+            row = self._row
+            a = tuple(zip(row[2::2], row[3::2], strict=True))
+            _set(self, "_attrs", a)
+        return a
+
+    @property
+    def _map(self) -> dict:
+        m = self._m
+        if m is None:
+            if self._row is not None:
+                row = self._row
+                m = dict(zip(row[2::2], row[3::2], strict=True))
+            else:
+                m = dict(self._attrs)
+            _set(self, "_m", m)
+        return m
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"Percept is immutable: cannot set {name}")
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f"Percept is immutable: cannot delete {name}")
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return (self.type, self.id, self.attrs) == (other.type, other.id, other.attrs)
+
+    def __hash__(self) -> int:
+        return hash((self.type, self.id, self.attrs))
+
+    def __repr__(self) -> str:
+        return f"Percept(type={self.type!r}, id={self.id!r}, attrs={self.attrs!r})"
+
+    def __reduce__(self) -> tuple:
+        return (Percept, (self.type, self.id, self.attrs))
 
     def get(self, attr: str, default: object = None) -> object:
         """Value of ``attr`` or ``default``."""
-        return self._map.get(attr, default)  # type: ignore[attr-defined]
+        return self._map.get(attr, default)
 
     def to_list(self) -> list:
         """Neutral form ``[type, id, attr, value, ...]`` (docs/architecture.md)."""
@@ -150,22 +207,30 @@ class Percept:
         """Build from the neutral form; raises LangError naming what is wrong."""
         if isinstance(items, Percept):
             return items
-        if not isinstance(items, (list, tuple)) or len(items) < 2 or len(items) % 2:
-            raise LangError(f"percept {items!r}: expected [type, id, attr, value, ...] "
-                            "(an even number of items, at least 2)")
-        if not isinstance(items[0], str):
-            raise LangError(f"percept {items!r}: type must be a symbol, got {items[0]!r}")
-        for v in items[1:]:
-            if not is_const(v):
-                raise LangError(f"percept {items!r}: value {v!r} is not a symbol or number")
-        attrs = tuple((items[i], items[i + 1]) for i in range(2, len(items), 2))
-        for a, _ in attrs:
-            if not isinstance(a, str):
-                raise LangError(f"percept {items!r}: attribute name {a!r} is not a symbol")
-        return cls(items[0], items[1], attrs)
+        check_row(items)
+        return cls.of_row(items)
 
     def __str__(self) -> str:
         return "(" + " ".join(fmt(x) for x in self.to_list()) + ")"
+
+
+def check_row(items: object) -> None:
+    """Raise LangError naming the percept unless ``items`` is a valid neutral percept list."""
+    if not isinstance(items, (list, tuple)) or len(items) < 2 or len(items) % 2:
+        raise LangError(f"percept {items!r}: expected [type, id, attr, value, ...] "
+                        "(an even number of items, at least 2)")
+    if not isinstance(items[0], str):
+        raise LangError(f"percept {items!r}: type must be a symbol, got {items[0]!r}")
+    for v in items[1:]:
+        if not is_const(v):
+            raise LangError(f"percept {items!r}: value {v!r} is not a symbol or number")
+    for a in items[2::2]:
+        if not isinstance(a, str):
+            raise LangError(f"percept {items!r}: attribute name {a!r} is not a symbol")
+
+
+_set = object.__setattr__
+_new = object.__new__
 
 
 class Belief(NamedTuple):

@@ -1,5 +1,6 @@
-"""Reuse across cycles: an Engine that keeps its memo from cycle to cycle gives, cycle by cycle,
-exactly what a fresh Engine gives on the same percepts, and it does reuse strata."""
+"""Work carried across cycles: an Engine that keeps its facts from cycle to cycle gives, cycle by
+cycle, exactly what a fresh Engine gives on the same percepts, and strata that read nothing that
+changed are not evaluated at all (tests/lang/test_incremental.py has random programs)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from agents.lang.store import PerceptIndex
 from .conftest import ROOT
 
 # Several percept types, recursion, negation and a concept that reads no percepts, so that a
-# change to one type leaves other strata reusable.
+# change to one type leaves other strata untouched.
 GRAPH = """
 (concepts
   ((link ?a ?b) :percepts ((edge ?e from ?a to ?b)))
@@ -89,7 +90,7 @@ def test_cycles_with_reuse_equal_fresh_engine(first, changes, rnd):
         percepts = apply(change, percepts, rnd)
 
 
-def test_unchanged_and_reordered_percepts_reuse_every_stratum():
+def test_unchanged_and_reordered_percepts_evaluate_nothing():
     engine = Engine(GRAPH_PROGRAM)
     ps = [["edge", "E1", "from", "A", "to", "B"], ["node", "A", "size", 3],
           ["lamp", "L1", "state", "off"]]
@@ -98,8 +99,9 @@ def test_unchanged_and_reordered_percepts_reuse_every_stratum():
     again = engine.infer(ps[::-1])
     assert engine.last_infer_stats.evaluated == 0
     assert engine.last_infer_stats.reused == engine.last_infer_stats.strata
-    assert again == first and again.store is first.store
-    # after an unchanged cycle the BeliefSet itself is kept and handed out again
+    assert engine.last_infer_stats.mode == "unchanged"
+    # the BeliefSet itself is handed out again, and its store is the live one
+    assert again is first and again.store is engine.inference.idb
     assert engine.infer([list(p) for p in ps]) is again
 
 
@@ -109,9 +111,11 @@ def test_a_change_reevaluates_only_what_depends_on_it():
           ["lamp", "L1", "state", "off"]]
     engine.infer(ps)
     engine.infer([*ps[:2], ["lamp", "L1", "state", "on"]])
-    # only lit and dark read lamps; link, reach, big, size, cut-off, big-reach are reused
+    # only lit and dark read lamps; link, reach, big, size, cut-off, big-reach are untouched
     assert engine.last_infer_stats.evaluated == 2
-    # 3 -> 3.0 is a change although 3 == 3.0: the belief (size B 3.0) prints differently
+    assert engine.last_infer_stats.changed == ("dark", "lit")
+    # 3 -> 3.0 is a change although 3 == 3.0: the belief (size B 3.0) prints differently;
+    # the lamp goes back off too. link and reach read no node or lamp: not evaluated
     got = engine.infer([ps[0], ["node", "B", "size", 3.0], ps[2]])
     assert "(size B 3.0)" in shown(got)
     assert engine.last_infer_stats.evaluated == engine.last_infer_stats.strata - 2
@@ -136,7 +140,7 @@ def test_cycle_decisions_equal_fresh_engine(blocks):
         state, fresh_state = got.state, want.state
 
 
-def test_bench_program_reuses_unchanged_world():
+def test_blocks_program_evaluates_nothing_for_an_unchanged_world():
     from agents.lang import load_program
 
     engine = Engine(load_program(ROOT / "programs" / "blocks.tlp"))

@@ -1,0 +1,58 @@
+"""`teleo launch --agents-per-process K`: several agents' stages in one process
+(agents/processes/shared.py) give the same lockstep run as a process per stage: the same trace,
+every agent acting, fewer processes."""
+
+from __future__ import annotations
+
+import json
+import re
+
+from e2e_helpers import ROOT
+
+FIXTURES = ROOT / "tests" / "e2e" / "fixtures"
+
+
+def _two_cars(tmp_path) -> str:
+    """Two cars holding their speed with ONE program that names no agent (``?self``)."""
+    program = (FIXTURES / "hold_speed.tlp").read_text().replace(
+        "(goals (at-desired-speed ME))", "(goals (at-desired-speed ?self))")
+    (tmp_path / "any_car.tlp").write_text(program)
+    cars = ('cars = [{ agent = "A1", street = "B", from = "FIRST", toward = "SECOND" }, '
+            '{ agent = "A2", street = "SECOND", from = "A", toward = "B" }]')
+    text = "\n".join([
+        "[run]", 'name = "two-cars"', 'mode = "lockstep"', "cycles = 25", "seed = 4", "",
+        "[world]", "grid = [3, 3]", "pedestrians = 2", "traffic = 0", cars, "",
+        *(f'[[agents]]\nid = "{a}"\nprogram = "any_car.tlp"\nsolver = false\n'
+          for a in ("A1", "A2"))])
+    path = tmp_path / "two_cars.toml"
+    path.write_text(text)
+    return str(path)
+
+
+def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):
+    scenario = _two_cars(tmp_path)
+    apart = teleo("launch", scenario, "--no-record", "--json", timeout=300)
+    shared = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "2",
+                   timeout=300)
+    assert apart.returncode == 0, apart.stderr
+    assert shared.returncode == 0, shared.stderr
+    counts = [int(re.search(r"run \S+: (\d+) processes", r.stderr).group(1))
+              for r in (apart, shared)]
+    assert counts == [8, 3]  # goals, world, 3 stages x 2 agents | goals, world, agents1
+    assert "agents1" in shared.stderr
+    traces = [open(json.loads(r.stdout)["trace"]).read() for r in (apart, shared)]
+    assert traces[0] == traces[1]
+    lines = [json.loads(line) for line in traces[1].splitlines()]
+    assert len(lines) == 25
+    for agent in ("A1", "A2"):  # both agents decided: their gas or brake was applied
+        assert any(line["actions"][agent] for line in lines), agent
+    summary = json.loads(shared.stdout)
+    assert summary["late_stages"] == {} and summary["dead_stages"] == {}
+
+
+def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):
+    done = teleo("launch", _two_cars(tmp_path), "--secure", "--agents-per-process", "1",
+                 timeout=120)
+    assert done.returncode == 1
+    assert "--agents-per-process: only for a whole open run on one host" in done.stderr
+    assert "Traceback" not in done.stderr
