@@ -9,9 +9,12 @@ from __future__ import annotations
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from world_helpers import QUIET, car, snapshot
 
-from world.driving.perception import perceive
+from world.driving.city import build_city
+from world.driving.perception import perceive, polar
 from world.driving.snapshot import PackageState, PedState
 from world.errors import WorldError
 
@@ -90,6 +93,22 @@ def test_buildings_report_their_two_nearest_corners() -> None:
     assert b1["c1angle"] > 0 and b1["c2angle"] > 0
     assert buildings["B2"]["c1angle"] < 0                     # FIRST 2 on the right
     assert all(b["c1dist"] <= QUIET.perception_range for b in buildings.values())
+
+
+@given(st.floats(-60.0, 480.0), st.floats(-60.0, 480.0), st.floats(-180.0, 180.0))
+@settings(max_examples=200, deadline=None)
+def test_buildings_passed_over_by_distance_are_exactly_those_out_of_range(x, y, heading):
+    """The disc test that skips far buildings changes nothing: every building whose nearest
+    corner is within range is seen, with its two nearest corners, and no other."""
+    me = car(x, y, heading)
+    seen = by_type(perceive(snapshot(me), "ME"), "building")
+    city = build_city(QUIET)
+    expected = {}
+    for b in city.buildings:
+        (d1, _), _ = sorted(polar(me, cx, cy) for cx, cy in b.corners)[:2]
+        if d1 <= QUIET.perception_range:
+            expected[b.id] = round(d1, 3) + 0.0
+    assert {k: v["c1dist"] for k, v in seen.items()} == expected
 
 
 def test_streets_segments_and_intersections_in_range() -> None:

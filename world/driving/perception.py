@@ -10,6 +10,7 @@ navigation system). Every attribute and unit is documented in world/driving/perc
 from __future__ import annotations
 
 import math
+import weakref
 from typing import Any
 
 from world.angles import wrap
@@ -72,9 +73,31 @@ def _lane_lines(me: CarState, seg: Segment) -> list[Percept]:
     return out
 
 
+_DISCS: weakref.WeakKeyDictionary[City, tuple[tuple[float, float, float], ...]] = \
+    weakref.WeakKeyDictionary()
+
+
+def _discs(city: City) -> tuple[tuple[float, float, float], ...]:
+    """Per building, a disc holding its corners: (centre x, centre y, radius) [m], computed
+    once per city, so that buildings far out of range are passed over without trigonometry."""
+    discs = _DISCS.get(city)
+    if discs is None:
+        discs = []
+        for b in city.buildings:
+            cx = sum(x for x, _ in b.corners) / len(b.corners)
+            cy = sum(y for _, y in b.corners) / len(b.corners)
+            discs.append((cx, cy, max(math.hypot(x - cx, y - cy) for x, y in b.corners)))
+        discs = _DISCS[city] = tuple(discs)
+    return discs
+
+
 def _buildings(city: City, me: CarState, reach: float) -> list[Percept]:
     out = []
-    for b in city.buildings:
+    for b, (cx, cy, radius) in zip(city.buildings, _discs(city), strict=True):
+        # every corner is at least (centre distance - radius) away: out of range, the
+        # nearest corner is too (a margin keeps rounding from changing what is seen)
+        if math.hypot(cx - me.x, cy - me.y) - radius > reach + 1e-6:
+            continue
         corners = sorted((polar(me, x, y) for x, y in b.corners))
         (d1, a1), (d2, a2) = corners[0], corners[1]
         if d1 <= reach:
