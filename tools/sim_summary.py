@@ -47,6 +47,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
                                    counters),
         "trace": str(trace) if trace else "",
         "world_reason": "done",
+        "cycle_time": {},   # one process, no bus: no stage shares
     }
     return finish_status(summary)
 

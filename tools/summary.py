@@ -96,6 +96,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         **agent_sections(run_dir, counters, memory),
         "trace": str(run_dir / TRACE),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
+        "cycle_time": cycle_time(final.get("timing_ms"), cycles),
     }
     return finish_status(summary, ended, requested_stop)
 
@@ -109,6 +110,25 @@ def finish_status(summary: dict[str, Any], ended: str = "",
     summary["status"] = _status(summary, requested_stop)
     summary["completed"] = summary["status"] == "completed"
     return summary
+
+
+def cycle_time(timing: Any, cycles: int) -> dict[str, Any]:
+    """The mean lockstep cycle [ms] and each process's share of it [%] (its compute time;
+    the rest is the bus, zenoh and msgpack, and waiting), from the world's timing totals;
+    {} when the world did not write them (killed) or no cycle ran."""
+    if not isinstance(timing, dict) or cycles <= 0:
+        return {}
+    cycle_ms = (float(timing.get("cycle", 0.0)) + float(timing.get("world", 0.0))) / cycles
+    if cycle_ms <= 0:
+        return {}
+    means = {"world": float(timing.get("world", 0.0)) / cycles}
+    order = {"goals": 0, "perception": 1, "inference": 2, "executive": 3}
+    stages = sorted((timing.get("stages") or {}).items(),
+                    key=lambda kv: (order.get(kv[0].rpartition(".")[2], 4), kv[0]))
+    means.update({name: float(ms) / cycles for name, ms in stages})
+    shares = {name: round(100 * ms / cycle_ms, 1) for name, ms in means.items()}
+    shares["bus and waits"] = round(max(0.0, 100 - sum(shares.values())), 1)
+    return {"ms": round(cycle_ms, 3), "shares": shares}
 
 
 def _totals(health: list[dict[str, Any]]) -> dict[str, dict[str, int]]:
@@ -186,6 +206,10 @@ def echo(summary: dict[str, Any]) -> None:
                           for s in stalls[:5])
         click.echo(f"  stalls: {len(stalls)} ({shown}{', ...' if len(stalls) > 5 else ''})")
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
+    timing = summary.get("cycle_time") or {}
+    if timing:
+        parts = ", ".join(f"{name} {pct} %" for name, pct in timing["shares"].items())
+        click.echo(f"  cycle time {timing['ms']} ms: {parts}")
     for r in summary["world_resumes"]:
         click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
                    f"{r['replayed']} cycles replayed)")

@@ -119,3 +119,18 @@ def test_a_goal_store_of_the_wrong_shape_does_not_break_the_summary(tmp_path):
 @click.argument("doc")
 def _echo(doc: str) -> None:
     summary.echo(json.loads(doc))
+
+
+def test_the_summary_gives_each_process_share_of_the_cycle():
+    """issue 13: the launch summary says where a lockstep cycle's time goes."""
+    from tools.summary import cycle_time
+
+    timing = {"cycle": 800.0, "world": 200.0,
+              "stages": {"ME.executive": 300.0, "ME.perception": 100.0, "goals": 50.0}}
+    got = cycle_time(timing, 100)
+    assert got["ms"] == 10.0
+    assert list(got["shares"]) == ["world", "goals", "ME.perception", "ME.executive",
+                                   "bus and waits"]
+    assert got["shares"] == {"world": 20.0, "goals": 5.0, "ME.perception": 10.0,
+                             "ME.executive": 30.0, "bus and waits": 35.0}
+    assert cycle_time(None, 100) == {} and cycle_time(timing, 0) == {}
