@@ -14,7 +14,6 @@ from __future__ import annotations
 import json
 import re
 import sys
-from pathlib import Path
 from typing import Any
 
 import click
@@ -23,6 +22,7 @@ from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
 from agents.lang.solving.learned import is_learned_text, read_learned
 from tools.lang_commands import include_option
+from tools.tree import shown_path
 
 # The first line that is not blank nor a comment, as TOML starts: [table], [[array]], key =
 _TOML_START = re.compile(r"\s*(\[\[?\s*[A-Za-z0-9_\"'.-]+\s*\]\]?|[A-Za-z0-9_\"'.-]+\s*=)")
@@ -114,7 +114,7 @@ def _echo(result: dict[str, Any]) -> None:
     elif result["kind"] == "learned":
         click.echo(f"{path}: ok ({result['skills']} learned skills for {result['program']})")
     else:
-        agents = ", ".join(f"{a} ({_shown(p)})" for a, p in result["agents"].items())
+        agents = ", ".join(f"{a} ({shown_path(p)})" for a, p in result["agents"].items())
         click.echo(f"{path}: ok (scenario, {result['domain']} world; agents {agents}; "
                    f"{result['goals']} scripted goals, {result['events']} events)")
 
@@ -150,10 +150,3 @@ def check(files: tuple[str, ...], includes: tuple[str, ...], as_json: bool) -> N
 
 commands = [check]
 
-
-def _shown(path: str) -> str:
-    """A path as a person reads it: relative to the current folder when it is inside it."""
-    try:
-        return str(Path(path).resolve().relative_to(Path.cwd().resolve()))
-    except ValueError:
-        return path

@@ -43,7 +43,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
                         "skills": clause_heads("\n".join(run.learned[a]))}
                     for a in scenario.agent_ids if run.learned.get(a) or a in learned_files},
         "bodies": {a: b for a, m in sorted(run.memory.items()) if (b := bodies(m))},
-        "planner": planner_section({a: _planner(st) for a, st in run.states.items()},
+        "planner": planner_section({a: st.planner.to_dict() for a, st in run.states.items()},
                                    counters),
         "trace": str(trace) if trace else "",
         "world_reason": "done",
@@ -51,8 +51,3 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
     }
     return finish_status(summary)
 
-
-def _planner(state: Any) -> dict[str, Any]:
-    """The saved form of an agent's planner state ({} without the ROGUE mechanism)."""
-    doc = state.to_dict() if hasattr(state, "to_dict") else {}
-    return doc.get("planner") or {}

@@ -193,13 +193,18 @@ def line(node: Node, symbols: dict[str, str] = ASCII) -> str:
     return text
 
 
-def _near(where: str) -> str:
-    """file:line:col with the file relative to the current folder when it is inside it."""
-    file, sep, rest = where.partition(":")
+def shown_path(path: str) -> str:
+    """A path as a person reads it: relative to the current folder when it is inside it."""
     try:
-        return str(Path(file).resolve().relative_to(Path.cwd().resolve())) + sep + rest
+        return str(Path(path).resolve().relative_to(Path.cwd().resolve()))
     except (ValueError, OSError):
-        return where
+        return path
+
+
+def _near(where: str) -> str:
+    """file:line:col with the file shown as `shown_path` shows it."""
+    file, sep, rest = where.partition(":")
+    return shown_path(file) + sep + rest
 
 
 def render_text(node: Node, symbols: dict[str, str] = ASCII) -> str:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 from world.driving.config import WorldConfig
 from world.errors import ConfigError, WorldError
@@ -79,6 +79,14 @@ class Building:
     corners: tuple[tuple[float, float], ...]   # four [m]
     curb: tuple[float, float]                  # delivery point on the road shoulder [m]
     along: float                               # curb point along the segment [m]
+
+    @cached_property
+    def disc(self) -> tuple[float, float, float]:
+        """A disc holding the corners, (centre x, centre y, radius) [m]: perception passes
+        over a building whose disc is out of range without trigonometry."""
+        cx = sum(x for x, _ in self.corners) / len(self.corners)
+        cy = sum(y for _, y in self.corners) / len(self.corners)
+        return cx, cy, max(math.hypot(x - cx, y - cy) for x, y in self.corners)
 
 
 @dataclass(frozen=True, eq=False)

@@ -10,7 +10,6 @@ navigation system). Every attribute and unit is documented in world/driving/perc
 from __future__ import annotations
 
 import math
-import weakref
 from typing import Any
 
 from world.angles import wrap
@@ -73,27 +72,10 @@ def _lane_lines(me: CarState, seg: Segment) -> list[Percept]:
     return out
 
 
-_DISCS: weakref.WeakKeyDictionary[City, tuple[tuple[float, float, float], ...]] = \
-    weakref.WeakKeyDictionary()
-
-
-def _discs(city: City) -> tuple[tuple[float, float, float], ...]:
-    """Per building, a disc holding its corners: (centre x, centre y, radius) [m], computed
-    once per city, so that buildings far out of range are passed over without trigonometry."""
-    discs = _DISCS.get(city)
-    if discs is None:
-        discs = []
-        for b in city.buildings:
-            cx = sum(x for x, _ in b.corners) / len(b.corners)
-            cy = sum(y for _, y in b.corners) / len(b.corners)
-            discs.append((cx, cy, max(math.hypot(x - cx, y - cy) for x, y in b.corners)))
-        discs = _DISCS[city] = tuple(discs)
-    return discs
-
-
 def _buildings(city: City, me: CarState, reach: float) -> list[Percept]:
     out = []
-    for b, (cx, cy, radius) in zip(city.buildings, _discs(city), strict=True):
+    for b in city.buildings:
+        cx, cy, radius = b.disc
         # every corner is at least (centre distance - radius) away: out of range, the
         # nearest corner is too (a margin keeps rounding from changing what is seen)
         if math.hypot(cx - me.x, cy - me.y) - radius > reach + 1e-6:
