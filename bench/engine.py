@@ -16,10 +16,15 @@ msgpack, as from the bus. Rows:
   move    max(1, N/100) top blocks move onto new towers (the geometry changes)
   scratch every call starts from scratch (``inference.forget()`` first)
 
-"infer" times ``Engine.infer(lists)``; "cycle" times ``Engine.cycle(state, lists)`` (infer and
-the executive's decision). Each figure is the median over the cycles of a row [ms], of this
-thread's CPU time by default (``--clock wall`` for wall time); "x" is the baseline's median over
-ours; "gc" counts the garbage collections that started during the timed infer calls, per call.
+"infer" times ``Engine.infer(lists)``; "bus" times what the inference process pays for a
+message as it arrives: ``bus.codec.decode`` of the Percepts payload (each row packed on its own;
+a row whose bytes were in the last message comes back as the same list) and ``infer`` of those
+rows as ``SharedRows`` (ours; the baseline gets the same decoded tuple), collecting garbage
+after each call as a stage process does (bus/collector.py, untimed); "cycle" times
+``Engine.cycle(state, lists)`` (infer and the executive's decision). Each figure is the median
+over the cycles of a row [ms], of this thread's CPU time by default (``--clock wall`` for wall
+time); "x" is the baseline's median over ours; "gc" counts the garbage collections that
+started during the timed infer calls, per call.
 The baseline is commit a24e6ef's agents/lang (git archive, imported as another package), run
 with its cross-cycle reuse as it shipped; at 10,000 objects it is timed on one call per column
 (its quadratic ``samecolor`` makes a call last half a minute), and only the issue's rows run.
@@ -46,7 +51,11 @@ import msgpack
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from agents.lang import Engine, load_program  # noqa: E402
+from agents.lang import Engine, SharedRows, load_program  # noqa: E402
+from bus import keys  # noqa: E402
+from bus.codec import decode, encode  # noqa: E402
+from bus.collector import Collector  # noqa: E402
+from bus.messages import Envelope, Percepts  # noqa: E402
 
 BASELINE = "a24e6ef"
 PROGRAM = (ROOT / "tests" / "lang" / "fixtures" / "blocks_handwritten.tlp",
@@ -107,6 +116,13 @@ def cycles(n: int, kind: str, count: int, seed: int = 1) -> list[bytes]:
     return out
 
 
+def as_messages(seq: list[bytes], agent: str) -> list[bytes]:
+    """The same cycles as Percepts payloads from ``agent``'s perception (fresh lists each
+    cycle, as a perception process makes them)."""
+    return [encode(Percepts(Envelope(1, "bench", t, f"{agent}.perception", 0), agent,
+                            tuple(msgpack.unpackb(raw)))) for t, raw in enumerate(seq)]
+
+
 def _top(blocks: list[list], rnd: random.Random) -> list:
     """A block with nothing on it."""
     top: dict[int, list] = {}
@@ -123,17 +139,22 @@ def goal_state(engine, n: int):
     return engine.add_goal(state, "(clear B0)", priority=0)
 
 
-def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool) -> tuple:
-    """Median infer and cycle time [ms] over the cycles of ``seq`` in turn, the beliefs and the
-    collections per infer; ``freeze``: ``gc.freeze()`` after the first two cycles."""
+def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool,
+            shared: bool, tag: str) -> tuple:
+    """Median infer, bus and cycle time [ms] over the cycles of ``seq`` in turn, the beliefs
+    and the collections per infer; ``freeze``: ``gc.freeze()`` after the first two cycles;
+    ``shared``: the engine gets the decoded rows as SharedRows; ``tag``: a key of its own."""
     first = msgpack.unpackb(seq[0])
     state = goal_state(engine, sum(1 for p in first if p[0] == "block"))
     beliefs = len(engine.infer(first))
     engine.cycle(state, msgpack.unpackb(seq[1]))
+    key = keys.percepts("bench", tag)
+    msgs = as_messages(seq, tag)
+    wrap = SharedRows if shared else tuple
     if freeze:
         gc.collect()
         gc.freeze()
-    times: dict[str, list[float]] = {"infer": [], "cycle": []}
+    times: dict[str, list[float]] = {"infer": [], "bus": [], "cycle": []}
     collections = [0, False]  # garbage collections started during timed infer calls
 
     def count(phase: str, info: dict) -> None:
@@ -141,12 +162,24 @@ def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool
 
     gc.callbacks.append(count)
     step = 2
-    for what in ("infer", "cycle"):
+    for what in ("infer", "bus", "cycle"):
+        if what == "bus":
+            engine.inference.forget()  # the bus rows are other lists than the infer row's
+            decode(key, msgs[(step - 1) % len(seq)])
+            collector = Collector()  # as a stage process collects: after each cycle
         for _ in range(calls):
-            ps = msgpack.unpackb(seq[step % len(seq)])
+            i = step % len(seq)
             step += 1
             if kind == "scratch":
                 engine.inference.forget()
+            if what == "bus":
+                payload = msgs[i]
+                t0 = clock()
+                engine.infer(wrap(decode(key, payload).percepts))
+                times[what].append((clock() - t0) * 1000)
+                collector.after_cycle()
+                continue
+            ps = msgpack.unpackb(seq[i])
             collections[1] = what == "infer"
             t0 = clock()
             if what == "infer":
@@ -155,9 +188,11 @@ def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool
                 engine.cycle(state, ps)
             times[what].append((clock() - t0) * 1000)
             collections[1] = False
+        if what == "bus":
+            collector.close()
     gc.callbacks.remove(count)
     gc.unfreeze()
-    return (statistics.median(times["infer"]), statistics.median(times["cycle"]), beliefs,
+    return (*(statistics.median(times[w]) for w in ("infer", "bus", "cycle")), beliefs,
             collections[0] / calls)
 
 
@@ -181,8 +216,8 @@ def main() -> None:
         if args.gc == "off":
             gc.disable()
         print(f"{'objects':>8} {'change':>7} {'beliefs':>7} | {'infer':>7} {'base':>7} {'x':>6} |"
-              f" {'cycle':>7} {'base':>7} {'x':>6} | {'gc':>4} {'base':>4}"
-              f"   [ms {args.clock} time, median; gc: collections per infer]")
+              f" {'bus':>7} {'base':>7} {'x':>6} | {'cycle':>7} {'base':>7} {'x':>6} |"
+              f" {'gc':>4} {'base':>4}   [ms {args.clock} time, median; gc: collections per infer]")
         results = {}
         for n in map(int, args.sizes.split(",")):
             calls = 40 if n <= 100 else 20 if n <= 1000 else 3
@@ -191,14 +226,17 @@ def main() -> None:
                     continue  # by default the largest size has the issue's three rows only
                 seq = cycles(n, kind, 2 * calls + 2)
                 row = []
-                for make, k in ((lambda: Engine(ours_prog, solver=None), calls),
-                                (lambda: base.Engine(base_prog), calls if n <= 1000 else 1)):
+                for make, k, ours in (
+                        (lambda: Engine(ours_prog, solver=None), calls, True),
+                        (lambda: base.Engine(base_prog), calls if n <= 1000 else 1, False)):
                     engine = make()  # (the baseline takes half a minute a call at 10,000)
-                    row.append(measure(engine, kind, seq, k, clock, args.gc == "freeze"))
+                    row.append(measure(engine, kind, seq, k, clock, args.gc == "freeze", ours,
+                                       f"{'ours' if ours else 'base'}-{n}-{kind}"))
                     del engine
-                (i, c, b, g), (bi, bc, _, bg) = row
-                results[(n, kind)] = i
+                (i, u, c, b, g), (bi, bu, bc, _, bg) = row
+                results[(n, kind)] = (i, u)
                 print(f"{n:>8} {kind:>7} {b:>7} | {i:>7.3f} {bi:>7.3f} {bi / i:>5.1f}x |"
+                      f" {u:>7.3f} {bu:>7.3f} {bu / u:>5.1f}x |"
                       f" {c:>7.3f} {bc:>7.3f} {bc / c:>5.1f}x | {g:>4.2f} {bg:>4.2f}",
                       flush=True)
                 del seq
@@ -210,9 +248,10 @@ def targets(results: dict) -> None:
     for (n, kind), limit in (((1000, "all"), 2.0), ((100, "all"), 0.25), ((1000, "none"), 0.3)):
         got = results.get((n, kind))
         if got is not None:
-            verdict = "met" if got <= limit else "NOT met"
-            print(f"target: infer at {n} objects, {kind:>4} changed <= {limit} ms: "
-                  f"{got:.3f} ms, {verdict}")
+            for name, ms in zip(("from lists", "from bytes (bus)"), got, strict=True):
+                verdict = "met" if ms <= limit else "NOT met"
+                print(f"target: infer at {n} objects, {kind:>4} changed <= {limit} ms, "
+                      f"{name}: {ms:.3f} ms, {verdict}")
 
 
 if __name__ == "__main__":

@@ -5,16 +5,26 @@ Wire form: one msgpack map with string keys only,
 A reader ignores fields it does not know (a minor version may only add fields) and
 rejects any other major version (`Envelope.v`). Every failure raises CodecError naming
 the key and what is wrong; receivers log it and drop the payload.
+
+Packed rows: the rows of `Percepts.percepts` and `Beliefs.beliefs` travel each as a msgpack
+bin holding that row's own msgpack bytes (a reader also takes plain arrays, and a mix). A
+reader decodes a row whose bytes equal one of the last message's on the same key to that very
+list, without reading it again; nobody mutates a decoded row, so the engine takes a row it has
+seen as unchanged (agents/lang/shared_rows.py; docs/bus.md, "Packed rows"). A writer packs a
+row that is the same object as one it sent last time in the same field to the same bytes
+without packing it again.
 """
 
 from __future__ import annotations
 
+import gc
 import threading
 from collections.abc import Callable
 from dataclasses import MISSING, fields
 from functools import lru_cache
-from itertools import chain
+from itertools import chain, compress, repeat
 from math import isfinite
+from operator import is_
 from typing import Any
 
 import msgpack
@@ -41,14 +51,31 @@ def encode(msg: Message) -> bytes:
     }
     for name, _check, _default in spec:
         body[name] = getattr(msg, name)
+    packed = PACKED.get(msg.KIND)
     try:
+        if packed is not None:
+            body[packed] = _pack_rows(body[packed], (msg.KIND, getattr(msg, "agent", "")))
         return _packer().pack(body)
     except (TypeError, ValueError, OverflowError) as exc:
         raise CodecError(f"<encode {msg.KIND}>", f"not msgpack-able: {exc}") from exc
 
 
 def decode(key: str, data: bytes) -> Message:
-    """Parse and validate a payload received on `key`; raises CodecError on any problem."""
+    """Parse and validate a payload received on `key`; raises CodecError on any problem.
+
+    The garbage collector is paused meanwhile (decoding makes thousands of objects and no
+    reference cycle: each burst would otherwise start collections walking the process's
+    young objects)."""
+    if not gc.isenabled():
+        return _decode(key, data)
+    gc.disable()
+    try:
+        return _decode(key, data)
+    finally:
+        gc.enable()
+
+
+def _decode(key: str, data: bytes) -> Message:
     try:
         body = msgpack.unpackb(data, raw=False, strict_map_key=True)
     except (ValueError, TypeError, msgpack.UnpackException) as exc:
@@ -75,10 +102,12 @@ def _fields(key: str, kind: str, spec: _Spec, body: dict) -> dict[str, Any]:
     """The checked field values of a `kind` message (defaults for absent optional fields)."""
     values: dict[str, Any] = {}
     name = ""
+    packed = PACKED.get(kind)
     try:
         for name, check, default in spec:
             if name in body:
-                values[name] = check(body[name])
+                values[name] = _unpack_rows(key, body[name]) if name == packed else \
+                    check(body[name])
             elif isinstance(default, _Fresh):
                 values[name] = default.make()   # a new empty map for each message
             elif default is not MISSING:
@@ -164,8 +193,9 @@ def _rows(v: Any) -> tuple:
     rows = _list(v)
     if _LIST_ONLY.issuperset(map(type, rows)):
         atoms = list(chain.from_iterable(rows))
-        if _ATOM_TYPES.issuperset(map(type, atoms)) and \
-                all(map(isfinite, [a for a in atoms if type(a) is float])):
+        types = list(map(type, atoms))
+        if _ATOM_TYPES.issuperset(types) and \
+                all(map(isfinite, compress(atoms, map(is_, types, repeat(float))))):
             return tuple(rows)
     atoms_only = _ATOM_TYPES.issuperset
     for row in rows:
@@ -175,6 +205,93 @@ def _rows(v: Any) -> tuple:
         if bad:
             raise TypeError(f"expected finite numbers, found {bad[0]} in item {row!r:.60}")
     raise TypeError("expected arrays of str, int or float")  # not reached: some row failed
+
+
+PACKED = {"Percepts": "percepts", "Beliefs": "beliefs"}
+"""The field whose rows travel packed, per kind (see the module's docstring)."""
+
+
+def _pack_rows(rows: Any, slot: tuple) -> list[bytes]:
+    """Each row as its own msgpack bytes; a row sent last time in ``slot`` as the same object
+    keeps its bytes (rows are never mutated once sent)."""
+    sent = getattr(_local, "sent", None)
+    if sent is None:
+        sent = _local.sent = {}
+    last = sent.get(slot)
+    pack = _packer().pack
+    ids = list(map(id, rows))
+    if last:
+        out = [h[1] if h is not None and h[0] is r else pack(r)
+               for h, r in zip(map(last.get, ids), rows, strict=True)]
+    else:
+        out = list(map(pack, rows))
+    sent[slot] = dict(zip(ids, zip(rows, out, strict=True), strict=True))
+    return out
+
+
+def shared_rows(kind: str, agent: str, rows: Any) -> tuple:
+    """``rows`` as a receiver of the packed field would get them, for a message handed over in
+    memory (agents/processes/shared.py): each row whose bytes equal those of a row last given
+    here for (``kind``, ``agent``) is replaced by that row. Encoding the message afterwards
+    packs no row again."""
+    memo = getattr(_local, "interned", None)
+    if memo is None:
+        memo = _local.interned = {}
+    slot = (kind, agent)
+    last = memo.get(slot, {})
+    data = _pack_rows(rows, slot)
+    out = tuple(last.get(b, r) for b, r in zip(data, rows, strict=True))
+    memo[slot] = dict(zip(data, out, strict=True))
+    _local.sent[slot] = dict(zip(map(id, out), zip(out, data, strict=True), strict=True))
+    return out
+
+
+def _unpack_rows(key: str, v: Any) -> tuple:
+    """The rows of a packed field received on ``key``, checked as ``_rows`` checks them; a
+    row of the same bytes as one in the last message on ``key`` is that message's list."""
+    items = _list(v)
+    seen = getattr(_local, "seen", None)
+    if seen is None:
+        seen = _local.seen = {}
+    last = seen.get(key, {})
+    got = list(map(last.get, items)) if last and _BYTES_ONLY.issuperset(map(type, items)) \
+        else [None] * len(items)
+    new = [i for i, r in enumerate(got) if r is None]
+    if new:
+        fresh = _rows(_unpacked_all([items[i] for i in new]))
+        for i, row in zip(new, fresh, strict=True):
+            got[i] = row
+    if new or len(last) != len(items):
+        seen[key] = {b: r for b, r in zip(items, got, strict=True) if type(b) is bytes}
+    return tuple(got)
+
+
+_BYTES_ONLY = frozenset({bytes})
+
+
+def _unpacked_all(items: list) -> list:
+    """``_unpacked`` of each item: one C-level pass when they are all bytes and all good."""
+    if _BYTES_ONLY.issuperset(map(type, items)):
+        try:
+            return list(map(msgpack.unpackb, items))
+        except (ValueError, TypeError, msgpack.UnpackException):
+            pass  # name the bad row below
+    return list(map(_unpacked, items))
+
+
+def _unpacked(item: Any) -> Any:
+    """One row of a packed field: its own msgpack bytes read, or a plain array as it is."""
+    if type(item) is not bytes:
+        return item
+    try:
+        return msgpack.unpackb(item, raw=False, strict_map_key=True)
+    except (ValueError, TypeError, msgpack.UnpackException) as exc:
+        raise TypeError(f"malformed packed row ({len(item)} bytes): {exc}") from exc
+
+
+def unpacked_rows(v: Any) -> Any:
+    """A packed field's rows as plain arrays (records, tools); anything else as it is."""
+    return [_unpacked(r) for r in v] if isinstance(v, list) else v
 
 
 def _dict_rows(v: Any) -> tuple:

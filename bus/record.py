@@ -16,7 +16,7 @@ from typing import Any
 
 import msgpack
 
-from bus.codec import decode, encode
+from bus.codec import PACKED, decode, encode, unpacked_rows
 from bus.errors import CodecError
 from bus.messages import MESSAGE_TYPES, Message
 
@@ -34,6 +34,12 @@ def to_record(key: str, payload: bytes) -> dict[str, Any]:
     if not isinstance(body, dict) or not isinstance(body.get("env"), dict) \
             or body.get("kind") not in MESSAGE_TYPES:
         raise CodecError(key, f"not a bus message: {body!r:.80}")
+    field = PACKED.get(body["kind"])
+    if field in body:
+        try:
+            body[field] = unpacked_rows(body[field])
+        except TypeError as exc:
+            raise CodecError(key, f"{body['kind']}.{field}: {exc}") from exc
     if body["kind"] == "Percepts":
         body["self"] = _self_attrs(body.get("agent"), body.get("percepts"))
     return body

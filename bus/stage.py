@@ -21,6 +21,7 @@ import time
 from collections.abc import Callable, Sequence
 
 from bus import keys
+from bus.collector import Collector
 from bus.cycle import Joined, Joiner, pick
 from bus.lifeline import hold_on_to_parent
 from bus.messages import Message, ProcessStats
@@ -102,8 +103,13 @@ class Stage:
         """Handle cycles until `stop` is set (checked every `poll_s` [s] when idle)."""
         if self._inbox is None:
             self.start()
-        while not stop.is_set():
-            self.step_once(poll_s)
+        collector = Collector()
+        try:
+            while not stop.is_set():
+                if self.step_once(poll_s) is not None:
+                    collector.after_cycle()
+        finally:
+            collector.close()
 
     def step_once(self, timeout: float) -> int | None:
         """Wait up to `timeout` [s] for input, handle the newest complete cycle in the

@@ -8,6 +8,7 @@ from .errors import Diagnostic, EvalError, GoalError, LangError, ProgramError, S
 from .explanation import Decision, GoalPath, GoalReport, GoalStatus, PassOver, PathStep
 from .loader import load_program, load_program_text, parse_percepts
 from .program import ConceptClause, GoalSpec, Program, Skill
+from .shared_rows import SharedRows
 from .state import EngineState, StoredStep
 from .terms import (
     Action,
@@ -25,6 +26,7 @@ __all__ = [
     "Action", "ActionTemplate", "Belief", "ConceptClause", "CycleResult", "Decision",
     "Diagnostic", "Engine", "EngineState", "EvalError", "Expr", "GoalError", "GoalPath",
     "GoalReport", "GoalSpec", "GoalStatus", "LangError", "Literal", "PassOver", "PathStep",
-    "Percept", "PerceptPattern", "Program", "ProgramError", "Skill", "StateError", "StoredStep",
+    "Percept", "PerceptPattern", "Program", "ProgramError", "SharedRows", "Skill", "StateError",
+    "StoredStep",
     "Test", "Var", "as_percepts", "load_program", "load_program_text", "parse_percepts",
 ]

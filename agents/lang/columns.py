@@ -25,9 +25,9 @@ class Cols:
     the column ``ID``), the exact type of every value (``types[attr]``: lists) and the set of
     types in each column (``kinds[attr]``)."""
 
-    __slots__ = ("n", "names", "ids", "vals", "types", "kinds", "same", "same_ids")
+    __slots__ = ("n", "names", "ids", "vals", "types", "kinds", "same", "same_ids", "rows")
 
-    def __init__(self, n, names, vals, types, kinds, same, same_ids):
+    def __init__(self, n, names, vals, types, kinds, same, same_ids, rows=None):
         self.n = n
         self.names: tuple[str, ...] = names
         self.ids: tuple = vals[ID]
@@ -36,6 +36,7 @@ class Cols:
         self.kinds: dict[str | None, frozenset] = kinds
         self.same: set = same  # columns found strictly equal to the previous Cols'
         self.same_ids = same_ids  # ids equal (==) to the previous Cols' ids, in the same order
+        self.rows = rows  # the rows read, when they are shared rows (shared_rows.py); else None
 
 
 _STRS = frozenset({str})

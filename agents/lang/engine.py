@@ -12,11 +12,12 @@ from .explanation import Decision
 from .extend import extend_program
 from .goals import GoalEntry, enumerable, parse_goal
 from .inference import Inference, InferStats
-from .intake import PerceptCache, frame_of
+from .intake import PerceptCache
 from .outcomes import as_outcomes
 from .planning.rogue import RoguePlanner
 from .program import Program
 from .scs.state import model_of
+from .shared_rows import Framer
 from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, FactStore, PerceptIndex, store_of
@@ -62,6 +63,7 @@ class Engine:
         self.executive = Executive(program, self.solver)
         self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
         self._percepts = PerceptCache(self._checked)  # and the Percepts made from them
+        self._framer = Framer()  # last cycle's grouping, for SharedRows
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------
@@ -149,7 +151,7 @@ class Engine:
         """The executive's index of ``percepts``, every value checked."""
         if isinstance(percepts, PerceptIndex):
             return percepts
-        frame = frame_of(percepts)
+        frame = self._framer.frame_of(percepts)
         if not frame.checked:
             check_frame(frame, self._checked)
             frame.cache = self._percepts  # Percepts of unchanged rows are last cycle's

@@ -25,10 +25,11 @@ from dataclasses import dataclass
 from .base import BASE, BaseFacts, base_rule
 from .codegen import Estimator, variants
 from .columns import EMPTY, summarize_values
-from .intake import Frame, PerceptCache, frame_of
+from .intake import Frame, PerceptCache
 from .maintain import Maintainer
 from .program import Program
 from .rules import Rule
+from .shared_rows import Framer
 from .store import BeliefSet, Delta, FactStore
 from .terms import Belief, Var
 from .tracker import PerceptTracker
@@ -111,6 +112,7 @@ class Inference:
         self.counts: dict[str, dict] = {}
         self.fresh = True
         self.frame: Frame | None = None
+        self.framer = Framer()
         self._beliefs: set = set()
         self._result: BeliefSet | None = None
 
@@ -133,7 +135,7 @@ class Inference:
             gc.enable()
 
     def _run(self, percepts: Iterable, base: tuple[tuple, ...]) -> FactStore:
-        frame = self.frame = frame_of(percepts)
+        frame = self.frame = self.framer.frame_of(percepts)
         summary = self.base.summary_of(base)
         change = self.tracker.update(frame, self.edb, summary)
         frame.cache = self.percepts

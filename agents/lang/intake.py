@@ -22,11 +22,14 @@ class Frame:
     never changed). Rows of a type are validated when the type is read by column
     (``columns.read_cols``) or, for the rest, by ``check``; ``index`` is the executive's view."""
 
-    __slots__ = ("groups", "checked", "cache", "_index")
+    __slots__ = ("groups", "checked", "shared", "patched", "cache", "_index")
 
-    def __init__(self, groups: dict[str, list], checked: bool = False):
+    def __init__(self, groups: dict[str, list], checked: bool = False, shared: bool = False,
+                 patched: dict | None = None):
         self.groups = groups
         self.checked = checked  # every row already validated (built from Percept objects)
+        self.shared = shared  # the rows are SharedRows (shared_rows.py): identity = unchanged
+        self.patched = patched  # last cycle's groups with new rows put in (shared_rows.Framer)
         self.cache: PerceptCache | None = None  # last cycle's Percepts, if read by column
         self._index: PerceptIndex | None = None
 

@@ -17,8 +17,9 @@ from itertools import compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
-from .columns import EMPTY, ID, Cols, Summary, changed, read_cols, summarize, summarize_values
+from .columns import EMPTY, ID, Cols, Summary, changed, summarize, summarize_values
 from .intake import Frame
+from .shared_rows import read_cols_of
 from .store import Delta, FactStore
 
 
@@ -52,7 +53,8 @@ class PerceptTracker:
         ``extra``: the values of other facts joining inference (the world model)."""
         deltas: dict = {}
         sums_before = dict(self.sums)
-        news = {t: read_cols(rows, self.cols.get(t)) for t, rows in frame.groups.items()}
+        cols = self.cols
+        news = {t: read_cols_of(rows, cols.get(t), frame, t) for t, rows in frame.groups.items()}
         if not frame.checked:  # every check before any change: a bad message changes nothing
             frame.check([t for t, c in news.items() if c is None])
         for t, rows in frame.groups.items():
@@ -168,7 +170,7 @@ def check_frame(frame: Frame, seen: dict) -> None:
         seen.clear()
         return
     for t, rows in frame.groups.items():
-        c = read_cols(rows, seen.get(t))
+        c = read_cols_of(rows, seen.get(t), frame, t)
         if c is None:
             frame.check([t])
             seen.pop(t, None)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import replace
+from operator import is_
 from typing import Any
 
 import click
@@ -47,6 +48,7 @@ class Executive:
         self.log = log
         self.state = engine.initial_state() if state is None else state
         self.goals = GoalSync.of(self.state)   # the user goals the state already holds
+        self.beliefs = BeliefReader()
 
     def sync_goals(self, goal_list: tuple[dict[str, Any], ...]) -> None:
         """Add new goals, drop withdrawn ones, move reprioritised ones (in list order)."""
@@ -74,18 +76,45 @@ class Executive:
     def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
         """One executive step; returns the engine's Decision. A malformed outcome is logged
         and left out, never a crash (the world's outcomes are checked by the engine)."""
-        from agents.lang import Belief, LangError
+        from agents.lang import LangError, SharedRows
         from agents.lang.outcomes import as_outcomes
 
-        beliefs = frozenset(Belief.from_list(b) for b in belief_lists)
+        beliefs = self.beliefs.read(belief_lists)
         good = []
         for o in outcomes:
             try:
                 good += as_outcomes([o])
             except LangError as exc:
                 self.log.warning("outcome dropped: %s", exc)
-        decision, self.state = self.engine.decide(self.state, percepts, beliefs, good)
+        decision, self.state = self.engine.decide(self.state, SharedRows(percepts), beliefs,
+                                                  good)
         return decision
+
+
+class BeliefReader:
+    """Belief lists as the bus delivers them (a list seen last cycle is the same object,
+    bus/codec.py "Packed rows") to a BeliefSet: a list seen before keeps its Belief, and the
+    same lists as last cycle give last cycle's BeliefSet, its fact store built once."""
+
+    def __init__(self) -> None:
+        self.lists: tuple = ()
+        self.made: dict[int, tuple] = {}  # id(list) -> (list, Belief)
+        self.last: Any = None
+
+    def read(self, lists: tuple) -> Any:
+        from agents.lang import Belief
+        from agents.lang.store import BeliefSet
+
+        if self.last is not None and len(lists) == len(self.lists) \
+                and all(map(is_, lists, self.lists)):
+            return self.last
+        made, now = self.made, {}
+        for b in lists:
+            hit = made.get(id(b))
+            now[id(b)] = (b, hit[1] if hit is not None and hit[0] is b else Belief.from_list(b))
+        self.lists, self.made = lists, now
+        self.last = BeliefSet(v[1] for v in now.values())
+        return self.last
 
 
 def make_executive(program_path: str, log: logging.Logger, state: Any = None,

@@ -11,6 +11,7 @@ so the bytes on the bus are the same for the same percepts.
 from __future__ import annotations
 
 import logging
+from operator import itemgetter
 
 from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
@@ -21,7 +22,7 @@ from bus.messages import Beliefs, Envelope, Message
 def make_step(run: str, agent: str, process: str, program_path: str,
               log: logging.Logger | None = None):
     """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]."""
-    from agents.lang import Engine, LangError, load_program
+    from agents.lang import Engine, LangError, SharedRows, load_program
 
     engine = Engine(load_program(program_path))
     in_key, out_key = keys.percepts(run, agent), keys.beliefs(run, agent)
@@ -29,15 +30,45 @@ def make_step(run: str, agent: str, process: str, program_path: str,
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         seen = inputs[in_key]
+        percepts = SharedRows(seen.percepts)  # rows seen last cycle are the same lists
         try:
-            beliefs = engine.infer(seen.percepts, seen.memory.get("model") or ())
+            beliefs = engine.infer(percepts, seen.memory.get("model") or ())
         except LangError as exc:   # a malformed model: logged, inferred without it
             log.warning("cycle %d: world model dropped: %s", cycle, exc)
-            beliefs = engine.infer(seen.percepts)
-        lists = tuple(sorted((b.to_list() for b in beliefs), key=repr))
-        return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent, lists))]
+            beliefs = engine.infer(percepts)
+        return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent,
+                                  rows.of(beliefs)))]
 
+    rows = BeliefRows()
     return step
+
+
+class BeliefRows:
+    """A belief set as sorted neutral lists; a belief held last cycle keeps its list (the
+    codec then sends its bytes again without packing, and receivers get the same list), and
+    the same set as last cycle gives the same tuple."""
+
+    def __init__(self) -> None:
+        self.last: object = None
+        self.rows: tuple = ()
+        self.made: dict = {}  # id(Belief) -> (Belief, repr of its list, its list)
+
+    def of(self, beliefs: frozenset) -> tuple:
+        if beliefs is self.last:
+            return self.rows
+        made, now = self.made, {}
+        for b in beliefs:  # by identity: (v 3) and (v 3.0) are equal, yet print differently
+            hit = made.get(id(b))
+            if hit is None or hit[0] is not b:
+                row = b.to_list()
+                hit = (b, repr(row), row)
+            now[id(b)] = hit
+        self.last, self.made = beliefs, now
+        self.rows = tuple(r for _, _, r in sorted(now.values(), key=_KEY))
+        return self.rows
+
+
+_KEY = itemgetter(1)
 
 
 @agent_options(with_program=True)

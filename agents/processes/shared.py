@@ -18,12 +18,14 @@ from __future__ import annotations
 import json
 import logging
 import time
+from dataclasses import replace
 
 import click
 
 from agents.processes import executive, inference, perception
 from agents.processes.common import setup_logging, stop_on_signals
 from bus import keys
+from bus.codec import shared_rows
 from bus.config import BusConfig, bus_options
 from bus.messages import Envelope, Message, ProcessStats
 
@@ -48,6 +50,9 @@ def make_chain(run: str, spec: dict, log: logging.Logger):
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         t0 = time.perf_counter()
         p_out = perceive(cycle, inputs)
+        seen = p_out[0][1]  # rows as a receiver on the bus would get them (bus/codec.py)
+        p_out[0] = (p_out[0][0], replace(seen, percepts=shared_rows("Percepts", agent,
+                                                                     seen.percepts)))
         t1 = time.perf_counter()
         b_out = infer(cycle, {p_key: p_out[0][1]})
         t2 = time.perf_counter()

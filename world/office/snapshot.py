@@ -97,10 +97,10 @@ class OfficeSnapshot:
         return {
             "domain": "office", "cycle": self.cycle, "time": self.time,
             "config": self.config.to_dict(), "robots": robots,
-            "people": [asdict(p) for p in self.people],
-            "items": [asdict(i) for i in self.items],
+            "people": [dict(vars(p)) for p in self.people],  # flat records of atoms
+            "items": [dict(vars(i)) for i in self.items],
             "doors": dict(self.doors), "occupants": dict(self.occupants),
-            "obstacles": [asdict(o) for o in self.obstacles],
+            "obstacles": [dict(vars(o)) for o in self.obstacles],
             "counters": {a: dict(c) for a, c in self.counters.items()},
             "events": [dict(e) for e in self.events],
         }
