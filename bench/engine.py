@@ -165,7 +165,7 @@ def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool
     for what in ("infer", "bus", "cycle"):
         if what == "bus":
             engine.inference.forget()  # the bus rows are other lists than the infer row's
-            decode(key, msgs[(step - 1) % len(seq)])
+            engine.infer(wrap(decode(key, msgs[(step - 1) % len(seq)]).percepts))  # untimed
             collector = Collector()  # as a stage process collects: after each cycle
         for _ in range(calls):
             i = step % len(seq)

@@ -24,7 +24,7 @@ from dataclasses import MISSING, fields
 from functools import lru_cache
 from itertools import chain, compress, repeat
 from math import isfinite
-from operator import is_
+from operator import is_, ne
 from typing import Any
 
 import msgpack
@@ -248,22 +248,60 @@ def shared_rows(kind: str, agent: str, rows: Any) -> tuple:
 
 def _unpack_rows(key: str, v: Any) -> tuple:
     """The rows of a packed field received on ``key``, checked as ``_rows`` checks them; a
-    row of the same bytes as one in the last message on ``key`` is that message's list."""
+    row of the same bytes as one in the last message on ``key`` is that message's list.
+
+    Kept per key: the last message's items and rows, and bytes -> row of the rows seen lately
+    (rebuilt when it holds twice as many as a message). Items are first compared position by
+    position with the last message's (rows mostly stay where they were), then looked up."""
     items = _list(v)
     seen = getattr(_local, "seen", None)
     if seen is None:
         seen = _local.seen = {}
-    last = seen.get(key, {})
-    got = list(map(last.get, items)) if last and _BYTES_ONLY.issuperset(map(type, items)) \
-        else [None] * len(items)
-    new = [i for i, r in enumerate(got) if r is None]
+    was = seen.get(key)
+    if was is not None and was[0] == items:  # the very same rows: last message's tuple
+        return was[1]
+    n = len(items)
+    by: dict = was[2] if was is not None else {}
+    at = list(compress(range(n), map(ne, items, was[0]))) \
+        if was is not None and len(was[0]) == n else None
+    if at is not None and len(at) * 4 <= n:  # a few rows changed: look only those up
+        got = list(was[1])
+        for i in at:
+            b = items[i]
+            got[i] = by.get(b) if type(b) is bytes else None
+        new = [i for i in at if got[i] is None]
+    else:
+        got = _known(by, items)
+        new = list(compress(range(n), map(is_, got, repeat(None))))
     if new:
         fresh = _rows(_unpacked_all([items[i] for i in new]))
         for i, row in zip(new, fresh, strict=True):
             got[i] = row
-    if new or len(last) != len(items):
-        seen[key] = {b: r for b, r in zip(items, got, strict=True) if type(b) is bytes}
-    return tuple(got)
+        if len(new) * 4 <= n:
+            by.update((items[i], got[i]) for i in new if type(items[i]) is bytes)
+        else:
+            by = _by_bytes(items, got)
+    if len(by) > 2 * n + 16:
+        by = _by_bytes(items, got)
+    out = tuple(got)
+    seen[key] = (items, out, by)
+    return out
+
+
+def _by_bytes(items: list, rows: list) -> dict:
+    """bytes -> row, for the items given as bytes (plain arrays are left out)."""
+    try:
+        return dict(zip(items, rows, strict=True))
+    except TypeError:  # a plain array among the items (unhashable)
+        return {b: r for b, r in zip(items, rows, strict=True) if type(b) is bytes}
+
+
+def _known(last: dict, items: list) -> list:
+    """The row in ``last`` of each item given as bytes, else None."""
+    try:
+        return list(map(last.get, items))
+    except TypeError:  # a plain array among the items (unhashable)
+        return [last.get(b) if type(b) is bytes else None for b in items]
 
 
 _BYTES_ONLY = frozenset({bytes})
