@@ -17,7 +17,7 @@ from .outcomes import as_outcomes
 from .planning.rogue import RoguePlanner
 from .program import Program
 from .scs.state import model_of
-from .shared_rows import Framer
+from .shared_rows import Framer, SharedPercepts, check_new_rows
 from .solving.solver import MeansEndsSolver
 from .state import EngineState
 from .store import BeliefSet, FactStore, PerceptIndex, store_of
@@ -64,6 +64,7 @@ class Engine:
         self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
         self._percepts = PerceptCache(self._checked)  # and the Percepts made from them
         self._framer = Framer()  # last cycle's grouping, for SharedRows
+        self._shared = SharedPercepts()  # and the Percepts of its rows
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
 
     # -- goals ---------------------------------------------------------------------------
@@ -152,11 +153,19 @@ class Engine:
         if isinstance(percepts, PerceptIndex):
             return percepts
         frame = self._framer.frame_of(percepts)
-        if not frame.checked:
-            check_frame(frame, self._checked)
-            frame.cache = self._percepts  # Percepts of unchanged rows are last cycle's
-        else:
-            self._checked.clear()
+        try:
+            if frame.patched is not None:  # shared rows: only the new ones need a check
+                check_new_rows(frame)
+                frame.cache = self._shared.bind(frame)
+                return frame.index
+            if not frame.checked:
+                check_frame(frame, self._checked)
+                frame.cache = self._shared.bind(frame) if frame.shared else self._percepts
+            else:
+                self._checked.clear()
+        except LangError:
+            self._framer = Framer()  # a refused message is no base for the next one
+            raise
         return frame.index
 
     def _decide(self, state: EngineState, index: PerceptIndex, store: FactStore,

@@ -18,6 +18,7 @@ from operator import is_not
 
 from .columns import ATOMS, ID, Cols, read_cols
 from .intake import Frame, frame_of
+from .terms import Percept, check_row
 
 
 class SharedRows(tuple):
@@ -144,6 +145,44 @@ def read_changed(rows: list, old: Cols, at: list[int]) -> Cols | None:
     if not same_ids and len(set(vals[ID])) != n:
         return None
     return Cols(n, old.names, vals, types, kinds, same, same_ids, rows)
+
+
+class SharedPercepts:
+    """The executive's Percept objects of shared rows (``Frame.cache`` for ``PerceptIndex``):
+    a type's rows unchanged since the cycle its Percepts were last asked for keep them, and in a
+    patched frame only the new rows get new ones."""
+
+    def __init__(self) -> None:
+        self.last: dict[str, tuple[list, list[Percept]]] = {}
+        self.patched: dict = {}
+
+    def bind(self, frame: Frame) -> SharedPercepts:
+        """This cycle's frame (its patched types) is the one asked about from now on."""
+        self.patched = frame.patched or {}
+        return self
+
+    def percepts(self, t: str, rows: list) -> list[Percept]:
+        prev = self.last.get(t)
+        if prev is not None and prev[0] is rows:
+            return prev[1]
+        base = self.patched.get(t)
+        if prev is not None and base is not None and base[0] is prev[0]:
+            out = list(prev[1])
+            for j in base[1]:
+                out[j] = Percept.of_row(rows[j])
+        else:
+            out = list(map(Percept.of_row, rows))
+        self.last[t] = (rows, out)
+        return out
+
+
+def check_new_rows(frame: Frame) -> None:
+    """Check the rows a patched frame holds that were not in last cycle's (raises LangError
+    naming the percept); the others were checked when they came."""
+    for t, (_, at) in frame.patched.items():
+        rows = frame.groups[t]
+        for j in at:
+            check_row(rows[j])
 
 
 def read_cols_of(rows: list, old: Cols | None, frame: Frame, t: str) -> Cols | None:

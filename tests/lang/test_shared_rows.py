@@ -105,3 +105,43 @@ def test_rows_reordered_or_of_another_type_are_read_afresh():
     for rows in (first[::-1], first[:3] + [["hand", "H1", "status", "full"]] + first[4:],
                  first[:-1]):
         assert engine.infer(bus.deliver(rows)) == Engine(BLOCKS, solver=None).infer(rows)
+
+
+def test_the_executive_on_shared_rows_decides_as_on_plain_lists():
+    """As the executive process runs it: beliefs from elsewhere, percepts as the bus delivers
+    them; rows kept from last cycle keep their Percept objects."""
+    rnd = random.Random(5)
+    rows = towers(24, rnd)
+    shared, plain, bus = Engine(BLOCKS, solver=None), Engine(BLOCKS, solver=None), Bus()
+    states = [e.add_goal(e.initial_state(), "(clear B3)", priority=0) for e in (shared, plain)]
+    for cycle in range(15):
+        beliefs = plain.infer([list(r) for r in rows])
+        got, s0 = shared.decide(states[0], bus.deliver(rows), beliefs)
+        want, s1 = plain.decide(states[1], [list(r) for r in rows], beliefs)
+        assert got.to_dict() == want.to_dict()
+        states = [s0, s1]
+        rows = [list(r) for r in rows]
+        if cycle % 4 == 1:
+            rows[2 + rnd.randrange(24)][3] = 99  # a block moves away
+        elif cycle % 4 == 2:
+            rows[2 + rnd.randrange(24)][11] = 1.25
+    index = shared._index(bus.deliver(rows))
+    again = shared._index(bus.deliver([list(r) for r in rows]))
+    assert again.by_type["block"][5] is index.by_type["block"][5]
+
+
+def test_the_executive_refuses_a_bad_new_row_and_reads_the_next_message_afresh():
+    bus, engine = Bus(), Engine(BLOCKS, solver=None)
+    state = engine.initial_state()
+    rows = towers(6, random.Random(4))
+    beliefs = engine.infer([list(r) for r in rows])
+    engine.decide(state, bus.deliver(rows), beliefs)
+    bad = [list(r) for r in rows]
+    bad[3][11] = None
+    with pytest.raises(LangError, match="B1"):
+        engine.decide(state, bus.deliver(bad), beliefs)
+    with pytest.raises(LangError, match="B1"):  # the same bad row again is refused again
+        engine.decide(state, bus.deliver([list(r) for r in bad]), beliefs)
+    decision, _ = engine.decide(state, bus.deliver(rows), beliefs)
+    assert decision.to_dict() == Engine(BLOCKS, solver=None).decide(state, rows, beliefs)[0] \
+        .to_dict()
