@@ -85,13 +85,15 @@ class Framer:
 
 
 _SEQS = (list, tuple)
-_PROBE = 32  # rows looked at first: when most of them are new, the rest are not compared
+_PROBE = 32  # rows sampled first: when most of them are new, the rest are not compared
 
 
 def _mostly_new(items: SharedRows, old: SharedRows) -> bool:
-    """True when more than half of the first rows are new (each comparison touches a row)."""
-    k = min(len(items), _PROBE)
-    return k > 0 and sum(map(is_not, items[:k], old[:k])) * 2 > k
+    """True when more than half of a sample of rows spread over the message are new (each
+    comparison touches a row: all of them are compared only when most are kept)."""
+    step = max(1, len(items) // _PROBE)
+    sample = items[::step]
+    return sum(map(is_not, sample, old[::step])) * 2 > len(sample)
 
 
 def _positions(groups: dict, items: SharedRows) -> list | None:
@@ -183,6 +185,24 @@ def check_new_rows(frame: Frame) -> None:
         rows = frame.groups[t]
         for j in at:
             check_row(rows[j])
+
+
+def check_irregular(frame: Frame, types: list[str], kept: dict[str, list]) -> None:
+    """Check the rows of ``types`` one by one (raises LangError naming a bad percept), except
+    the shared rows taken in last cycle: a type whose rows are ``kept[type]`` needs no check,
+    one patched from them only its new rows."""
+    patched = frame.patched or {}
+    for t in types:
+        rows, last = frame.groups[t], kept.get(t)
+        if last is None:
+            frame.check([t])
+        elif rows is not last:
+            base = patched.get(t)
+            if base is not None and base[0] is last:
+                for j in base[1]:
+                    check_row(rows[j])
+            else:
+                frame.check([t])
 
 
 def read_cols_of(rows: list, old: Cols | None, frame: Frame, t: str) -> Cols | None:

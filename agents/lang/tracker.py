@@ -19,7 +19,7 @@ from operator import is_, is_not, itemgetter, not_
 
 from .columns import EMPTY, ID, Cols, Summary, changed, summarize, summarize_values
 from .intake import Frame
-from .shared_rows import read_cols_of
+from .shared_rows import check_irregular, read_cols_of
 from .store import Delta, FactStore
 
 
@@ -47,6 +47,7 @@ class PerceptTracker:
         self.sums: dict[tuple, Summary] = {}
         self.constants = constants
         self.summary = constants
+        self.kept: dict[str, list] = {}  # irregular type -> its shared rows last taken in
 
     def update(self, frame: Frame, edb: FactStore, extra: Summary = EMPTY) -> PerceptChange:
         """The changes from last cycle's percepts (as held in ``edb``) to ``frame``'s;
@@ -55,15 +56,17 @@ class PerceptTracker:
         sums_before = dict(self.sums)
         cols = self.cols
         news = {t: read_cols_of(rows, cols.get(t), frame, t) for t, rows in frame.groups.items()}
+        irregular = [t for t, c in news.items() if c is None]
+        kept = self.kept if frame.shared else {}
         if not frame.checked:  # every check before any change: a bad message changes nothing
-            frame.check([t for t, c in news.items() if c is None])
+            check_irregular(frame, irregular, kept)
         for t, rows in frame.groups.items():
             old, new = self.cols.get(t), news[t]
             if old is not None and (new is None or old.names != new.names):
                 old = None
             if new is None:
                 self.cols.pop(t, None)
-                if t in self.rels_of:
+                if t in self.rels_of and rows is not kept.get(t):  # else: the same rows
                     self._irregular(t, rows, edb, deltas)
                 continue
             self.cols[t] = new
@@ -88,6 +91,7 @@ class PerceptTracker:
                     now = now | s
             self.summary = now
         now = self.summary
+        self.kept = {t: frame.groups[t] for t in irregular} if frame.shared else {}
         return PerceptChange(deltas, was.mixed, now.mixed, now is not was and was.clashes(now))
 
     # -- one type ------------------------------------------------------------------------

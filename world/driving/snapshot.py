@@ -14,10 +14,13 @@ from typing import Any
 
 from world.driving.config import WorldConfig, load_world_config
 from world.errors import WorldError
+from world.parsed import parsed_by_value
 
 COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
             "speeding_cycles", "deliveries")
 
+
+_config = parsed_by_value(load_world_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class CarState:
@@ -92,7 +95,7 @@ class WorldSnapshot:
         """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong."""
         try:
             return cls(
-                cycle=int(d["cycle"]), time=d["time"], config=load_world_config(d["config"]),
+                cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
                 cars=tuple(_record(CarState, c) for c in d["cars"]),
                 pedestrians=tuple(_record(PedState, p) for p in d["pedestrians"]),
                 packages=tuple(_record(PackageState, p) for p in d["packages"]),

@@ -14,10 +14,13 @@ from typing import Any
 
 from world.errors import WorldError
 from world.office.config import OfficeConfig, load_office_config
+from world.parsed import parsed_by_value
 
 COUNTERS = ("travel_cm", "deliveries", "acquisitions", "observations", "utterances", "failures",
             "bumps", "reroutes", "false_successes")
 
+
+_config = parsed_by_value(load_office_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class RobotState:
@@ -116,7 +119,7 @@ class OfficeSnapshot:
                 r["route"] = tuple(tuple(p) for p in r["route"])
                 robots.append(_record(RobotState, r))
             return cls(
-                cycle=int(d["cycle"]), time=d["time"], config=load_office_config(d["config"]),
+                cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
                 robots=tuple(robots),
                 people=tuple(_record(PersonState, p) for p in d["people"]),
                 items=tuple(_record(ItemState, i) for i in d["items"]),
