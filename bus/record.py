@@ -16,9 +16,10 @@ from typing import Any
 
 import msgpack
 
-from bus.codec import PACKED, decode, encode, unpacked_rows
+from bus.codec import decode, encode
 from bus.errors import CodecError
 from bus.messages import MESSAGE_TYPES, Message
+from bus.rows import PACKED, unpacked_rows
 
 DERIVED: dict[str, tuple[str, ...]] = {"Percepts": ("self",)}
 """Per kind, the fields a record adds to the wire form (left out again by `from_record`)."""

@@ -1,7 +1,7 @@
 """Percepts whose unchanged rows are shared from cycle to cycle, read without reading them again.
 
 The bus decodes a row it has seen on the same key last cycle, byte for byte, to the very same
-list object (bus/codec.py, "Packed rows"), and nobody mutates a decoded row. A caller that
+list object (bus/rows.py; docs/bus.md, "Packed rows"), and nobody mutates a decoded row. A caller that
 gives the engine such percepts wraps them in ``SharedRows``; the engine then takes a row that
 is the same object as one of last cycle's as unchanged, strictly (the same bytes are the same
 values of the same types), without reading its values: the cycle's grouping by type is last

@@ -93,7 +93,7 @@ class Executive:
 
 class BeliefReader:
     """Belief lists as the bus delivers them (a list seen last cycle is the same object,
-    bus/codec.py "Packed rows") to a BeliefSet: a list seen before keeps its Belief, and the
+    bus/rows.py) to a BeliefSet: a list seen before keeps its Belief, and the
     same lists as last cycle give last cycle's BeliefSet, its fact store built once."""
 
     def __init__(self) -> None:

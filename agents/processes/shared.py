@@ -25,9 +25,9 @@ import click
 from agents.processes import executive, inference, perception
 from agents.processes.common import setup_logging, stop_on_signals
 from bus import keys
-from bus.codec import shared_rows
 from bus.config import BusConfig, bus_options
 from bus.messages import Envelope, Message, ProcessStats
+from bus.rows import shared_rows
 
 STAGE_NAMES = ("perception", "inference", "executive")
 
@@ -50,7 +50,7 @@ def make_chain(run: str, spec: dict, log: logging.Logger):
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         t0 = time.perf_counter()
         p_out = perceive(cycle, inputs)
-        seen = p_out[0][1]  # rows as a receiver on the bus would get them (bus/codec.py)
+        seen = p_out[0][1]  # rows as a receiver on the bus would get them (bus/rows.py)
         p_out[0] = (p_out[0][0], replace(seen, percepts=shared_rows("Percepts", agent,
                                                                      seen.percepts)))
         t1 = time.perf_counter()

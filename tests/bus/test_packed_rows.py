@@ -55,10 +55,10 @@ def test_rows_are_shared_per_key_only():
     assert a.percepts[0] is not b.percepts[0]
 
 
-def _raw(items) -> bytes:
+def _raw(items, agent="ME") -> bytes:
     return msgpack.packb({"kind": "Percepts", "env": {"v": 1, "run": "r1", "cycle": 0,
                                                       "sender": "x", "sent_ns": 0},
-                          "agent": "ME", "percepts": items}, use_bin_type=True)
+                          "agent": agent, "percepts": items}, use_bin_type=True)
 
 
 def test_plain_arrays_and_a_mix_are_read_as_well():
@@ -107,7 +107,7 @@ def test_messages_decode_to_what_was_sent_and_reuse_only_identical_rows(messages
 
 
 def test_rows_handed_over_in_memory_are_shared_as_a_receiver_would_get_them():
-    from bus.codec import shared_rows
+    from bus.rows import shared_rows
 
     first = shared_rows("Percepts", "K1", (["self", "K1", "speed", 2.5], ["man", "M1", "d", 3]))
     second = shared_rows("Percepts", "K1", (["self", "K1", "speed", 2.5], ["man", "M1", "d", 3.0]))
@@ -119,3 +119,11 @@ def test_rows_handed_over_in_memory_are_shared_as_a_receiver_would_get_them():
         list(r) for r in second)))
     assert decode(keys.percepts("r1", "K1"), encode(Percepts(env, "K1", second))).percepts \
         == second
+
+
+def test_plain_arrays_are_never_taken_for_last_messages_rows():
+    key = keys.percepts("r1", "P9")
+    first = decode(key, _raw([["obj", "O", "v", 3], ["man", "M1"]]))
+    again = decode(key, _raw([["obj", "O", "v", 3.0], ["man", "M1"]]))  # equal to ==
+    assert repr(again.percepts[0][3]) == "3.0"
+    assert again.percepts[0] is not first.percepts[0]
