@@ -1,13 +1,14 @@
 """Percepts whose unchanged rows are shared from cycle to cycle, read without reading them again.
 
 The bus decodes a row it has seen on the same key last cycle, byte for byte, to the very same
-list object (bus/rows.py; docs/bus.md, "Packed rows"), and nobody mutates a decoded row. A caller that
-gives the engine such percepts wraps them in ``SharedRows``; the engine then takes a row that
-is the same object as one of last cycle's as unchanged, strictly (the same bytes are the same
-values of the same types), without reading its values: the cycle's grouping by type is last
-cycle's with the new rows put in place (``Framer``), and a type's columns are last cycle's
-with only the new rows read and checked (``read_changed``). Plain lists are always read in
-full: a caller may have changed them in place.
+list object (bus/rows.py; docs/bus.md, "Packed rows"), and nobody mutates a decoded row. A
+caller that gives the engine such percepts wraps them in ``SharedRows``; the engine then takes
+a row that is the same object as one of last cycle's as unchanged, strictly (the same bytes are
+the same values of the same types), without reading its values: the cycle's grouping by type
+is last cycle's with the new rows put in place (``Framer``), a type's columns are last cycle's
+with only the new rows read and checked (``read_changed``), and the executive's Percept
+objects are last cycle's but for the new rows (``SharedPercepts``). Plain lists are always
+read in full: a caller may have changed them in place.
 """
 
 from __future__ import annotations
