@@ -126,6 +126,16 @@ def assert_indexes_kept(engine: Engine) -> None:
             assert ix == fresh, (rel, positions)
 
 
+def assert_same_beliefs(got, want, engine: Engine, text: str, rows: list) -> None:
+    """``engine``'s beliefs ``got`` are ``want``, also as text where that is well defined, and
+    every index it keeps is up to date."""
+    assert got == want, (text, rows, engine.last_infer_stats)
+    assert got.store.beliefs() == want.store.beliefs()
+    assert_indexes_kept(engine)
+    if not mixed(rows):
+        assert shown(got) == shown(want), (text, rows)
+
+
 def shown(beliefs) -> list[str]:
     """Beliefs as sorted text: tells 3 from 3.0 and 0.0 from -0.0, which == does not."""
     return sorted(str(b) for b in beliefs)
@@ -148,11 +158,7 @@ def test_incremental_inference_equals_inference_from_scratch(text, rows, changes
         got = engine.infer(rows)
         scratch.inference.forget()  # from scratch (a fresh Engine, but compiled once)
         want = scratch.infer(rows) if k % 4 else Engine(program).infer(rows)
-        assert got == want, (text, rows, engine.last_infer_stats)
-        assert got.store.beliefs() == want.store.beliefs()
-        assert_indexes_kept(engine)
-        if not mixed(rows):
-            assert shown(got) == shown(want), (text, rows)
+        assert_same_beliefs(got, want, engine, text, rows)
         rows = apply(change, rows, rnd)
 
 

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from agents.lang import Engine, LangError, SharedRows, load_program, load_program_text
 
 from .conftest import ROOT
-from .test_incremental import CHANGE, ROW, apply, assert_indexes_kept, mixed, programs, shown
+from .test_incremental import CHANGE, ROW, apply, assert_same_beliefs, programs
 
 
 class Bus:
@@ -45,11 +45,7 @@ def test_shared_rows_give_the_beliefs_of_plain_lists(text, rows, changes, rnd):
     for change in [("same",), *changes]:
         got = engine.infer(bus.deliver(rows))
         want = plain.infer([list(r) for r in rows])
-        assert got == want, (text, rows, engine.last_infer_stats)
-        assert got.store.beliefs() == want.store.beliefs()
-        assert_indexes_kept(engine)
-        if not mixed(rows):
-            assert shown(got) == shown(want), (text, rows)
+        assert_same_beliefs(got, want, engine, text, rows)
         rows = apply(change, rows, rnd)
 
 
