@@ -13,7 +13,6 @@ row, and a row seen in the last message on a key decodes to the same list (bus/r
 from __future__ import annotations
 
 import gc
-import threading
 from collections.abc import Callable
 from dataclasses import MISSING, fields
 from functools import lru_cache
@@ -24,9 +23,7 @@ import msgpack
 from bus import keys
 from bus.errors import CodecError
 from bus.messages import GOAL_OPS, MESSAGE_TYPES, SCHEMA_VERSION, Envelope, Message
-from bus.rows import PACKED, check_rows, pack_rows, unpack_rows
-
-_local = threading.local()  # one msgpack.Packer per thread (publish may run on zenoh threads)
+from bus.rows import PACKED, as_array, check_rows, pack_rows, packer, unpack_rows
 
 
 def encode(msg: Message) -> bytes:
@@ -46,7 +43,7 @@ def encode(msg: Message) -> bytes:
     try:
         if packed is not None:
             body[packed] = pack_rows(body[packed], (msg.KIND, getattr(msg, "agent", "")))
-        return _packer().pack(body)
+        return packer().pack(body)
     except (TypeError, ValueError, OverflowError) as exc:
         raise CodecError(f"<encode {msg.KIND}>", f"not msgpack-able: {exc}") from exc
 
@@ -116,15 +113,6 @@ def _kinds_of_key(key: str) -> frozenset[str]:
     return keys.kind_of_key(key)
 
 
-def _packer() -> msgpack.Packer:
-    """This thread's Packer (autoreset: each `pack` returns the bytes of one object and
-    leaves the packer empty, also after an error)."""
-    packer = getattr(_local, "packer", None)
-    if packer is None:
-        packer = _local.packer = msgpack.Packer(use_bin_type=True, autoreset=True)
-    return packer
-
-
 def _envelope(key: str, env: Any) -> Envelope:
     if not isinstance(env, dict):
         raise CodecError(key, f"missing or malformed envelope: {env!r:.80}")
@@ -168,14 +156,8 @@ def _dict(v: Any) -> dict:
     return v
 
 
-def _list(v: Any) -> list:
-    if not isinstance(v, list):
-        raise TypeError(f"expected array, got {type(v).__name__}")
-    return v
-
-
 def _dict_rows(v: Any) -> tuple:
-    for row in _list(v):
+    for row in as_array(v):
         if not isinstance(row, dict):
             raise TypeError(f"expected array of maps, found item {row!r:.60}")
     return tuple(v)
@@ -186,7 +168,7 @@ def _any(v: Any) -> Any:
 
 
 _FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
-    "snapshot": _dict, "outcomes": _dict, "events": _list, "agent": _str,
+    "snapshot": _dict, "outcomes": _dict, "events": as_array, "agent": _str,
     "percepts": check_rows, "beliefs": check_rows, "actions": check_rows, "decision": _dict,
     "op": _str, "goal": _str, "priority": _int, "goal_id": _str, "force": _bool,
     "ok": _bool, "reason": _str, "goals": _dict_rows,

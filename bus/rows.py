@@ -24,13 +24,16 @@ _LIST_ONLY = frozenset({list})
 _local = threading.local()  # per thread: a Packer, and the rows sent and seen per slot or key
 
 
-def _list(v: Any) -> list:
+def as_array(v: Any) -> list:
+    """``v`` if it is a list (a msgpack array), else TypeError saying what it is."""
     if not isinstance(v, list):
         raise TypeError(f"expected array, got {type(v).__name__}")
     return v
 
 
-def _packer() -> msgpack.Packer:
+def packer() -> msgpack.Packer:
+    """This thread's Packer (autoreset: each `pack` returns the bytes of one object and
+    leaves the packer empty, also after an error)."""
     packer = getattr(_local, "packer", None)
     if packer is None:
         packer = _local.packer = msgpack.Packer(use_bin_type=True, autoreset=True)
@@ -44,7 +47,7 @@ def check_rows(v: Any) -> tuple:
     Checked in C-level passes over the types and one over the floats; only a bad payload
     takes the row-by-row loop that names the offending row.
     """
-    rows = _list(v)
+    rows = as_array(v)
     if _LIST_ONLY.issuperset(map(type, rows)):
         atoms = list(chain.from_iterable(rows))
         types = list(map(type, atoms))
@@ -72,7 +75,7 @@ def pack_rows(rows: Any, slot: tuple) -> list[bytes]:
     if sent is None:
         sent = _local.sent = {}
     last = sent.get(slot)
-    pack = _packer().pack
+    pack = packer().pack
     ids = list(map(id, rows))
     if last:
         out = [h[1] if h is not None and h[0] is r else pack(r)
@@ -107,7 +110,7 @@ def unpack_rows(key: str, v: Any) -> tuple:
     Kept per key: the last message's items and rows, and bytes -> row of the rows seen lately
     (rebuilt when it holds twice as many as a message). Items are first compared position by
     position with the last message's (rows mostly stay where they were), then looked up."""
-    items = _list(v)
+    items = as_array(v)
     seen = getattr(_local, "seen", None)
     if seen is None:
         seen = _local.seen = {}
