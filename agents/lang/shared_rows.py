@@ -112,6 +112,19 @@ def _positions(groups: dict, items: SharedRows) -> list | None:
     return where
 
 
+def new_since(frame: Frame, t: str, before: list | None) -> list[int] | None:
+    """Positions of the rows of type ``t`` in ``frame`` that are new since ``before`` (an
+    earlier cycle's rows of ``t``): [] when the frame holds that very list, those patched in
+    when the frame was patched from it, None when the frame's rows are not ``before``'s
+    (then every row must be read)."""
+    if before is None or frame.patched is None:
+        return None
+    if frame.groups[t] is before:
+        return []
+    base = frame.patched.get(t)
+    return base[1] if base is not None and base[0] is before else None
+
+
 def read_changed(rows: list, old: Cols, at: list[int]) -> Cols | None:
     """``rows`` by column, when they are ``old.rows`` but for the new rows at positions ``at``
     (ascending): only those are read and checked (a row of the same names, values str, int or
@@ -157,24 +170,24 @@ class SharedPercepts:
 
     def __init__(self) -> None:
         self.last: dict[str, tuple[list, list[Percept]]] = {}
-        self.patched: dict = {}
+        self.frame: Frame | None = None
 
     def bind(self, frame: Frame) -> SharedPercepts:
-        """This cycle's frame (its patched types) is the one asked about from now on."""
-        self.patched = frame.patched or {}
+        """This cycle's frame is the one asked about from now on."""
+        self.frame = frame
         return self
 
     def percepts(self, t: str, rows: list) -> list[Percept]:
         prev = self.last.get(t)
-        if prev is not None and prev[0] is rows:
-            return prev[1]
-        base = self.patched.get(t)
-        if prev is not None and base is not None and base[0] is prev[0]:
-            out = list(prev[1])
-            for j in base[1]:
-                out[j] = Percept.of_row(rows[j])
-        else:
+        at = new_since(self.frame, t, prev[0]) if prev is not None else None
+        if at is None:
             out = list(map(Percept.of_row, rows))
+        elif not at:
+            return prev[1]
+        else:
+            out = list(prev[1])
+            for j in at:
+                out[j] = Percept.of_row(rows[j])
         self.last[t] = (rows, out)
         return out
 
@@ -183,40 +196,33 @@ def check_new_rows(frame: Frame) -> None:
     """Check the rows a patched frame holds that were not in last cycle's (raises LangError
     naming the percept); the others were checked when they came."""
     for t, (_, at) in frame.patched.items():
-        rows = frame.groups[t]
-        for j in at:
-            check_row(rows[j])
+        _check_at(frame.groups[t], at)
 
 
 def check_irregular(frame: Frame, types: list[str], kept: dict[str, list]) -> None:
     """Check the rows of ``types`` one by one (raises LangError naming a bad percept), except
     the shared rows taken in last cycle: a type whose rows are ``kept[type]`` needs no check,
     one patched from them only its new rows."""
-    patched = frame.patched or {}
     for t in types:
-        rows, last = frame.groups[t], kept.get(t)
-        if last is None:
+        at = new_since(frame, t, kept.get(t))
+        if at is None:
             frame.check([t])
-        elif rows is not last:
-            base = patched.get(t)
-            if base is not None and base[0] is last:
-                for j in base[1]:
-                    check_row(rows[j])
-            else:
-                frame.check([t])
+        else:
+            _check_at(frame.groups[t], at)
+
+
+def _check_at(rows: list, at: list[int]) -> None:
+    for j in at:
+        check_row(rows[j])
 
 
 def read_cols_of(rows: list, old: Cols | None, frame: Frame, t: str) -> Cols | None:
     """``columns.read_cols`` of type ``t``'s ``rows`` in ``frame``, reading only the new rows
-    when the frame was patched from the one ``old`` was read from (``Framer``)."""
-    if frame.patched is not None and old is not None and old.rows is not None:
-        if rows is old.rows:
-            got = read_changed(rows, old, [])
-        else:
-            base = frame.patched.get(t)
-            got = read_changed(rows, old, base[1]) if base and base[0] is old.rows else None
-        if got is not None:
-            return got
+    when the frame was patched from the rows ``old`` was read from (``Framer``)."""
+    at = new_since(frame, t, old.rows) if old is not None else None
+    got = read_changed(rows, old, at) if at is not None else None
+    if got is not None:
+        return got
     got = read_cols(rows, old)
     if got is not None and frame.shared:
         got.rows = rows
