@@ -34,6 +34,7 @@ import click
 from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.goal_sync import GoalSync
 from agents.processes.hints import with_hints
+from agents.processes.per_object import PerObject
 from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
@@ -97,23 +98,18 @@ class BeliefReader:
     same lists as last cycle give last cycle's BeliefSet, its fact store built once."""
 
     def __init__(self) -> None:
+        from agents.lang import Belief
+
         self.lists: tuple = ()
-        self.made: dict[int, tuple] = {}  # id(list) -> (list, Belief)
+        self.beliefs = PerObject(Belief.from_list)
         self.last: Any = None
 
     def read(self, lists: tuple) -> Any:
-        from agents.lang import Belief
         from agents.lang.store import BeliefSet
 
-        if self.last is not None and len(lists) == len(self.lists) \
-                and all(map(is_, lists, self.lists)):
-            return self.last
-        made, now = self.made, {}
-        for b in lists:
-            hit = made.get(id(b))
-            now[id(b)] = (b, hit[1] if hit is not None and hit[0] is b else Belief.from_list(b))
-        self.lists, self.made = lists, now
-        self.last = BeliefSet(v[1] for v in now.values())
+        if self.last is None or len(lists) != len(self.lists) \
+                or not all(map(is_, lists, self.lists)):
+            self.lists, self.last = lists, BeliefSet(self.beliefs.of(lists))
         return self.last
 
 

@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import logging
 from operator import itemgetter
+from typing import Any
 
 from agents.processes.common import agent_options, run_stage, setup_logging
+from agents.processes.per_object import PerObject
 from bus import keys
 from bus.config import BusConfig
 from bus.messages import Beliefs, Envelope, Message
@@ -28,6 +30,8 @@ def make_step(run: str, agent: str, process: str, program_path: str,
     in_key, out_key = keys.percepts(run, agent), keys.beliefs(run, agent)
     log = log or logging.getLogger(process)
 
+    rows = BeliefRows()
+
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         seen = inputs[in_key]
         percepts = SharedRows(seen.percepts)  # rows seen last cycle are the same lists
@@ -39,7 +43,6 @@ def make_step(run: str, agent: str, process: str, program_path: str,
         return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent,
                                   rows.of(beliefs)))]
 
-    rows = BeliefRows()
     return step
 
 
@@ -51,24 +54,22 @@ class BeliefRows:
     def __init__(self) -> None:
         self.last: object = None
         self.rows: tuple = ()
-        self.made: dict = {}  # id(Belief) -> (Belief, repr of its list, its list)
+        self.lists = PerObject(_keyed)
 
     def of(self, beliefs: frozenset) -> tuple:
-        if beliefs is self.last:
-            return self.rows
-        made, now = self.made, {}
-        for b in beliefs:  # by identity: (v 3) and (v 3.0) are equal, yet print differently
-            hit = made.get(id(b))
-            if hit is None or hit[0] is not b:
-                row = b.to_list()
-                hit = (b, repr(row), row)
-            now[id(b)] = hit
-        self.last, self.made = beliefs, now
-        self.rows = tuple(r for _, _, r in sorted(now.values(), key=_KEY))
+        if beliefs is not self.last:
+            self.last = beliefs
+            self.rows = tuple(r for _, r in sorted(self.lists.of(beliefs), key=_KEY))
         return self.rows
 
 
-_KEY = itemgetter(1)
+def _keyed(belief: Any) -> tuple[str, list]:
+    """(the sort key, the neutral list) of a belief."""
+    row = belief.to_list()
+    return repr(row), row
+
+
+_KEY = itemgetter(0)
 
 
 @agent_options(with_program=True)
