@@ -155,23 +155,39 @@ def report(agents: int, layout: str, result: dict, base: float) -> None:
         click.echo(f"  {'bus+waits':<11} {rest:7.3f} ms  {100 * rest / cycle_ms:5.1f} %")
 
 
+def _counts(text: str, name: str, allow_all: bool) -> list:
+    """A comma-separated list of non-negative counts (and "all" where allowed)."""
+    out = []
+    for x in text.split(","):
+        if allow_all and x == "all":
+            out.append(x)
+        elif x.isdigit() and (allow_all or 1 <= int(x) <= 32):
+            out.append(int(x))
+        else:
+            what = "a count or all" if allow_all else "a count 1..32"
+            raise click.BadParameter(f"{x!r} is not {what}", param_hint=f"--{name}")
+    return out
+
+
 @click.command()
 @click.option("--cycles", default=600, show_default=True,
               help="Cycles per launch (delivery takes about 215).")
-@click.option("--agents", default="1,2,4,8", show_default=True,
+@click.option("--agents", default="1,2,4,8", show_default=True, callback=lambda c, p, v:
+              _counts(v, p.name, allow_all=False),
               help="Agent counts, comma-separated (1..32).")
-@click.option("--shared", default="0,all", show_default=True,
+@click.option("--shared", default="0,all", show_default=True, callback=lambda c, p, v:
+              _counts(v, p.name, allow_all=True),
               help="Layouts: --agents-per-process values (0, 1, ..., all), comma-separated.")
 @click.option("--record", is_flag=True, help="Keep the run record (record.mcap) on.")
-def main(cycles: int, agents: str, shared: str, record: bool) -> None:
+def main(cycles: int, agents: list, shared: list, record: bool) -> None:
     """Print end-to-end lockstep cycle rates of N delivering cars and each stage's share."""
     load = os.getloadavg()[0]
     click.echo(f"fleet of cars on programs/driving.tlp bound through self, {cycles} cycles, "
                f"lockstep, {os.cpu_count()} CPUs, load average {load:.1f}")
     bad = []
-    for n in (int(x) for x in agents.split(",")):
+    for n in agents:
         base = 0.0
-        for k in dict.fromkeys(n if x == "all" else int(x) for x in shared.split(",")):
+        for k in dict.fromkeys(n if x == "all" else x for x in shared):
             layout = {0: "a process per stage", 1: "a process per agent"}.get(
                 k, f"{k} agents per process")
             with tempfile.TemporaryDirectory() as tmp:

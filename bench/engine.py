@@ -196,10 +196,29 @@ def measure(engine, kind: str, seq: list[bytes], calls: int, clock, freeze: bool
             collections[0] / calls)
 
 
+def _sizes(text: str) -> list[int]:
+    """Positive object counts, comma-separated."""
+    parts = text.split(",")
+    if not all(p.isdigit() and int(p) > 0 for p in parts):
+        raise argparse.ArgumentTypeError(f"expected positive counts like 100,1000, got {text!r}")
+    return [int(p) for p in parts]
+
+
+def _kinds(text: str) -> list[str]:
+    """Row kinds, comma-separated, each one of KINDS."""
+    parts = text.split(",")
+    bad = [p for p in parts if p not in KINDS]
+    if bad:
+        raise argparse.ArgumentTypeError(f"unknown row {bad[0]!r}; known: {', '.join(KINDS)}")
+    return parts
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--sizes", default="10,100,1000,10000")
-    ap.add_argument("--kinds", default=",".join(KINDS))
+    ap.add_argument("--sizes", default="10,100,1000,10000", type=_sizes,
+                    help="object counts, comma-separated")
+    ap.add_argument("--kinds", default=",".join(KINDS), type=_kinds,
+                    help=f"rows, comma-separated: {', '.join(KINDS)}")
     ap.add_argument("--gc", choices=("on", "off", "freeze"), default="on",
                     help="garbage collector during the runs (freeze: gc.freeze() after the "
                          "first two cycles)")
@@ -219,10 +238,10 @@ def main() -> None:
               f" {'bus':>7} {'base':>7} {'x':>6} | {'cycle':>7} {'base':>7} {'x':>6} |"
               f" {'gc':>4} {'base':>4}   [ms {args.clock} time, median; gc: collections per infer]")
         results = {}
-        for n in map(int, args.sizes.split(",")):
+        for n in args.sizes:
             calls = 40 if n <= 100 else 20 if n <= 1000 else 3
-            for kind in args.kinds.split(","):
-                if n > 1000 and kind in ("move", "scratch") and args.kinds == ",".join(KINDS):
+            for kind in args.kinds:
+                if n > 1000 and kind in ("move", "scratch") and args.kinds == list(KINDS):
                     continue  # by default the largest size has the issue's three rows only
                 seq = cycles(n, kind, 2 * calls + 2)
                 row = []
