@@ -13,6 +13,7 @@ it is.
 
 from __future__ import annotations
 
+import cProfile
 import ctypes
 import ctypes.util
 import logging
@@ -26,6 +27,7 @@ from typing import NoReturn
 
 log = logging.getLogger(__name__)
 ENV_PARENT = "TELEO_PARENT_PID"
+ENV_PROFILE = "TELEO_PROFILE"  # a folder: each process writes a cProfile of its run there
 POLL_S = 0.2    # [s] how often the watchdog looks at the parent pid
 GRACE_S = 1.5   # [s] from the parent's death to a forced exit
 EXIT_ORPHANED = 75  # exit status of a child forced out after its launcher died
@@ -75,6 +77,7 @@ def run_then_exit(main: Callable[[], object]) -> NoReturn:
     Python while it finalises, which aborts the process ("FATAL: exception not rethrown",
     status -6) after its work was done. Every file is closed and logging flushed first."""
     code = 1
+    profile = _profiler()
     try:
         main()
         code = 0
@@ -83,6 +86,8 @@ def run_then_exit(main: Callable[[], object]) -> NoReturn:
     except KeyboardInterrupt:
         code = 130
     finally:
+        if profile is not None:
+            _save_profile(*profile)
         logging.shutdown()
         for stream in (sys.stdout, sys.stderr):
             try:
@@ -90,6 +95,29 @@ def run_then_exit(main: Callable[[], object]) -> NoReturn:
             except (OSError, ValueError):  # a closed pipe: nothing more can be said
                 pass
     os._exit(code)
+
+
+def _profiler() -> tuple[cProfile.Profile, str] | None:
+    """A running profiler and the file it is to be saved in, when TELEO_PROFILE names a
+    folder (``<module>-<pid>.prof``: read with ``python -m pstats`` or snakeviz)."""
+    folder = os.environ.get(ENV_PROFILE, "")
+    if not folder:
+        return None
+    spec = getattr(sys.modules.get("__main__"), "__spec__", None)
+    name = spec.name if spec is not None else os.path.basename(sys.argv[0])
+    profile = cProfile.Profile()
+    profile.enable()
+    return profile, os.path.join(folder, f"{name}-{os.getpid()}.prof")
+
+
+def _save_profile(profile: cProfile.Profile, path: str) -> None:
+    profile.disable()
+    try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        profile.dump_stats(path + ".tmp")
+        os.replace(path + ".tmp", path)   # a process killed meanwhile leaves no torn file
+    except OSError as exc:
+        log.error("cannot save the profile %s: %s", path, exc)
 
 
 def _status(code: object) -> int:

@@ -25,9 +25,10 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from bus.lifeline import ENV_PARENT
+from bus.lifeline import ENV_PARENT, ENV_PROFILE
 
 log = logging.getLogger(__name__)
+PROFILE_GRACE_S = 10.0  # [s] more time to stop when each process saves a profile (TELEO_PROFILE)
 
 
 @dataclass(frozen=True)
@@ -91,6 +92,8 @@ class Supervisor:
     def _spawn(self, spec: ProcSpec, argv: tuple[str, ...]) -> subprocess.Popen:
         out = open(self.log_dir / f"{spec.name}.log", "ab")  # noqa: SIM115 (inherited)
         env = {**os.environ, **spec.env, ENV_PARENT: str(os.getpid())}
+        if env.get(ENV_PROFILE):   # a child may run in another folder
+            env[ENV_PROFILE] = os.path.abspath(env[ENV_PROFILE])
         try:
             return subprocess.Popen(argv, stdout=out, stderr=subprocess.STDOUT,
                                     stdin=subprocess.DEVNULL, cwd=self.cwd, env=env,
@@ -167,6 +170,8 @@ class Supervisor:
             child.gave_up = True
             _signal(child.popen, signal.SIGINT)
             _signal(child.popen, signal.SIGCONT)  # a stopped process must run to stop
+        if os.environ.get(ENV_PROFILE):
+            timeout += PROFILE_GRACE_S   # writing a profile takes a while on a busy machine
         end = time.monotonic() + timeout
         codes: dict[str, int | None] = {}
         for name, child in children:

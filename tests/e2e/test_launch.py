@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import pstats
 from pathlib import Path
 
 import pytest
@@ -57,6 +58,28 @@ def test_the_same_scenario_twice_gives_identical_traces(first_run, tmp_path):
     second = json.loads((tmp_path / "summary.json").read_text())["trace"]
     assert first != second  # two runs, two folders
     assert Path(first).read_text() == Path(second).read_text()
+
+
+def test_teleo_profile_gives_every_process_its_profile_and_changes_no_trace(first_run,
+                                                                             tmp_path):
+    folder, _ = first_run
+    teleo = Teleo(tmp_path)
+    teleo.env["TELEO_PROFILE"] = str(tmp_path / "profiles")
+    done = teleo("launch", str(HOLD_SPEED), "--cycles", "25",
+                 "--summary", str(tmp_path / "summary.json"))
+    assert done.returncode == 0, done.stdout + done.stderr
+    files = {p.name.rsplit("-", 1)[0]: p for p in (tmp_path / "profiles").glob("*.prof")}
+    assert set(files) >= {"world.process", "agents.processes.goals", "bus.router",
+                          "agents.processes.perception", "agents.processes.inference",
+                          "agents.processes.executive"}, sorted(files)
+    # each file is a cProfile of that process's whole run: the executive decided 25 times
+    calls = pstats.Stats(str(files["agents.processes.executive"])).stats
+    decides = [v[1] for (path, _, name), v in calls.items()
+               if name == "decide" and path.endswith("agents/lang/engine.py")]
+    assert decides == [25]
+    first = json.loads((folder / "summary.json").read_text())["trace"]
+    profiled = json.loads((tmp_path / "summary.json").read_text())["trace"]
+    assert Path(profiled).read_text() == Path(first).read_text()
 
 
 def test_a_bad_scenario_is_refused_before_anything_starts(teleo, tmp_path):
