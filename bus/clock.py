@@ -30,7 +30,7 @@ from __future__ import annotations
 import logging
 import threading
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 from bus import keys
 from bus.cycle import CycleBook, CycleMode, CycleReport, DeadPolicy, culprit
@@ -100,8 +100,11 @@ class Clock:
             raise NotReady(set(), timeout, f"no subscriber on {self._state_key}")
         self._incarnations = dict(self.node.presence.incarnations())
 
-    def run_cycle(self, cycle: int, state_msg: WorldState) -> CycleReport:
-        """Publish state `cycle` and collect the agents' actions of `cycle` (see module doc)."""
+    def run_cycle(self, cycle: int, state_msg: WorldState,
+                  meanwhile: Callable[[], object] | None = None) -> CycleReport:
+        """Publish state `cycle` and collect the agents' actions of `cycle` (see module doc).
+        `meanwhile` runs right after the state is out, while the agents work on it: the
+        world's bookkeeping of that state, off the cycle's critical path."""
         if self.mode is CycleMode.REALTIME:
             self._pace()
         for p in self._rejoined() & self.node.presence.snapshot():  # came back in between
@@ -109,6 +112,8 @@ class Clock:
             self.gone_since.pop(p, None)
         start = time.monotonic()
         self.node.publish(self._state_key, state_msg)
+        if meanwhile is not None:
+            meanwhile()
         run = _CycleRun(self, cycle, state_msg, start)
         run.wait()
         report = run.report(time.monotonic())

@@ -26,6 +26,7 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from functools import partial
 from itertools import count
 from pathlib import Path
 from typing import Any
@@ -34,6 +35,7 @@ import click
 
 from bus import keys
 from bus.clock import Clock, CycleInterrupted
+from bus.collector import Collector
 from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode
 from bus.errors import BusError, NotReady
@@ -105,6 +107,13 @@ def _begin(domain: Domain, scenario: Scenario, seed: int, out: Path, again: bool
                    {a: [] for a in agents}, -1, 0, {a: {} for a in agents})
 
 
+def _off_the_path(rec: Recorder, collector: Collector, t: int, snap: dict[str, Any]) -> None:
+    """While the agents work on state t: its record's digest and snapshot line, and the
+    young garbage of the cycle (bus/collector.py)."""
+    rec.prepare(t, snap)
+    collector.after_cycle()
+
+
 def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
               mode: str, out: Path, stop: threading.Event, again: bool = False,
               ready_timeout: float = READY_TIMEOUT) -> bool:
@@ -135,6 +144,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
+        collector = Collector()
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
                              ready_timeout)
@@ -150,7 +160,9 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 snap = sim.snapshot_dict()
                 world_ms = (time.perf_counter() - w0) * 1e3
                 report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes,
-                                                       injected, dict(memory)))
+                                                       injected, dict(memory)),
+                                         meanwhile=partial(_off_the_path, rec, collector,
+                                                           t, snap))
                 changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
                 memory.update(changed)  # an agent given the no-op keeps its last memory
                 w0 = time.perf_counter()
@@ -165,6 +177,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
+        collector.close()
         asked.close("the run ended before the event could be applied")
         completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
         rec.finish(completed, time.monotonic() - start, reason, memory)

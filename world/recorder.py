@@ -30,7 +30,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, TextIO
 
-from world.trace import trace_line
+from world.trace import digest, trace_line
 
 TRACE, HEALTH, SNAPSHOTS = "trace.jsonl", "health.jsonl", "snapshots.jsonl"
 CHECKPOINT, WORLD_FINAL = "checkpoint.pkl", "world-final.json"
@@ -106,6 +106,7 @@ class Recorder:
         self.cycle_ms = self.world_ms = 0.0
         self.cycles = resumed_at
         self.last_snapshot: dict[str, Any] | None = None
+        self._prepared: tuple[int, Any, str, str] = (-1, None, "", "")
         self.last_written = -1
         self._progress_at = 0.0
         if resumed_at:
@@ -122,12 +123,21 @@ class Recorder:
         line = {"kind": kind, "t": round(time.time(), 3), **fields}
         self.health.write(json.dumps(line, sort_keys=True) + "\n")
 
+    def prepare(self, t: int, snap: dict[str, Any]) -> None:
+        """Make what cycle `t`'s record needs of its state alone (its digest, and its line
+        in snapshots.jsonl when one is kept) while the agents work on that state (the world
+        calls it through Clock.run_cycle's `meanwhile`), so `cycle` writes at once."""
+        self._prepared = (t, snap, digest(snap),
+                          json.dumps(snap) + "\n" if t % self.render_every == 0 else "")
+
     def cycle(self, t: int, snap: dict[str, Any], applied: dict[str, list],
               injected: list[dict[str, Any]], report: CycleReport, world_ms: float,
               memory: dict[str, Any] | None = None) -> None:
         """Record cycle `t`: its trace line, a health line if it was not clean, totals.
         `memory`: the agents whose memory changed this cycle, with the new one."""
-        self.trace.write(trace_line(t, snap, applied, injected, memory))
+        ready = self._prepared if self._prepared[0] == t and self._prepared[1] is snap \
+            else (t, snap, "", "")
+        self.trace.write(trace_line(t, snap, applied, injected, memory, ready[2]))
         if not report.clean or report.stalled or report.republished:
             self.event("cycle", cycle=t, noop=list(report.noop), late=list(report.late),
                        dead=list(report.dead), stalled=list(report.stalled),
@@ -142,14 +152,14 @@ class Recorder:
         self.cycles = t + 1
         self.last_snapshot = snap
         if t % self.render_every == 0:
-            self._snapshot(t, snap)
+            self._snapshot(t, snap, ready[3])
         now = time.monotonic()
         if now - self._progress_at >= PROGRESS_EVERY_S:
             self._progress_at = now
             self.event("progress", cycle=t)
 
-    def _snapshot(self, t: int, snap: dict[str, Any]) -> None:
-        self.snaps.write(json.dumps(snap) + "\n")
+    def _snapshot(self, t: int, snap: dict[str, Any], line: str = "") -> None:
+        self.snaps.write(line or json.dumps(snap) + "\n")
         self.last_written = t
 
     def checkpoint(self, next_cycle: int, blob: bytes, outcomes: dict[str, list]) -> None:

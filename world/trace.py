@@ -30,12 +30,13 @@ def digest(snapshot: dict[str, Any]) -> str:
 
 def trace_line(cycle: int, snapshot: dict[str, Any], actions: Mapping[str, Sequence],
                injected: Sequence[dict[str, Any]] = (),
-               memory: Mapping[str, Any] | None = None) -> str:
-    """The trace line of one cycle, JSON with sorted keys and a newline."""
+               memory: Mapping[str, Any] | None = None, state_digest: str = "") -> str:
+    """The trace line of one cycle, JSON with sorted keys and a newline. ``state_digest``:
+    ``digest(snapshot)`` when the caller already has it."""
     line: dict[str, Any] = {
         "cycle": cycle,
         "actions": {a: [list(x) for x in acts] for a, acts in sorted(actions.items())},
-        "counters": snapshot["counters"], "digest": digest(snapshot)}
+        "counters": snapshot["counters"], "digest": state_digest or digest(snapshot)}
     if injected:
         line["events"] = list(injected)
     if memory:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 from bus_helpers import AGENT, PIPELINE, Stages
 
 from bus.clock import Clock
@@ -21,8 +23,11 @@ def test_lockstep_cycles_reach_every_stage_once_in_order(cfg, run_id, stages: St
         clock = Clock(node, {AGENT: PIPELINE}, mode=CycleMode.LOCKSTEP, deadline_s=10.0)
         stages.start_agent()
         clock.wait_ready(set(PIPELINE), timeout=30)
-        reports = [clock.run_cycle(t, state(node, t)) for t in range(N)]
+        meanwhile: list[int] = []
+        reports = [clock.run_cycle(t, state(node, t), meanwhile=partial(meanwhile.append, t))
+                   for t in range(N)]
     assert all(r.clean for r in reports)
+    assert meanwhile == list(range(N))   # the world's own work of each cycle, once
     assert [r.actions[AGENT] for r in reports] == [(["*pass", t, 1],) for t in range(N)]
     assert set(reports[-1].stage_ms) == set(PIPELINE)
     for process in PIPELINE:

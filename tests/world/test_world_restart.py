@@ -66,8 +66,10 @@ def test_restore_refuses_bytes_that_are_not_a_driving_checkpoint() -> None:
         DRIVING.restore(b"garbage")
 
 
-def record(folder: Path, cycles: int, seed: int = 5, checkpoint_at: int | None = None) -> None:
-    """What a world process writes for `cycles` cycles with one injected event."""
+def record(folder: Path, cycles: int, seed: int = 5, checkpoint_at: int | None = None,
+           prepare=lambda rec, t, snap: None) -> None:
+    """What a world process writes for `cycles` cycles with one injected event; `prepare`
+    runs where the world process prepares the cycle's record (while the agents work)."""
     world = DRIVING.create(BUSY, seed, ["ME"])
     rec = Recorder(folder, render_every=50)
     outcomes: dict = {"ME": []}
@@ -75,6 +77,7 @@ def record(folder: Path, cycles: int, seed: int = 5, checkpoint_at: int | None =
         injected = [world.inject({"kind": "pedestrian", "ahead_of": "ME", "dist": 15.0})] \
             if t == 30 else []
         snap = world.snapshot_dict()
+        prepare(rec, t, snap)
         applied = {"ME": [["*gas", 50], ["*steer", 5 * ((t // 25) % 3 - 1)]]}
         outcomes = {"ME": world.apply_actions("ME", applied["ME"])}
         world.step()
@@ -92,6 +95,19 @@ def test_resume_brings_the_world_to_the_first_cycle_not_in_the_trace(tmp_path, c
     assert back.cycle == 90 and back.outcomes == outcomes
     assert (back.checkpoint, back.replayed) == ((60, 30) if checkpoint_at else (-1, 90))
     assert digest(back.world.snapshot_dict()) == digest(world.snapshot_dict())
+
+
+def test_a_record_prepared_while_the_agents_work_is_the_same_record(tmp_path):
+    plain, prepared, stale = tmp_path / "plain", tmp_path / "prepared", tmp_path / "stale"
+    record(plain, 120)
+    record(prepared, 120, prepare=lambda rec, t, snap: rec.prepare(t, snap))
+    # prepared from another cycle's or another snapshot: not used, the record stays right
+    record(stale, 120, prepare=lambda rec, t, snap: rec.prepare(t + 1, snap) if t % 2 else
+           rec.prepare(t, dict(snap, counters={})))
+    for name in (TRACE, "snapshots.jsonl"):
+        want = (plain / name).read_text()
+        assert (prepared / name).read_text() == want
+        assert (stale / name).read_text() == want
 
 
 def test_a_partial_last_line_is_ignored_and_cut_before_appending(tmp_path):
