@@ -220,7 +220,16 @@ def open_node(cfg: BusConfig, run: str, process: str) -> Iterator[Node]:
         finally:
             node.close()
     finally:
+        _close(session, process)
+
+
+def _close(session: zenoh.Session, process: str) -> None:
+    """Close the session; a close that times out (a machine too busy to finish it in time)
+    is logged, never raised over what ended the process (an error it is reporting)."""
+    try:
         session.close()
+    except zenoh.ZError as exc:
+        log.warning("%s: closing the zenoh session failed: %s", process, exc)
 
 
 def decode_query(query: zenoh.Query) -> Message | None:
