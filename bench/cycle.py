@@ -71,6 +71,10 @@ def _agent_rss_kib(pid: int) -> float:
     return total
 
 
+class LaunchFailed(Exception):
+    """A launch of the bench that ended with an error (the line saying why)."""
+
+
 def run_once(scenario: Path, cycles: int, record: bool, per_process: int) -> dict:
     """One launch; returns its summary, the world's timing totals and the agents' peak RSS."""
     tmp = scenario.parent
@@ -94,7 +98,9 @@ def run_once(scenario: Path, cycles: int, record: bool, per_process: int) -> dic
     done.set()
     sampler.join()
     if proc.returncode != 0:
-        raise click.ClickException(f"launch failed ({proc.returncode}):\n{out}\n{err}")
+        why = [x for x in (out + err).splitlines() if "failed:" in x or x.startswith("Error")]
+        raise LaunchFailed(f"launch failed ({proc.returncode}): "
+                           f"{why[0].strip() if why else err.strip()[-300:]}")
     summary = json.loads(Path(f"{tmp}/s.json").read_text())
     run_dir = Path(summary["trace"]).parent
     final = json.loads((run_dir / "world-final.json").read_text())
@@ -191,7 +197,12 @@ def main(cycles: int, agents: list, shared: list, record: bool) -> None:
             layout = {0: "a process per stage", 1: "a process per agent"}.get(
                 k, f"{k} agents per process")
             with tempfile.TemporaryDirectory() as tmp:
-                result = run_once(write_fleet(Path(tmp), n, cycles), cycles, record, k)
+                try:
+                    result = run_once(write_fleet(Path(tmp), n, cycles), cycles, record, k)
+                except LaunchFailed as exc:   # reported, and the other layouts still run
+                    click.echo(f"{n} agent(s), {layout}: {exc}")
+                    bad.append(f"{n} agents, {layout}: {exc}")
+                    continue
             base = base or result["cycles_per_s"]
             report(n, layout, result, base)
             bad += [f"{n} agents, {layout}: {f}" for f in failures(n, result)]

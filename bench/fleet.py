@@ -19,6 +19,11 @@ GRID = 4
 LETTERS = [chr(ord("A") + i) for i in range(GRID)]
 ORDINALS = ["FIRST", "SECOND", "THIRD", "FOURTH"][:GRID]
 MAX_AGENTS = 4 * 2 * GRID  # four starts on each of the 2 * GRID streets
+# The cars after the first 16 (the second lap of start places, block 1 and the one before the
+# last) start 30 m further along their block: the program has no right-of-way rule, and with
+# all at 20 m four cars reached three inner crossings at once from four sides and jammed
+# there for good (32 cars: 12 never delivered); staggered, all 32 deliver.
+FIRST_LAP = 2 * 2 * GRID
 
 
 def agent_free_program(text: str) -> str:
@@ -52,8 +57,9 @@ def scenario_text(agents: int, program: Path, cycles: int, seed: int = 1) -> str
         raise ValueError(f"agents: expected 1..{MAX_AGENTS}, got {agents}")
     cars, packages = [], []
     for k, (street, frm, toward, address) in enumerate(starts()[:agents], start=1):
+        along = 20.0 if k <= FIRST_LAP else 50.0
         cars.append(f'{{ agent = "A{k}", street = "{street}", from = "{frm}", '
-                    f'toward = "{toward}", along = 20.0 }}')
+                    f'toward = "{toward}", along = {along} }}')
         packages.append(f'{{ id = "P{k}", address = {address}, street = "{street}", '
                         f'owner = "A{k}" }}')
     lines = ["[run]", 'name = "bench"', 'mode = "lockstep"', f"cycles = {cycles}",

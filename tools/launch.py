@@ -31,7 +31,15 @@ from pathlib import Path
 import click
 
 from tools import runfile, summary
-from tools.run_plan import Plan, PlanError, check_secrets, select, uses_clients
+from tools.run_plan import (
+    Plan,
+    PlanError,
+    check_secrets,
+    select,
+    start_timeout,
+    uses_clients,
+    with_bus_mode,
+)
 from tools.run_secrets import RunSecrets, host_of, make_secrets
 from tools.scenario_check import load_checked
 from tools.supervision import Outcome, supervise
@@ -111,6 +119,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         if agents_per_process and (plan.client or only):
             raise PlanError("--agents-per-process: only for a whole open run on one host "
                             "(not with --secure, --only, --join or --listen beyond it)")
+        plan = with_bus_mode(plan)
     except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
@@ -193,7 +202,7 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
                 secrets=keep,
                 client=uses_clients(secure, bool(join), join or listen), joined=bool(join),
                 ready_timeout=REMOTE_READY_TIMEOUT if len(local) < len(select(scenario, None))
-                else 60.0)
+                else start_timeout(len(local)))
     check_secrets(plan)
     return plan
 

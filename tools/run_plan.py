@@ -7,16 +7,20 @@ agent id (its three stages) or a full process name (`ME.executive`), so that the
 one run can be spread over several hosts (docs/faults.md, "Across hosts").
 
 Bus settings: on one host, in the open, every process is a zenoh peer that meets the others
-at the router and then talks to them directly (the fastest). A secured run (`--secure`), a
-router listening beyond loopback, or a joining launch makes every process a client of the
-router: the router is then the only thing listening, it authenticates each process with its
-own user and password over TLS and applies the run's access-control list (bus/security.py).
+at the router and then talks to them directly (the fastest for a few processes). A secured run
+(`--secure`), a router listening beyond loopback, or a joining launch makes every process a
+client of the router: the router is then the only thing listening, it authenticates each
+process with its own user and password over TLS and applies the run's access-control list
+(bus/security.py). A launch of more than PEER_MESH_LIMIT processes makes them clients too:
+peers connect to every other peer, and on two cores the 1225 connections of 50 processes
+(16 agents, a process per stage) ran 4 cycles/s or did not start in 100 s, the 4753 of 98
+processes never started; as clients of the router, 10.6 and 3.5 cycles/s.
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from bus.config import BusConfig, Mode
@@ -61,6 +65,18 @@ class Plan:
         return "world" in self.local
 
 
+PEER_MESH_LIMIT = 30  # processes: a launch of more makes them clients of the router
+START_S = 60.0             # [s] the least time a launch's processes get to announce themselves
+START_S_PER_PROCESS = 2.0  # [s] more per process: their start-ups share the machine's cores
+
+
+def start_timeout(processes: int) -> float:
+    """How long [s] a launch waits for ``processes`` processes started on its host to
+    announce themselves: each imports zenoh, numpy and its stage's code, and on two cores
+    98 processes (32 agents, a process per stage) need more than a minute to do so."""
+    return max(START_S, START_S_PER_PROCESS * processes)
+
+
 def all_processes(scenario: Scenario) -> list[str]:
     """Every process of a scenario in start order (the world last: it is the clock)."""
     names = ["goals"]
@@ -87,9 +103,26 @@ def select(scenario: Scenario, only: str | None) -> tuple[str, ...]:
 
 
 def uses_clients(secure: bool, joined: bool, listen: str) -> bool:
-    """Whether the processes are clients of the router (module doc)."""
+    """Whether the processes must be clients of the router (module doc)."""
     host = host_of(listen)
     return secure or joined or host not in _LOOPBACK
+
+
+def processes_started(plan: Plan) -> int:
+    """How many processes the plan starts on this host, the router left out (the agents'
+    stages share processes with --agents-per-process K: one per K agents)."""
+    if plan.agents_per_process <= 0:
+        return len(plan.local)
+    agents = len(plan.scenario.agents)
+    return len(plan.local) - 3 * agents + -(-agents // plan.agents_per_process)
+
+
+def with_bus_mode(plan: Plan) -> Plan:
+    """The plan with its processes made clients of the router when they are too many to
+    mesh as peers (module doc)."""
+    if plan.client or processes_started(plan) <= PEER_MESH_LIMIT:
+        return plan
+    return replace(plan, client=True)
 
 
 def bus_config(plan: Plan, user: str) -> BusConfig:

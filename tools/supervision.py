@@ -30,11 +30,10 @@ import click
 
 from tools import runfile
 from tools.progress import WorldProgress
-from tools.run_plan import Plan, bus_config, process_specs
+from tools.run_plan import Plan, bus_config, process_specs, start_timeout
 from tools.supervisor import Exit, ProcSpec, Supervisor
 
 log = logging.getLogger(__name__)
-READY_TIMEOUT = 60.0    # [s] for every local process to announce itself
 POLL_S = 0.05           # [s] between looks at the children when nothing else wakes us
 JOIN_GRACE_S = 5.0      # [s] a joined launch waits after the main launcher's token is gone
 ROUTER_RESTARTS = 10
@@ -86,8 +85,9 @@ def supervise(plan: Plan) -> Outcome:
         for spec in specs:
             sup.start(spec)
         where = "joined router" if plan.joined else "router"
-        click.echo(f"run {plan.run}: {len(specs)} processes, {where} {plan.endpoint}"
-                   f"{', secured' if plan.secrets else ''}, logs in {plan.run_dir / 'logs'}")
+        mode = ", secured" if plan.secrets else ", clients of the router" if plan.client else ""
+        click.echo(f"run {plan.run}: {len(specs)} processes, {where} {plan.endpoint}{mode}, "
+                   f"logs in {plan.run_dir / 'logs'}")
         info = _loop(plan, sup, journal, outcome)
     except KeyboardInterrupt:
         click.echo("interrupted: stopping the run")
@@ -216,7 +216,8 @@ def _wait_ready(sup: Supervisor, node, plan: Plan) -> None:
     """Wait until every local process has announced itself; fail fast, with the end of its
     log, when one exits during start-up."""
     expected = set(plan.local)
-    end = time.monotonic() + READY_TIMEOUT
+    timeout = start_timeout(len(expected))
+    end = time.monotonic() + timeout
     log_dir = plan.run_dir / "logs"
     while not expected <= node.alive():
         for ex in sup.poll():
@@ -228,7 +229,7 @@ def _wait_ready(sup: Supervisor, node, plan: Plan) -> None:
         if time.monotonic() > end:
             missing = sorted(expected - node.alive())
             raise click.ClickException(f"not every process announced itself within "
-                                       f"{READY_TIMEOUT:g} s: missing {missing}; see {log_dir}")
+                                       f"{timeout:g} s: missing {missing}; see {log_dir}")
         node.presence.wait_change(0.1)
 
 

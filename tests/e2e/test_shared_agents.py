@@ -4,6 +4,7 @@ every agent acting, fewer processes."""
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import re
 
@@ -56,3 +57,28 @@ def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):
     assert done.returncode == 1
     assert "--agents-per-process: only for a whole open run on one host" in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def _fleet(tmp_path, agents: int, cycles: int) -> str:
+    """bench/fleet.py's scenario: ``agents`` cars on one program, each its own package."""
+    spec = importlib.util.spec_from_file_location("fleet", ROOT / "bench" / "fleet.py")
+    fleet = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fleet)
+    return str(fleet.write_fleet(tmp_path, agents, cycles))
+
+
+def test_a_launch_too_big_for_a_peer_mesh_runs_its_processes_as_clients(teleo, tmp_path):
+    scenario = _fleet(tmp_path, 11, 12)   # 35 processes: more than a mesh of peers holds
+    clients = teleo("launch", scenario, "--no-record", "--json", timeout=600)
+    peers = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "11",
+                  timeout=300)
+    assert clients.returncode == 0, clients.stderr[-3000:]
+    assert peers.returncode == 0, peers.stderr[-3000:]
+    assert re.search(r"run \S+: 35 processes, router \S+, clients of the router,",
+                     clients.stderr)
+    assert re.search(r"run \S+: 3 processes, router \S+, logs in", peers.stderr)
+    traces = [open(json.loads(r.stdout)["trace"]).read() for r in (clients, peers)]
+    assert traces[0] == traces[1]
+    lines = [json.loads(line) for line in traces[0].splitlines()]
+    assert len(lines) == 12
+    assert all(any(line["actions"][f"A{k}"] for line in lines) for k in range(1, 12))
