@@ -22,7 +22,9 @@ CHILD = ("import sys, time\n"
          "print('ready', flush=True)\n"
          "while not stop.wait(0.05): pass\n"
          "open(sys.argv[1], 'w').write('clean')\n")
-PARENT = ("import os, subprocess, sys, time\n"
+# (SIGHUP's default action restored: under `nohup` the test would inherit it ignored)
+PARENT = ("import os, signal, subprocess, sys, time\n"
+          "signal.signal(signal.SIGHUP, signal.SIG_DFL)\n"
           "env = dict(os.environ, TELEO_PARENT_PID=str(os.getpid()))\n"
           "child = subprocess.Popen([sys.executable, '-c', sys.argv[1], sys.argv[2]], env=env,\n"
           "                         stdout=subprocess.PIPE, text=True)\n"
