@@ -104,7 +104,12 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
            run_id: str | None, secrets_dir: str | None, learned: str | None,
            plot_file: str | None, no_record: bool, agents_per_process: int,
            as_json: bool) -> None:
-    """Start every process of SCENARIO, supervise them, and summarise the run."""
+    """Start every process of SCENARIO, supervise them, and summarise the run.
+
+    The processes are zenoh peers of each other, or clients of the router when there are
+    more than 30 (docs/bus.md). Environment: TELEO_RUN_DIR, where runs are kept (else
+    ./out); TELEO_PROFILE=DIR, every process writes a cProfile of its run to DIR.
+    """
     _catch_signals()
     try:
         if render_file:
