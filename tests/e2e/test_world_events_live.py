@@ -9,11 +9,15 @@ from pathlib import Path
 from e2e_helpers import HOLD_SPEED, interrupt, wait_for
 
 
+def trace(info: dict) -> list[dict]:
+    """The run's trace lines written so far."""
+    path = Path(info["run_dir"]) / "trace.jsonl"
+    return [json.loads(line) for line in path.read_text().splitlines()] if path.exists() else []
+
+
 def injected(info: dict, kind: str) -> list[dict]:
     """The outcomes of injected events of `kind` recorded in the run's trace so far."""
-    path = Path(info["run_dir"]) / "trace.jsonl"
-    lines = [json.loads(line) for line in path.read_text().splitlines()] if path.exists() else []
-    return [e for line in lines for e in line.get("events", []) if e["event"]["kind"] == kind]
+    return [e for line in trace(info) for e in line.get("events", []) if e["event"]["kind"] == kind]
 
 
 def test_a_package_sent_with_teleo_event_appears_in_the_world(teleo):
@@ -24,7 +28,12 @@ def test_a_package_sent_with_teleo_event_appears_in_the_world(teleo):
                               '"owner": "ME"}')
         assert sent.returncode == 0, sent.stderr
         assert sent.stdout.startswith(f"run {info['run']}: applied at cycle ")
-        assert injected(info, "package")     # in the trace by the time the verdict came
+        at = int(sent.stdout.split("applied at cycle ")[1].split(":")[0])
+        # the verdict goes out before the state of that cycle, its trace line when the cycle
+        # ends (the agents' actions in): the event is in the line of the cycle it names
+        assert wait_for(lambda: injected(info, "package"), 60), teleo.launch_output()
+        assert [x["cycle"] for x in trace(info) for e in x.get("events", [])
+                if e["event"]["kind"] == "package"] == [at]
         # the world's verdict, not "sent": a refusal exits 1 with the world's reason
         bad = teleo("event", '{"kind": "block"}')            # no segment: the world refuses it
         assert bad.returncode == 1, bad.stdout
