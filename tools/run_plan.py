@@ -111,7 +111,10 @@ def uses_clients(secure: bool, joined: bool, listen: str) -> bool:
 def processes_started(plan: Plan) -> int:
     """How many processes the plan starts on this host, the router left out (the agents'
     stages share processes with --agents-per-process K: one per K agents)."""
-    return len(process_specs(plan))
+    if plan.agents_per_process <= 0:
+        return len(plan.local)
+    agents = len(plan.scenario.agents)
+    return len(plan.local) - 3 * agents + -(-agents // plan.agents_per_process)
 
 
 def with_bus_mode(plan: Plan) -> Plan:
