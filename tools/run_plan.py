@@ -110,7 +110,9 @@ def uses_clients(secure: bool, joined: bool, listen: str) -> bool:
 
 def processes_started(plan: Plan) -> int:
     """How many processes the plan starts on this host, the router left out (the agents'
-    stages share processes with --agents-per-process K: one per K agents)."""
+    stages share processes with --agents-per-process K: one per K agents). Counted, not
+    taken from `process_specs`: the bus mode is chosen before the router and its endpoint,
+    which every spec's command line names, exist."""
     if plan.agents_per_process <= 0:
         return len(plan.local)
     agents = len(plan.scenario.agents)

@@ -27,8 +27,8 @@ def plan_of(agents: int, per_process: int = 0) -> Plan:
     doc = {"agents": [{"id": f"A{k}", "program": str(PROGRAM)} for k in range(1, agents + 1)]}
     scenario = scenario_from_dict(doc, Path("fleet.toml"))
     plan = Plan(scenario, "r", Path("/tmp/r"), 10, 1, "lockstep", select(scenario, None),
-                endpoint="tcp/127.0.0.1:7447", agents_per_process=per_process)
-    return with_bus_mode(plan)
+                agents_per_process=per_process)   # no endpoint: the router is not up yet
+    return replace(with_bus_mode(plan), endpoint="tcp/127.0.0.1:7447")
 
 
 def bus_args(plan: Plan) -> dict[str, tuple[str, str]]:
