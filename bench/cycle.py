@@ -2,7 +2,7 @@
 router, world, goal entry and, per agent, perception, inference and executive as separate
 processes on zenoh (bench/fleet.py: one agent-independent program, each car its own package).
 
-    .venv/bin/python bench/cycle.py [--cycles 300] [--agents 1,2,4,8] [--shared 0,all]
+    .venv/bin/python bench/cycle.py [--cycles 600] [--agents 1,2,4,8] [--shared 0,all,auto]
                                     [--record]
 
 For each agent count it writes the fleet scenario, runs `teleo launch --cycles N` (without
@@ -16,13 +16,15 @@ that fails the check is reported and the bench exits 1. Delivery takes about 215
 
 --shared: the launch layouts to compare, as `teleo launch --agents-per-process K` values: 0 a
 process per stage (3 per agent), 1 a process per agent, `all` every agent in one process
-(agents/processes/shared.py). The first layout is the baseline of the "x" column.
+(agents/processes/shared.py), `auto` the agents spread over the machine's CPUs
+(tools/run_plan.py `per_core`). The first layout is the baseline of the "x" column.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -75,8 +77,9 @@ class LaunchFailed(Exception):
     """A launch of the bench that ended with an error (the line saying why)."""
 
 
-def run_once(scenario: Path, cycles: int, record: bool, per_process: int) -> dict:
-    """One launch; returns its summary, the world's timing totals and the agents' peak RSS."""
+def run_once(scenario: Path, cycles: int, record: bool, per_process: int | str) -> dict:
+    """One launch; returns its summary, the world's timing totals, the agents' peak RSS and
+    the launch's line on how the agents' stages share processes ("" for a process each)."""
     tmp = scenario.parent
     env = {**os.environ, "TELEO_RUN_DIR": str(tmp)}
     teleo = str(Path(sys.executable).parent / "teleo")
@@ -105,7 +108,10 @@ def run_once(scenario: Path, cycles: int, record: bool, per_process: int) -> dic
     run_dir = Path(summary["trace"]).parent
     final = json.loads((run_dir / "world-final.json").read_text())
     acted = _cycles_with_actions(run_dir / "trace.jsonl")
-    return {**summary, "timing_ms": final["timing_ms"], "rss_kib": peak[0], "acted": acted}
+    layout = next((x for x in out.splitlines()
+                   if x.startswith("each agent's") or " agents in " in x), "")
+    return {**summary, "timing_ms": final["timing_ms"], "rss_kib": peak[0], "acted": acted,
+            "layout": layout}
 
 
 def _cycles_with_actions(trace: Path) -> dict[str, int]:
@@ -165,12 +171,12 @@ def _counts(text: str, name: str, allow_all: bool) -> list:
     """A comma-separated list of non-negative counts (and "all" where allowed)."""
     out = []
     for x in text.split(","):
-        if allow_all and x == "all":
+        if allow_all and x in ("all", "auto"):
             out.append(x)
         elif x.isdigit() and (allow_all or 1 <= int(x) <= 32):
             out.append(int(x))
         else:
-            what = "a count or all" if allow_all else "a count 1..32"
+            what = "a count, all or auto" if allow_all else "a count 1..32"
             raise click.BadParameter(f"{x!r} is not {what}", param_hint=f"--{name}")
     return out
 
@@ -181,9 +187,10 @@ def _counts(text: str, name: str, allow_all: bool) -> list:
 @click.option("--agents", default="1,2,4,8", show_default=True, callback=lambda c, p, v:
               _counts(v, p.name, allow_all=False),
               help="Agent counts, comma-separated (1..32).")
-@click.option("--shared", default="0,all", show_default=True, callback=lambda c, p, v:
+@click.option("--shared", default="0,all,auto", show_default=True, callback=lambda c, p, v:
               _counts(v, p.name, allow_all=True),
-              help="Layouts: --agents-per-process values (0, 1, ..., all), comma-separated.")
+              help="Layouts: --agents-per-process values (0, 1, ..., all, auto), "
+                   "comma-separated.")
 @click.option("--record", is_flag=True, help="Keep the run record (record.mcap) on.")
 def main(cycles: int, agents: list, shared: list, record: bool) -> None:
     """Print end-to-end lockstep cycle rates of N delivering cars and each stage's share."""
@@ -194,7 +201,7 @@ def main(cycles: int, agents: list, shared: list, record: bool) -> None:
     for n in agents:
         base = 0.0
         for k in dict.fromkeys(n if x == "all" else x for x in shared):
-            layout = {0: "a process per stage", 1: "a process per agent"}.get(
+            layout = {0: "a process per stage", 1: "a process per agent", "auto": "auto"}.get(
                 k, f"{k} agents per process")
             with tempfile.TemporaryDirectory() as tmp:
                 try:
@@ -204,6 +211,9 @@ def main(cycles: int, agents: list, shared: list, record: bool) -> None:
                     bad.append(f"{n} agents, {layout}: {exc}")
                     continue
             base = base or result["cycles_per_s"]
+            if k == "auto":  # the launch says how many processes it chose
+                got = re.search(r"(\d+) process", result["layout"])
+                layout = f"auto ({got.group(1) if got else '?'} agent processes)"
             report(n, layout, result, base)
             bad += [f"{n} agents, {layout}: {f}" for f in failures(n, result)]
     for line in bad:

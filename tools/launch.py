@@ -35,8 +35,10 @@ from tools.run_plan import (
     Plan,
     PlanError,
     check_secrets,
+    per_core,
     select,
     start_timeout,
+    usable_cores,
     uses_clients,
     with_bus_mode,
 )
@@ -60,6 +62,21 @@ def _catch_signals() -> None:
     background job of a non-interactive shell starts with it ignored."""
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, _raise_interrupt)
+
+
+class PerProcess(click.ParamType):
+    """``--agents-per-process``: a count K >= 0, or ``auto`` (run_plan.per_core)."""
+
+    name = "K|auto"
+
+    def convert(self, value: object, param: click.Parameter | None,
+                ctx: click.Context | None) -> int | str:
+        if value == "auto" or (isinstance(value, int) and value >= 0):
+            return value
+        text = str(value).strip()
+        if text.isdigit():
+            return int(text)
+        self.fail(f"{value!r} is not a count of agents (0, 1, 2, ...) or auto", param, ctx)
 
 
 @click.command()
@@ -92,17 +109,18 @@ def _catch_signals() -> None:
 @click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
               help="Plot the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
-@click.option("--agents-per-process", type=click.IntRange(min=0), default=0, metavar="K",
+@click.option("--agents-per-process", type=PerProcess(), default="0", metavar="K|auto",
               help="Run K agents' perception, inference and executive in one process "
-                   "(0: a process per stage). Not with --secure, --only, --join or --listen "
-                   "beyond this host.")
+                   "(0: a process per stage; auto: the agents spread over this machine's "
+                   "CPUs, the fastest from 2 agents on). Not with --secure, --only, --join "
+                   "or --listen beyond this host.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
            summary_file: str | None, render_file: str | None, secure: bool,
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
            run_id: str | None, secrets_dir: str | None, learned: str | None,
-           plot_file: str | None, no_record: bool, agents_per_process: int,
+           plot_file: str | None, no_record: bool, agents_per_process: int | str,
            as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run.
 
@@ -119,9 +137,11 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
+        per_process = per_core(len(scenario.agents), usable_cores()) \
+            if agents_per_process == "auto" else agents_per_process
         plan = replace(plan, learned=learned, record=not no_record or bool(plot_file),
-                       agents_per_process=agents_per_process)
-        if agents_per_process and (plan.client or only):
+                       agents_per_process=per_process)
+        if per_process and (plan.client or only):
             raise PlanError("--agents-per-process: only for a whole open run on one host "
                             "(not with --secure, --only, --join or --listen beyond it)")
         plan = with_bus_mode(plan)
@@ -131,6 +151,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             "seed": plan.seed, "cycles_requested": plan.cycles,
             "secured": plan.secrets is not None}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
+        if per_process:
+            click.echo(_layout(len(scenario.agents), per_process, agents_per_process))
         outcome = supervise(plan)
         if not plan.runs_world:
             _echo_joined(plan, outcome)
@@ -141,6 +163,19 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     if as_json:
         click.echo(json.dumps(result, indent=1))
     raise SystemExit(summary.exit_code(result))
+
+
+def _layout(agents: int, per_process: int, asked: int | str) -> str:
+    """The line saying how the agents' stages share processes."""
+    why = f" (--agents-per-process auto: {usable_cores()} CPUs)" if asked == "auto" else ""
+    if per_process == 1 or agents == 1:
+        return f"each agent's three stages in one process: {_count(agents, 'process')}{why}"
+    return (f"{_count(agents, 'agent')} in {_count(-(-agents // per_process), 'process')} of "
+            f"up to {per_process} agents each{why}")
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}{'es' if noun.endswith('s') else 's'}"
 
 
 def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,

@@ -1,13 +1,15 @@
-"""`teleo launch --agents-per-process K`: several agents' stages in one process
-(agents/processes/shared.py) give the same lockstep run as a process per stage: the same trace,
-every agent acting, fewer processes."""
+"""`teleo launch --agents-per-process K` (or `auto`: the agents spread over the CPUs): several
+agents' stages in one process (agents/processes/shared.py) give the same lockstep run as a
+process per stage: the same trace, every agent acting, fewer processes."""
 
 from __future__ import annotations
 
 import importlib.util
 import json
+import os
 import re
 
+import pytest
 from e2e_helpers import ROOT
 
 FIXTURES = ROOT / "tests" / "e2e" / "fixtures"
@@ -35,14 +37,22 @@ def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):
     apart = teleo("launch", scenario, "--no-record", "--json", timeout=300)
     shared = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "2",
                    timeout=300)
-    assert apart.returncode == 0, apart.stderr
-    assert shared.returncode == 0, shared.stderr
+    spread = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "auto",
+                   timeout=300)
+    for done in (apart, shared, spread):
+        assert done.returncode == 0, done.stderr
     counts = [int(re.search(r"run \S+: (\d+) processes", r.stderr).group(1))
-              for r in (apart, shared)]
-    assert counts == [8, 3]  # goals, world, 3 stages x 2 agents | goals, world, agents1
+              for r in (apart, shared, spread)]
+    # goals, world, 3 stages x 2 agents | goals, world, agents1 | on two or more CPUs,
+    # goals, world, agents1, agents2: a process for each agent
+    cpus = len(os.sched_getaffinity(0))
+    assert counts == [8, 3, 4 if cpus >= 2 else 3]
     assert "agents1" in shared.stderr
-    traces = [open(json.loads(r.stdout)["trace"]).read() for r in (apart, shared)]
-    assert traces[0] == traces[1]
+    assert "2 agents in 1 process of up to 2 agents each\n" in shared.stderr
+    assert (f"each agent's three stages in one process: 2 processes (--agents-per-process "
+            f"auto: {cpus} CPUs)" if cpus >= 2 else "in 1 process") in spread.stderr
+    traces = [open(json.loads(r.stdout)["trace"]).read() for r in (apart, shared, spread)]
+    assert traces[0] == traces[1] == traces[2]
     lines = [json.loads(line) for line in traces[1].splitlines()]
     assert len(lines) == 25
     for agent in ("A1", "A2"):  # both agents decided: their gas or brake was applied
@@ -56,6 +66,15 @@ def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):
                  timeout=120)
     assert done.returncode == 1
     assert "--agents-per-process: only for a whole open run on one host" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("value", ["many", "-1", "2.5"])
+def test_agents_per_process_must_be_a_count_or_auto(teleo, tmp_path, value):
+    done = teleo("launch", _two_cars(tmp_path), "--agents-per-process", value, timeout=60)
+    assert done.returncode == 2
+    assert (f"Invalid value for '--agents-per-process': '{value}' is not a count of agents "
+            f"(0, 1, 2, ...) or auto") in done.stderr
     assert "Traceback" not in done.stderr
 
 

@@ -12,6 +12,7 @@ import pytest
 from tools.run_plan import (
     PEER_MESH_LIMIT,
     Plan,
+    per_core,
     process_specs,
     processes_started,
     select,
@@ -60,3 +61,14 @@ def test_a_plan_already_of_clients_stays_so():
 
 def test_start_up_gets_two_seconds_a_process_beyond_a_minute():
     assert [start_timeout(n) for n in (1, 5, 30, 31, 50, 98)] == [60, 60, 60, 62, 100, 196]
+
+
+@pytest.mark.parametrize("agents, cores, per_process, agent_processes", [
+    (1, 2, 1, 1), (2, 2, 1, 2), (3, 2, 2, 2), (4, 2, 2, 2), (8, 2, 4, 2), (32, 2, 16, 2),
+    (8, 16, 1, 8), (32, 16, 2, 16), (33, 16, 3, 11), (5, 1, 5, 1), (3, 0, 3, 1)])
+def test_auto_spreads_the_agents_over_the_cores(agents, cores, per_process, agent_processes):
+    """--agents-per-process auto: no more agent processes than cores, each agent in one."""
+    assert per_core(agents, cores) == per_process
+    plan = plan_of(agents, per_process)
+    names = [s.name for s in process_specs(plan)]
+    assert names == ["goals", *(f"agents{k}" for k in range(1, agent_processes + 1)), "world"]
