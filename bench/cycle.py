@@ -213,7 +213,8 @@ def main(cycles: int, agents: list, shared: list, record: bool) -> None:
             base = base or result["cycles_per_s"]
             if k == "auto":  # the launch says how many processes it chose
                 got = re.search(r"(\d+) process", result["layout"])
-                layout = f"auto ({got.group(1) if got else '?'} agent processes)"
+                n_proc = got.group(1) if got else "?"
+                layout = f"auto ({n_proc} agent process{'' if n_proc == '1' else 'es'})"
             report(n, layout, result, base)
             bad += [f"{n} agents, {layout}: {f}" for f in failures(n, result)]
     for line in bad:

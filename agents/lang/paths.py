@@ -175,10 +175,7 @@ class PathFinder:
         afresh (their values change every cycle) and :requires must hold; :start is checked
         only when resuming after a suspension."""
         text = str(goal)
-        keep = set(s.head.variables())
-        for c in s.start:
-            if isinstance(c, Literal) and not c.negated:
-                keep |= c.variables()
+        keep = _kept_vars(s)
         b0 = unify_head(s.head, goal, {v: x for v, x in prev_b.items() if v in keep})
         if b0 is None:
             return None
@@ -227,12 +224,13 @@ class PathFinder:
                depth: int, on_path: frozenset, mode: str) -> Found | None:
         """The path below skill ``s`` (bound by ``b``), through its body kind's runner."""
         key = (s.number, binding_key(b))
+        text = str(goal)
         if key in on_path:
-            walk.passed(depth, str(goal), s.name, b,
-                        "already on the path with these bindings (loop)")
+            walk.passed(depth, text, s.name, b, "already on the path with these bindings (loop)")
             return None
-        step = PathStep(str(goal), s.name, str(s.loc), btuple(b), mode)
-        stored = StoredStep(str(goal), s.number, s.name, btuple(b))
+        bound = btuple(b)
+        step = PathStep(text, s.name, str(s.loc), bound, mode)
+        stored = StoredStep(text, s.number, s.name, bound)
         return self.bodies[s.kind].expand(self, walk, s, b, goal, prev_rest, depth,
                                           on_path | {key}, step, stored)
 
@@ -280,6 +278,16 @@ class SubgoalBody:
             return None
         steps, actions, st = found
         return [step, *steps], actions, [stored, *st]
+
+
+def _kept_vars(s: Skill) -> frozenset[Var]:
+    """The variables a continued skill keeps from last cycle: its head's and those its
+    positive :start literals bind."""
+    keep = set(s.head.variables())
+    for c in s.start:
+        if isinstance(c, Literal) and not c.negated:
+            keep |= c.variables()
+    return frozenset(keep)
 
 
 def btuple(b: dict) -> tuple:

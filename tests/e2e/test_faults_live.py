@@ -79,6 +79,20 @@ def test_a_killed_router_is_restarted_and_a_stage_killed_after_rejoins(teleo, re
     assert lines[:len(ref)] == ref[:len(lines)]
 
 
+def test_a_killed_process_of_an_agents_stages_comes_back_with_the_same_trace(teleo, reference):
+    """--agents-per-process: the agent's three stages die together and come back together
+    (the executive from its state file), and the lockstep run is the undisturbed one."""
+    launcher, info = start(teleo, "--cycles", CYCLES, "--agents-per-process", "auto")
+    assert set(info["pids"]) == {"router", "goals", "agents1", "world"}
+    wait_cycles(info, 150)
+    os.kill(info["pids"]["agents1"], signal.SIGKILL)
+    assert launcher.wait(180) == 0, teleo.launch_output()
+    s = summary(teleo)
+    assert "agents1 exited with code -9: restarted (1)" in teleo.launch_output()
+    assert s["restarts"] == {"agents1": 1} and s["status"] == "completed"
+    assert trace(info) == reference
+
+
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGHUP])
 def test_every_process_follows_its_launcher(teleo, sig):
     launcher, info = start(teleo, "--cycles", "0")
