@@ -31,6 +31,7 @@ from pathlib import Path
 import click
 
 from tools import runfile, summary
+from tools.cpus import usable_cores
 from tools.run_plan import (
     Plan,
     PlanError,
@@ -38,7 +39,6 @@ from tools.run_plan import (
     per_core,
     select,
     start_timeout,
-    usable_cores,
     uses_clients,
     with_bus_mode,
 )

@@ -20,7 +20,6 @@ processes never started; as clients of the router, 10.6 and 3.5 cycles/s.
 from __future__ import annotations
 
 import json
-import os
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -127,11 +126,6 @@ def per_core(agents: int, cores: int) -> int:
     waits, so the agents' processes can have every core; on two cores 8 cars ran 1.3 times as
     many cycles a second as in one process, and 4 cars 1.3 times (bench/cycle.py)."""
     return max(1, -(-agents // max(1, cores)))
-
-
-def usable_cores() -> int:
-    """The CPUs this process may run on (its affinity: taskset, a container's cpuset)."""
-    return len(os.sched_getaffinity(0))
 
 
 def with_bus_mode(plan: Plan) -> Plan:
