@@ -43,14 +43,22 @@ def start(teleo: Teleo, *extra: str, **run: object) -> tuple[subprocess.Popen, d
     return launcher, teleo.run_info()
 
 
-def test_a_killed_world_resumes_where_the_run_was_with_the_same_trace(teleo, reference):
-    launcher, info = start(teleo, "--cycles", CYCLES)
+def killed_once(teleo: Teleo, name: str, *extra: str) -> tuple[dict, dict]:
+    """A 400-cycle run whose process ``name`` is SIGKILLed after cycle 150: it must be
+    restarted once and the run complete. (run info, summary)."""
+    launcher, info = start(teleo, "--cycles", CYCLES, *extra)
     wait_cycles(info, 150)
-    os.kill(info["pids"]["world"], signal.SIGKILL)
+    os.kill(info["pids"][name], signal.SIGKILL)
     assert launcher.wait(180) == 0, teleo.launch_output()
     s = summary(teleo)
+    assert f"{name} exited with code -9: restarted (1)" in teleo.launch_output()
+    assert s["restarts"] == {name: 1} and s["status"] == "completed"
+    return info, s
+
+
+def test_a_killed_world_resumes_where_the_run_was_with_the_same_trace(teleo, reference):
+    info, s = killed_once(teleo, "world")
     assert "world exited with code -9: restarted (1), resuming" in teleo.launch_output()
-    assert s["restarts"] == {"world": 1} and s["status"] == "completed"
     [resumed] = s["world_resumes"]
     assert resumed["cycle"] >= 150 and resumed["checkpoint"] in (100, 200, 300)
     assert resumed["replayed"] == resumed["cycle"] - resumed["checkpoint"]
@@ -82,14 +90,8 @@ def test_a_killed_router_is_restarted_and_a_stage_killed_after_rejoins(teleo, re
 def test_a_killed_process_of_an_agents_stages_comes_back_with_the_same_trace(teleo, reference):
     """--agents-per-process: the agent's three stages die together and come back together
     (the executive from its state file), and the lockstep run is the undisturbed one."""
-    launcher, info = start(teleo, "--cycles", CYCLES, "--agents-per-process", "auto")
+    info, _ = killed_once(teleo, "agents1", "--agents-per-process", "auto")
     assert set(info["pids"]) == {"router", "goals", "agents1", "world"}
-    wait_cycles(info, 150)
-    os.kill(info["pids"]["agents1"], signal.SIGKILL)
-    assert launcher.wait(180) == 0, teleo.launch_output()
-    s = summary(teleo)
-    assert "agents1 exited with code -9: restarted (1)" in teleo.launch_output()
-    assert s["restarts"] == {"agents1": 1} and s["status"] == "completed"
     assert trace(info) == reference
 
 
