@@ -137,8 +137,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
-        per_process = per_core(len(scenario.agents), usable_cores()) \
-            if agents_per_process == "auto" else agents_per_process
+        per_process, cpus = _per_process(agents_per_process, len(scenario.agents))
         plan = replace(plan, learned=learned, record=not no_record or bool(plot_file),
                        agents_per_process=per_process)
         if per_process and (plan.client or only):
@@ -152,7 +151,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             "secured": plan.secrets is not None}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
         if per_process:
-            click.echo(_layout(len(scenario.agents), per_process, agents_per_process))
+            click.echo(_layout(len(scenario.agents), per_process, cpus))
         outcome = supervise(plan)
         if not plan.runs_world:
             _echo_joined(plan, outcome)
@@ -165,9 +164,19 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     raise SystemExit(summary.exit_code(result))
 
 
-def _layout(agents: int, per_process: int, asked: int | str) -> str:
-    """The line saying how the agents' stages share processes."""
-    why = f" (--agents-per-process auto: {usable_cores()} CPUs)" if asked == "auto" else ""
+def _per_process(asked: int | str, agents: int) -> tuple[int, int]:
+    """(K, CPUs) for ``--agents-per-process``: K as given (CPUs 0), or for ``auto`` K that
+    spreads the agents over the CPUs this launch may use, and how many those are."""
+    if asked != "auto":
+        return int(asked), 0
+    cpus = usable_cores()
+    return (per_core(agents, cpus) if agents else 0), cpus
+
+
+def _layout(agents: int, per_process: int, cpus: int) -> str:
+    """The line saying how the agents' stages share processes (``cpus``: how many
+    ``--agents-per-process auto`` spread them over, 0 when K was given)."""
+    why = f" (--agents-per-process auto: {cpus} CPUs)" if cpus else ""
     if per_process == 1 or agents == 1:
         return f"each agent's three stages in one process: {_count(agents, 'process')}{why}"
     return (f"{_count(agents, 'agent')} in {_count(-(-agents // per_process), 'process')} of "
