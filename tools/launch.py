@@ -35,6 +35,7 @@ from tools.cpus import usable_cores
 from tools.run_plan import (
     Plan,
     PlanError,
+    agent_processes,
     check_secrets,
     per_core,
     select,
@@ -179,8 +180,8 @@ def _layout(agents: int, per_process: int, cpus: int) -> str:
     why = f" (--agents-per-process auto: {cpus} CPUs)" if cpus else ""
     if per_process == 1 or agents == 1:
         return f"each agent's three stages in one process: {_count(agents, 'process')}{why}"
-    return (f"{_count(agents, 'agent')} in {_count(-(-agents // per_process), 'process')} of "
-            f"up to {per_process} agents each{why}")
+    processes = _count(agent_processes(agents, per_process), "process")
+    return f"{_count(agents, 'agent')} in {processes} of up to {per_process} agents each{why}"
 
 
 def _count(n: int, noun: str) -> str:

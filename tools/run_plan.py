@@ -116,7 +116,12 @@ def processes_started(plan: Plan) -> int:
     if plan.agents_per_process <= 0:
         return len(plan.local)
     agents = len(plan.scenario.agents)
-    return len(plan.local) - 3 * agents + -(-agents // plan.agents_per_process)
+    return len(plan.local) - 3 * agents + agent_processes(agents, plan.agents_per_process)
+
+
+def agent_processes(agents: int, per_process: int) -> int:
+    """How many processes ``agents`` agents' stages take, ``per_process`` to a process."""
+    return -(-agents // per_process)
 
 
 def per_core(agents: int, cores: int) -> int:
