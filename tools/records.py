@@ -85,6 +85,7 @@ class RecordWriter:
         self._extra_meta: dict[str, dict[str, str]] = {}
         self.messages = 0
         self.cycles = 0
+        self._states: set[int] = set()  # the cycles whose world state is in the record
         self._closed = False
 
     def __enter__(self) -> RecordWriter:
@@ -100,6 +101,7 @@ class RecordWriter:
         if record["kind"] == "WorldState":
             self._times[cycle] = round(float(record["snapshot"].get("time", 0.0)) * 1e9)
             self.cycles = max(self.cycles, cycle + 1)
+            self._states.add(cycle)
             self._write(key, record, self._times[cycle], sent)
             for k, r, s in self._pending.pop(cycle, ()):
                 self._write(k, r, self._times[cycle], s)
@@ -157,7 +159,8 @@ class RecordWriter:
             for k, r, s in self._pending[cycle]:
                 self._write(k, r, self._estimate(cycle), s)
         self._pending.clear()
-        self._mcap.add_metadata(RUN_META, {**self._meta, "cycles": str(self.cycles)})
+        self._mcap.add_metadata(RUN_META, {**self._meta, "cycles": str(self.cycles),
+                                           "world_states": str(len(self._states))})
         self._mcap.add_metadata(GOALS_META, self.history.to_meta())
         for name, data in self._extra_meta.items():
             self._mcap.add_metadata(name, data)
@@ -271,6 +274,23 @@ def with_history(goals: list[dict[str, Any]], run_dir: Path) -> list[dict[str, A
                                                                                c["status"])}
                               for c in history.get(g.get("agent"), {}).get(g.get("id"), [])]}
             for g in goals]
+
+
+def coverage(run_dir: Path, cycles: int) -> dict[str, Any] | None:
+    """How much of a run of `cycles` cycles its record holds: {"file", "world_states",
+    "missing"} (cycles whose world state is not in it; None when the record does not say:
+    never closed, or written before the count); None when there is no record."""
+    path = Path(run_dir) / RECORD_FILE
+    if not path.is_file():
+        return None
+    try:
+        count = RunRecord(path).meta.get(RUN_META, {}).get("world_states")
+    except RecordError as exc:
+        log.warning("record not read: %s", exc)
+        count = None
+    states = int(count) if count is not None and count.isdigit() else None
+    return {"file": str(path), "world_states": states,
+            "missing": None if states is None else max(0, cycles - states)}
 
 
 def history_text(history: list[dict[str, Any]], most: int = 8) -> str:

@@ -279,6 +279,7 @@ def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path |
     result = sim_summary.build(run, sc, sc.run.seed if seed is None else seed,
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
+    result["record_missing"] = None if record is None else 0  # written in the loop: all of it
     if as_json:
         click.echo(json.dumps(result, indent=1))
         for note in notes:

@@ -95,6 +95,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "counters": counters,
         **agent_sections(run_dir, counters, memory),
         "trace": str(run_dir / TRACE),
+        **_record(run_dir, cycles),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
         "cycle_time": cycle_time(final.get("timing_ms"), cycles),
     }
@@ -225,6 +226,16 @@ def echo(summary: dict[str, Any]) -> None:
         work = "".join(f"{k} {v}, " for k, v in done.items())
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
     echo_agents(summary)
+    if summary.get("record_missing"):
+        click.echo(f"  RECORD INCOMPLETE: {summary['record']} lacks the world states of "
+                   f"{summary['record_missing']} of {summary['cycles']} cycles")
+
+
+def _record(run_dir: Path, cycles: int) -> dict[str, Any]:
+    """"record": the run record's path (None: not recorded), as simulate's summary has it;
+    "record_missing": the cycles whose world state it lacks (None: it does not say)."""
+    kept = records.coverage(run_dir, cycles)
+    return {"record": kept and kept["file"], "record_missing": kept and kept["missing"]}
 
 
 def _pairs(d: dict[str, Any]) -> str:

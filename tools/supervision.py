@@ -97,10 +97,11 @@ def supervise(plan: Plan) -> Outcome:
         click.echo(f"Error: {exc.message}", err=True)
     finally:
         t0 = time.monotonic()
-        sup.stop_all(["world"], last=["router"])
+        sup.stop_all(["world"], keep=["router"])
         journal.write("stopped", seconds=round(time.monotonic() - t0, 3))
-        if recorder is not None:
+        if recorder is not None:  # drained while the router still holds what it is owed
             recorder.stop()
+        sup.stop_all([], last=["router"])
         if info is not None:
             runfile.remove(info)
     outcome.restarts = sup.restarts()

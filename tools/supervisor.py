@@ -153,11 +153,16 @@ class Supervisor:
         return codes
 
     def stop_all(self, first: list[str], last: Iterable[str] = (), first_s: float = 0.8,
-                 rest_s: float = 0.5, last_s: float = 0.2) -> dict[str, int | None]:
+                 rest_s: float = 1.0, last_s: float = 0.2,
+                 keep: Iterable[str] = ()) -> dict[str, int | None]:
         """Stop `first` (in order, `first_s` [s] in all), then every other process at once
-        (`rest_s`), then `last` (`last_s`); each group's stragglers are killed."""
+        (`rest_s`), then `last` (`last_s`), leaving `keep` running; each group's stragglers
+        are killed. The other processes get the largest share: the goal-entry process saves
+        its last statuses and every process closes its zenoh session, which takes long on a
+        busy machine."""
         last = [n for n in last if n in self._children]
-        rest = [n for n in reversed(self._children) if n not in first and n not in last]
+        rest = [n for n in reversed(self._children)
+                if n not in first and n not in last and n not in keep]
         codes = self._stop_group([n for n in first if n in self._children], first_s)
         codes.update(self._stop_group(rest, rest_s))
         codes.update(self._stop_group(last, last_s, quiet=True))

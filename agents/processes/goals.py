@@ -15,7 +15,8 @@ sender) and all clients together are rate-limited (request_limits.py), and the s
 goal's length, the priority range and the live goals per agent (goal_store.py). A request
 that changes the store is saved durably before it is answered, so an acknowledged goal
 survives any crash; the statuses mirrored from intentions are saved at most every
-SAVE_PERIOD, and at the end. A damaged store file is recovered on start (goal_file.py).
+SAVE_PERIOD, and at the end (before the session closes, with the intentions still queued).
+A damaged store file is recovered on start (goal_file.py).
 """
 
 from __future__ import annotations
@@ -231,8 +232,13 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
             elif isinstance(msg, Intention):
                 entry.on_intention(msg)
             entry.flush()
-    entry.flush(force=True)
-    log.info("stopped; %d goals saved in %s", len(entry.store.goals), store_path)
+        # the statuses of intentions still queued, saved before the session closes: a
+        # close can take long on a busy machine, and the launcher kills a slow stopper
+        while (msg := inbox.get(timeout=0)) is not None:
+            if isinstance(msg, Intention):
+                entry.on_intention(msg)
+        entry.flush(force=True)
+        log.info("stopped; %d goals saved in %s", len(entry.store.goals), store_path)
 
 
 @click.command()

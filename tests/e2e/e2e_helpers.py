@@ -72,7 +72,14 @@ def trace_lines(info: dict) -> int:
     return len(path.read_text().splitlines()) if path.exists() else 0
 
 
-def interrupt(proc: subprocess.Popen, timeout: float = 60) -> int:
-    """Ctrl-C the launcher and wait for it to stop everything."""
+def interrupt(proc: subprocess.Popen, timeout: float = 60) -> int | str:
+    """Ctrl-C the launcher and wait for it to stop everything; its exit status, or a
+    sentence when it was still running after `timeout` [s] (then killed), so the caller's
+    assertion message (the launch's output) is what a failure shows."""
     proc.send_signal(signal.SIGINT)
-    return proc.wait(timeout)
+    try:
+        return proc.wait(timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+        return f"still running {timeout:g} s after SIGINT (killed)"

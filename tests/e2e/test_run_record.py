@@ -128,6 +128,9 @@ def test_explain_draws_the_recorded_decision(demo):
 
 def test_the_summary_and_explain_tell_each_goals_history(demo):
     teleo, summary, path, _ = demo
+    # the record holds every cycle, and the goal store the statuses of the last intentions:
+    # both are kept while the processes stop (the router last, the store saved before closing)
+    assert (summary["record"], summary["record_missing"]) == (str(path), 0)
     for goal in summary["goals"]:
         history = goal["history"]
         assert history[0]["cycle"] == goal["posted_cycle"]

@@ -54,6 +54,22 @@ def test_stop_all_goes_first_then_the_rest_at_once_then_last(tmp_path):
     assert sup.poll() == []  # stopped processes are not restarted
 
 
+def test_stop_all_can_keep_the_router_until_the_record_is_drained(tmp_path):
+    order = tmp_path / "order.txt"
+    sup = Supervisor(tmp_path / "logs")
+    names = ("router", "goals", "world")
+    for name in names:
+        sup.start(ProcSpec(name, (sys.executable, "-c", SLEEPER, str(order), name)))
+    logs = tmp_path / "logs"
+    assert wait_until(lambda: all("ready" in (logs / f"{n}.log").read_text() for n in names),
+                      timeout=30)
+    assert sup.stop_all(["world"], keep=["router"], first_s=10, rest_s=10) == \
+        {"world": 0, "goals": 0}
+    assert sup.running("router") and order.read_text().split() == ["world", "goals"]
+    assert sup.stop_all([], last=["router"], last_s=10)["router"] == 0
+    assert order.read_text().split() == ["world", "goals", "router"]
+
+
 # Ignores SIGINT (and is then SIGSTOPped by the test): only a kill ends it.
 STUBBORN = ("import signal, time\n"
             "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"

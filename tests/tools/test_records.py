@@ -13,7 +13,7 @@ from bus import keys
 from bus.messages import Envelope, Percepts, WorldEvent, WorldState
 from bus.record import message_record
 from tools.cli import cli
-from tools.records import RecordError, RecordWriter, RunRecord, locate
+from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, coverage, locate
 
 ROOT = Path(__file__).resolve().parents[2]
 FIGURE3 = ROOT / "scenarios" / "blocks_figure3.toml"
@@ -40,6 +40,19 @@ def test_a_record_waits_for_its_cycles_world_state_to_take_its_time(tmp_path) ->
     assert got == [("WorldState", 0, 1_500_000_000, 99), ("Percepts", 0, 1_500_000_000, 99),
                    ("WorldEvent", -1, 1_500_000_000, 99), ("WorldState", 1, 1_600_000_000, 99),
                    ("Percepts", 3, 1_800_000_000, 99)]   # extrapolated with the last step
+
+
+def test_the_summary_says_which_share_of_the_run_its_record_lacks(tmp_path) -> None:
+    assert coverage(tmp_path, 5) is None                     # not recorded: nothing to say
+    env = lambda c: Envelope(1, "r1", c, "t", 99)  # noqa: E731
+    with RecordWriter(tmp_path / RECORD_FILE, "r1") as rec:
+        for cycle in (0, 1, 1, 3, 4):                        # 1 twice (a re-sent state), 2 lost
+            _add(rec, keys.world_state("r1"), WorldState(env(cycle), {"time": cycle}, {}, []))
+    assert coverage(tmp_path, 5) == {"file": str(tmp_path / RECORD_FILE), "world_states": 4,
+                                     "missing": 1}
+    assert coverage(tmp_path, 4)["missing"] == 0
+    (tmp_path / RECORD_FILE).write_bytes(b"\x89MCAP0\r\n")   # never closed: count unknown
+    assert coverage(tmp_path, 5)["missing"] is None
 
 
 def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatch) -> None:
