@@ -1,6 +1,7 @@
 """Where a process's subscriptions deliver: `Inbox` (a FIFO read by the main loop) and
-`RingInbox` (zenoh's own ring buffer, drained now and then). Made by `Node.subscribe` and
-`Node.subscribe_ring`; also importable from `bus.node`.
+`RingInbox` (zenoh's own ring buffer, drained now and then) and `FifoInbox` (zenoh's own
+FIFO, drained in batches: nothing lost). Made by `Node.subscribe`, `Node.subscribe_ring` and
+`Node.subscribe_fifo`; also importable from `bus.node`.
 
 Hand-off cost (docs/bus.md, "Benchmark"): every sample crosses from zenoh's callback thread
 to the reading thread. For decoded inboxes the callback is `SimpleQueue.put` itself, so the
@@ -121,4 +122,22 @@ class RingInbox:
             except CodecError as exc:
                 self.dropped += 1
                 log.warning("dropped payload: %s", exc)
+        return out
+
+
+class FifoInbox:
+    """Every raw sample of a subscription, queued in zenoh's own FIFO and taken in batches
+    with `drain`: no Python runs on zenoh's thread per sample and the reader wakes when it
+    chooses, so a busy subscription (the run record: every message of a run) costs the
+    process's other threads little. Nothing is dropped: when `capacity` samples wait unread,
+    zenoh's receiving thread waits for the reader."""
+
+    def __init__(self, subscriber: zenoh.Subscriber) -> None:
+        self._sub = subscriber
+
+    def drain(self, most: int = 4096) -> list[tuple[str, bytes]]:
+        """Up to `most` samples waiting now, oldest first, as (key, payload)."""
+        out: list[tuple[str, bytes]] = []
+        while len(out) < most and (sample := self._sub.try_recv()) is not None:
+            out.append((str(sample.key_expr), sample.payload.to_bytes()))
         return out

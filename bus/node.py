@@ -26,12 +26,12 @@ from bus import keys
 from bus.codec import decode, encode
 from bus.config import BusConfig
 from bus.errors import BusError, CodecError, NobodyServing, QueryFailed
-from bus.inbox import Inbox, Received, RingInbox
+from bus.inbox import FifoInbox, Inbox, Received, RingInbox
 from bus.messages import Envelope, Message, ProcessStats
 from bus.presence import Presence
 
 log = logging.getLogger(__name__)
-__all__ = ["Inbox", "Node", "Received", "RingInbox", "open_node"]
+__all__ = ["FifoInbox", "Inbox", "Node", "Received", "RingInbox", "open_node"]
 _MSGPACK = zenoh.Encoding("application/msgpack")
 
 
@@ -135,6 +135,14 @@ class Node:
         with self._lock:
             self._entities.append(sub)
         return RingInbox(sub)
+
+    def subscribe_fifo(self, key_expr: str, capacity: int = 1 << 16) -> FifoInbox:
+        """Subscribe to `key_expr` into a FifoInbox (raw samples, read in batches with
+        `drain()`; zenoh's thread waits when `capacity` samples are unread)."""
+        sub = self.session.declare_subscriber(key_expr, zenoh.handlers.FifoChannel(capacity))
+        with self._lock:
+            self._entities.append(sub)
+        return FifoInbox(sub)
 
     # -- liveliness -------------------------------------------------------------------
     def announce(self, also: Iterable[str] = ()) -> None:

@@ -25,13 +25,14 @@ from bus.messages import (
     ProcessStats,
     WorldState,
 )
-from bus.node import open_node
+from bus.node import FifoInbox, open_node
 from bus.record import message_record, to_record
 from tools import runfile
 from tools.records import RECORD_FILE, RecordWriter
 
 log = logging.getLogger(__name__)
 RECORDER_META = "teleo.recorder"
+LOOK_S = 0.02  # [s] between looks at the subscription when nothing waits
 
 
 class BusRecorder:
@@ -87,7 +88,7 @@ class BusRecorder:
     def _main(self) -> None:
         try:
             with open_node(self.cfg, self.run, self.process) as node:
-                inbox = node.subscribe(keys.run_all(self.run), raw=True)
+                inbox = node.subscribe_fifo(keys.run_all(self.run))
                 if self._announce:
                     node.announce()
                 self._ready.set()
@@ -98,20 +99,29 @@ class BusRecorder:
             self._ready.set()
             log.error("recorder of run %s stopped: %s", self.run, exc)
 
-    def _pump(self, inbox: Any) -> None:
+    def _pump(self, inbox: FifoInbox) -> None:
+        """Take what waits every LOOK_S and write it, until stopped and quiet for `_quiet_s`
+        (or abandoned): one wake-up for a batch, not one per message."""
         quiet_since = None
         while not self._abandon.is_set():
-            item = inbox.receive(0.05)
-            if item is None:
-                if self._stop.is_set():
-                    quiet_since = quiet_since or time.monotonic()
-                    if time.monotonic() - quiet_since >= self._quiet_s:
-                        return
+            batch = inbox.drain()
+            if batch:
+                quiet_since = None
+                self._write_all(batch)
                 continue
-            quiet_since = None
+            if self._stop.is_set():
+                quiet_since = quiet_since or time.monotonic()
+                if time.monotonic() - quiet_since >= self._quiet_s:
+                    return
+            time.sleep(LOOK_S)
+
+    def _write_all(self, batch: list[tuple[str, bytes]]) -> None:
+        for key, payload in batch:
+            if self._abandon.is_set():
+                return
             self.received += 1
             try:
-                self.writer.add(item.key, to_record(item.key, item.payload))
+                self.writer.add(key, to_record(key, payload))
             except (CodecError, KeyError, TypeError, ValueError) as exc:
                 self.dropped += 1
                 log.warning("not recorded: %s", exc)
