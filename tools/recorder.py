@@ -40,10 +40,10 @@ class BusRecorder:
 
     `start()` returns once the subscription is declared; `stop()` takes what is still in
     flight (until the bus has been quiet for `quiet_s`) and closes the record. The thread keeps
-    the launcher's priority: a niced thread holding the GIL while the scheduler keeps it
-    waiting also stalls zenoh's callback thread, and then the router drops what it holds
-    for the record (on a loaded machine: the last 64 cycles of 8262 lost, and a stop of 16 s
-    while the thread caught up).
+    the launcher's priority: when it ran at nice 10, on a loaded machine, the scheduler kept it
+    waiting while it held the GIL, which stalled zenoh's callback thread (the record's inbox
+    was then fed by a callback), and the router dropped what it held for the record (the last
+    64 cycles of 8262 lost, and a stop of 16 s while the thread caught up).
     """
 
     def __init__(self, cfg: BusConfig, run: str, path: Path, meta: dict[str, str] | None = None,
