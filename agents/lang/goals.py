@@ -4,17 +4,22 @@ Priority: lower number = more important. Program goals get 1..n in file order; a
 priority P ranks after every entry whose priority is <= P that was placed before it (ties keep
 insertion order, ``seq``).
 
-Instances of a goal with variables, e.g. ``(at-desired-speed ?any)`` ("every instance"): for each
-clause of the goal's concept, the clause head is unified with the goal and the clause's
-``:percepts`` are matched against this cycle's percepts; each match fixes the goal variables that
-the head takes from percepts. The distinct results are the instances; the goal is satisfied when
-every instance holds. A goal variable that some clause of its concept does not take from its
-:percepts could not mean "every instance", so such a goal is refused (``enumerable``).
+Instances of a goal with variables, e.g. ``(at-desired-speed ?any)``, "every vehicle" (seed 000,
+"Teleoreactive Logic Programs"): for each clause of the goal's concept, the clause head is
+unified with the goal and the clause's ``:percepts`` are matched against this cycle's percepts
+as kinds of object, without the attributes they require to have a constant value (those say
+whether the concept holds for the object, not which objects it is about: with ``(package ?p
+delivered T)`` the goal ``(package-delivered ?any)`` is about every package, delivered or not);
+each match fixes the goal variables that the head takes from percepts. The distinct results are
+the instances; the goal is satisfied when every instance holds. A goal variable that some clause
+of its concept does not take from its :percepts could not mean "every instance", so such a goal
+is refused (``enumerable``).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
 
 from .errors import GoalError
 from .limits import MAX_GOAL_CHARS, shorten
@@ -22,7 +27,7 @@ from .matcher import binding_key, holds, solve, unify_head
 from .program import Program
 from .sexpr import Atom, SList, read
 from .store import FactStore, PerceptIndex
-from .terms import Literal, Var, sort_key
+from .terms import Literal, PerceptPattern, Var, sort_key
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,7 +88,7 @@ def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Liter
         if not clause.percepts:
             found[_key(goal)] = goal
             continue
-        for sol in solve(list(clause.percepts), b, pidx, FactStore()):
+        for sol in solve(list(_kinds(clause.percepts)), b, pidx, FactStore()):
             args = []
             for g, h in zip(goal.args, clause.head.args, strict=True):
                 value = sol.get(h, h) if isinstance(h, Var) else h
@@ -92,6 +97,14 @@ def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Liter
             inst = Literal(goal.pred, tuple(args))
             found.setdefault(_key(inst), inst)
     return [found[k] for k in sorted(found)]
+
+
+@lru_cache(maxsize=1024)
+def _kinds(patterns: tuple[PerceptPattern, ...]) -> tuple[PerceptPattern, ...]:
+    """The percept patterns without their constant-valued attributes: which objects a goal
+    with variables is about (see the module docstring)."""
+    return tuple(replace(p, attrs=tuple((a, t) for a, t in p.attrs if isinstance(t, Var)))
+                 for p in patterns)
 
 
 def enumerable(goal: Literal, program: Program) -> str:

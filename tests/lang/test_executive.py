@@ -60,6 +60,22 @@ def test_goal_with_variable_means_every_instance(minidrive):
         is GoalStatus.SATISFIED
 
 
+def test_a_goal_with_a_variable_is_about_every_object_of_the_kind_not_only_those_it_holds_for(
+        minidrive):
+    # seed 000: "(at-desired-speed ?any) means it wants every vehicle to obey the speed
+    # limit". package-delivered reads (package ?p delivered T): the constant says whether the
+    # goal holds for a package, not which packages the goal is about.
+    state = minidrive.add_goal(minidrive.initial_state(), "(package-delivered ?any)",
+                               priority=5, goal_id="g1")
+    done = ["package", "PACKET2", "address", 4, "delivered", "T"]
+    decision = minidrive.cycle(state, [me(position=0), done, PACKAGE]).decision
+    report = decision.goals[-1]
+    assert (report.status, report.instance) == (GoalStatus.ACTIVE, "(package-delivered PACKET1)")
+    assert [a.to_list() for a in decision.actions] == [["*forward", 2]]
+    both = [me(position=0), done, [*PACKAGE[:-1], "T"]]
+    assert minidrive.cycle(state, both).decision.status_of("g1") is GoalStatus.SATISFIED
+
+
 def test_violated_higher_goal_suspends_and_the_lower_goal_resumes_its_path(minidrive):
     state = minidrive.add_goal(minidrive.initial_state(), "(package-delivered PACKET1)",
                                priority=5, goal_id="g1")
