@@ -7,7 +7,7 @@ every skill on it could be started now, and chooses afresh otherwise. With a (re
 section, lower goals may also act through free resources. When the first unsatisfied goal
 has no executable path (an impasse), the impasse handler (the means-ends problem solver,
 agents/lang/solving) is asked; a goal it gives up on is failed, with the reason, and no
-longer blocks the goals after it.
+longer blocks the goals after it, until a skill path for it is executable again.
 """
 
 from __future__ import annotations
@@ -77,17 +77,25 @@ class Executive:
                 remembered.pop(e.id, None)
                 failed.pop(e.id, None)
                 continue
-            if e.id in failed:
-                reports.append(_report(e, GoalStatus.FAILED, unsat[0], failed[e.id]))
-                continue
             waiting = GoalStatus.SUSPENDED if prev else GoalStatus.PENDING
             blocker = stop or walk.exclusive or (paths[0].goal_id if paths and
                                                  self.program.resources is None else "")
-            if blocker:
+            if e.id in failed:
+                # given up, so it blocks no one; but a goal is worked on again as soon as a
+                # skill path for it is executable (seed 000: the goal list is rechecked
+                # every cycle), without asking the problem solver again
+                inst, found = (unsat[0], None) if blocker else \
+                    self._first_path(walk, unsat, prev, False)
+                if found is None:
+                    reports.append(_report(e, GoalStatus.FAILED, unsat[0], failed[e.id]))
+                    continue
+                del failed[e.id]
+            elif blocker:
                 reports.append(_report(e, waiting, unsat[0], f"waits: {blocker} comes first"))
                 continue
-            resume = bool(prev) and e.id not in state.active
-            inst, found = self._first_path(walk, unsat, prev, resume)
+            else:
+                resume = bool(prev) and e.id not in state.active
+                inst, found = self._first_path(walk, unsat, prev, resume)
             if found is None and paths:
                 reports.append(_report(e, waiting, unsat[0], "no path with free resources"))
                 continue

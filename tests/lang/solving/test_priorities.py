@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import pytest
 
-from agents.lang import Engine, GoalStatus, load_program
+from agents.lang import Engine, GoalStatus, load_program, load_program_text
 
 from ..conftest import ROOT
 from ..test_blocks import TOWER, act, percepts
@@ -78,3 +78,39 @@ def test_a_new_higher_goal_in_impasse_gets_its_own_stack_beside_the_kept_one(blo
     assert [str(a) for d in decisions[5:] for a in d.actions] == [
         "(*putdown E T)", "(*unstack C B)", "(*putdown C T)", "(*unstack B A)"]
     assert decisions[10].status_of("p1") is GoalStatus.SATISFIED
+
+
+LAW = """
+(concepts
+  ((stopped ?self) :percepts ((self ?self speed ?s)) :tests ((= ?s 0)))
+  ((at-desired-speed ?self) :percepts ((self ?self speed ?speed limit ?limit))
+   :tests ((<= ?speed (- ?limit 5)) (> ?speed (- ?limit 15))))
+  ((delivered ?self) :percepts ((self ?self parcel gone))))
+(skills
+  ((at-desired-speed ?self) :percepts ((self ?self)) :start ((stopped ?self))
+   :actions ((*gas 6.25)))
+  ((delivered ?self) :percepts ((self ?self)) :actions ((*deliver))))
+(goals (at-desired-speed ?self))
+"""
+
+
+def test_a_failed_law_acts_again_as_soon_as_a_skill_for_it_is_executable():
+    """Seed 000, Tables 1 and 2: "when the agent's vehicle is stopped, the agent should invoke
+    the action (*gas 6.25)". Too fast, nothing can slow the car: the solver gives the law up
+    and the errand goes on; once the car stands, Table 1's skill is executable and the law
+    takes the cycle again, before the errand (the goal list is rechecked every cycle)."""
+    engine = Engine(load_program_text(LAW, "law.tlp"))
+    state = engine.add_goal(engine.initial_state(), "(delivered ME)", priority=5, goal_id="g1")
+    trace = []
+    for speed in (30.0, 30.0, 0.0, 20.0):
+        result = engine.cycle(state, [["self", "ME", "speed", speed, "limit", 25,
+                                       "parcel", "held"]])
+        state = result.state
+        trace.append(([(g.id, g.status) for g in result.decision.goals],
+                      [a.to_list() for a in result.decision.actions]))
+    assert trace == [
+        ([("p1", GoalStatus.IMPASSE), ("g1", GoalStatus.PENDING)], []),
+        ([("p1", GoalStatus.FAILED), ("g1", GoalStatus.ACTIVE)], [["*deliver"]]),
+        ([("p1", GoalStatus.ACTIVE), ("g1", GoalStatus.SUSPENDED)], [["*gas", 6.25]]),
+        ([("p1", GoalStatus.SATISFIED), ("g1", GoalStatus.ACTIVE)], [["*deliver"]])]
+    assert state.failure_of("p1") is None
