@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 from ..solving.search import decide
 from ..solving.state import StackEntry
-from ..solving.task import Task
+from ..solving.task import Task, literal
 from ..store import FactStore, PerceptIndex
 from ..terms import Literal, Var
 from .control import Control, OperatorView
@@ -56,6 +56,15 @@ class PlanTask(Task):
         view = OperatorView(goal, [self._instance(a) for a in alts], self.store,
                             lambda p: self.metric.move(here or None, p))
         return self.control.order(view, alts)
+
+    def nothing_to_chain(self, goal: str) -> str:
+        """Why no operator can be chained on for ``goal`` (the Back-Chainer chains on
+        operators only)."""
+        pred = literal(goal).pred
+        if not self.program.skills_for(pred):
+            return f"nothing to chain off: no operator achieves {pred}"
+        return (f"nothing to chain off: no operator for {pred} applies here (its :percepts "
+                f"match no object)")
 
     def _instance(self, way) -> Literal:
         op = self.domain.operators[way.clause]

@@ -91,7 +91,7 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
     if not entry.alternatives and entry.chosen == -1 and entry.tried == 0:
         entry = replace(entry, alternatives=task.alternatives(literal(entry.goal)))
         if not entry.alternatives:
-            return entry, None, _nothing(task, entry.goal)
+            return entry, None, task.nothing_to_chain(entry.goal)
     while True:
         if entry.chosen == -1:
             if entry.tried >= len(entry.alternatives):
@@ -137,14 +137,3 @@ def _short(reason: str, limit: int = 400) -> str:
     """A nested reason, cut to ``limit`` characters (the full chain is in the events)."""
     return reason if len(reason) <= limit else reason[:limit - 3] + "..."
 
-
-def _nothing(task: Task, goal: str) -> str:
-    pred = literal(goal).pred
-    skills = f"no primitive skill achieves {pred}" if not any(
-        s.kind == "primitive" for s in task.program.skills_for(pred)) else \
-        f"no primitive skill for {pred} applies here (its :percepts do not match, or its " \
-        "start could not become subgoals)"
-    concept = "its definition cannot be decomposed here" \
-        if any(c.relations for c in task.program.concepts.get(pred, ())) else \
-        f"{pred} is a primitive concept, with no subconcepts to decompose into"
-    return f"nothing to chain off: {skills}; {concept}"

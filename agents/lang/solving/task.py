@@ -81,6 +81,18 @@ class Task:
         return types[0] if types else None
 
     # -- ways to chain off a goal ----------------------------------------------------------
+    def nothing_to_chain(self, goal: str) -> str:
+        """Why ``goal`` has no way to chain off, for the failure's reason."""
+        pred = literal(goal).pred
+        skills = f"no primitive skill achieves {pred}" if not any(
+            s.kind == "primitive" for s in self.program.skills_for(pred)) else \
+            f"no primitive skill for {pred} applies here (its :percepts do not match, or its " \
+            "start could not become subgoals)"
+        concept = "its definition cannot be decomposed here" \
+            if any(c.relations for c in self.program.concepts.get(pred, ())) else \
+            f"{pred} is a primitive concept, with no subconcepts to decompose into"
+        return f"nothing to chain off: {skills}; {concept}"
+
     def alternatives(self, goal: Literal, applicable: bool = False,
                      concepts: bool = True) -> tuple[Alternative, ...]:
         """Skill chaining first, then concept chaining (seed 000: "chaining backwards off

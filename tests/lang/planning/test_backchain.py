@@ -57,6 +57,14 @@ def test_a_request_that_cannot_be_achieved_fails_with_the_reason():
     assert "rich" in built.failed
 
 
+def test_the_reason_names_operators_not_skills():
+    # the Back-Chainer chains on operators only (seed 003): its reasons speak of operators
+    built = plan(World(), "(lies ghost E)")
+    assert built.failed.endswith("(rich) cannot be achieved: nothing to chain off: no operator "
+                                 "achieves rich))")
+    assert "skill" not in built.failed
+
+
 def test_a_control_rule_rejects_bindings_and_the_firing_is_recorded():
     world = World(extra="""
 (control-rules
