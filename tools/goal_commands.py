@@ -11,6 +11,7 @@ process publishes.
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 
 import click
 
@@ -29,23 +30,46 @@ def _request(op: str, agent: str | None, goal: str = "", priority: int = 0,
     from bus.node import open_node
 
     info = runfile.locate(run)
-    agents = list(info.agents) if agent is None and op == "list" else [agent or info.agents[0]]
-    if agents[0] not in info.agents:
-        raise click.ClickException(f"run {info.run} has no agent {agents[0]!r} "
+    if agent is not None and agent not in info.agents:
+        raise click.ClickException(f"run {info.run} has no agent {agent!r} "
                                    f"(agents: {', '.join(info.agents)})")
     cfg = runfile.bus_config(info)
     replies = []
     try:
         with open_node(cfg, info.run, "goal-cli") as node:
-            for name in agents:
+            def ask(op: str, name: str):
                 request = GoalRequest(node.envelope(), op, name, goal, priority, goal_id, force)
-                replies.append(node.query(keys.goals(info.run, name), request, QUERY_TIMEOUT))
+                return node.query(keys.goals(info.run, name), request, QUERY_TIMEOUT)
+
+            for name in _addressed(info, op, agent, goal_id, ask):
+                replies.append(ask(op, name))
     except NobodyServing as exc:
         raise click.ClickException(
             f"run {info.run}: the goal-entry process is not answering ({exc})") from exc
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
     return replies
+
+
+def _addressed(info: runfile.RunInfo, op: str, agent: str | None, goal_id: str,
+               ask: Callable) -> list[str]:
+    """The agents a request goes to: the one named; else every agent for a list, the only
+    agent of a one-agent run, the owner of ``goal_id`` (asked of each agent); a post to a run
+    of several agents must name one (a goal the wrong car adopted would fail, unseen)."""
+    if agent is not None:
+        return [agent]
+    if op == "list" or len(info.agents) == 1:
+        return list(info.agents) if op == "list" else [info.agents[0]]
+    names = ", ".join(info.agents)
+    if op == "post":
+        raise click.ClickException(f"run {info.run} has {len(info.agents)} agents ({names}): "
+                                   f"say which one the goal is for with --agent")
+    owners = [name for name in info.agents
+              if any(g["id"] == goal_id for g in ask("list", name).goals)]
+    if not owners:
+        raise click.ClickException(f"refused: run {info.run} has no goal {goal_id!r} "
+                                   f"(agents: {names})")
+    return owners[:1]
 
 
 def _check(reply) -> None:
@@ -84,7 +108,7 @@ _FORCE = click.option("--force", is_flag=True,
 @click.argument("text", metavar="GOAL")
 @click.option("--priority", "-p", type=_PRIORITY, default=100, show_default=True,
               help="Rank: the goal goes after every goal of priority <= P (lower = sooner).")
-@click.option("--agent", "-a", help="Agent (default: the run's first agent).")
+@click.option("--agent", "-a", help="Agent (needed when the run has several).")
 @_FORCE
 @runfile.run_option
 def post(text: str, priority: int, agent: str | None, force: bool, run_id: str | None) -> None:
@@ -115,7 +139,7 @@ def list_(agent: str | None, as_json: bool, run_id: str | None) -> None:
 
 @goal.command()
 @click.argument("goal_id", metavar="ID")
-@click.option("--agent", "-a", help="Agent (default: the run's first agent).")
+@click.option("--agent", "-a", help="Agent (default: the one whose goal ID is).")
 @click.option("--force", is_flag=True,
               help="Withdraw an achieved goal too (refused otherwise: the agent keeps an "
                    "achieved goal, acting again should it stop holding).")
@@ -127,10 +151,10 @@ def cancel(goal_id: str, agent: str | None, force: bool, run_id: str | None) -> 
     click.echo(reply.reason or f"cancelled {goal_id}")
 
 
-@goal.command()
+@goal.command(context_settings={"ignore_unknown_options": True})  # P = -1: out of range
 @click.argument("goal_id", metavar="ID")
 @click.argument("new_priority", metavar="P", type=_PRIORITY)
-@click.option("--agent", "-a", help="Agent (default: the run's first agent).")
+@click.option("--agent", "-a", help="Agent (default: the one whose goal ID is).")
 @_FORCE
 @runfile.run_option
 def priority(goal_id: str, new_priority: int, agent: str | None, force: bool,

@@ -83,3 +83,21 @@ def interrupt(proc: subprocess.Popen, timeout: float = 60) -> int | str:
         proc.kill()
         proc.wait()
         return f"still running {timeout:g} s after SIGINT (killed)"
+
+
+def two_cars(tmp_path: Path, cycles: int = 25) -> str:
+    """A scenario of two cars, A1 and A2, holding their speed with ONE program that names no
+    agent (``?self``); its path."""
+    program = (FIXTURES / "hold_speed.tlp").read_text().replace(
+        "(goals (at-desired-speed ME))", "(goals (at-desired-speed ?self))")
+    (tmp_path / "any_car.tlp").write_text(program)
+    cars = ('cars = [{ agent = "A1", street = "B", from = "FIRST", toward = "SECOND" }, '
+            '{ agent = "A2", street = "SECOND", from = "A", toward = "B" }]')
+    text = "\n".join([
+        "[run]", 'name = "two-cars"', 'mode = "lockstep"', f"cycles = {cycles}", "seed = 4", "",
+        "[world]", "grid = [3, 3]", "pedestrians = 2", "traffic = 0", cars, "",
+        *(f'[[agents]]\nid = "{a}"\nprogram = "any_car.tlp"\nsolver = false\n'
+          for a in ("A1", "A2"))])
+    path = tmp_path / "two_cars.toml"
+    path.write_text(text)
+    return str(path)

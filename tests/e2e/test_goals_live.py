@@ -7,7 +7,7 @@ import os
 import signal
 from pathlib import Path
 
-from e2e_helpers import HOLD_SPEED, Teleo, interrupt, trace_lines, wait_for
+from e2e_helpers import HOLD_SPEED, Teleo, interrupt, trace_lines, two_cars, wait_for
 
 PURSUED = {"active", "pending", "suspended", "impasse"}
 
@@ -134,3 +134,30 @@ def test_a_killed_goal_entry_process_comes_back_with_every_goal(teleo):
     summary = json.loads((teleo.run_dir / "summary.json").read_text())
     assert summary["restarts"] == {"goals": 1}
     assert [g["id"] for g in summary["goals"]] == ["g1", "g2", "g3"]
+
+
+def test_with_two_agents_a_post_must_name_its_agent_and_a_cancel_finds_the_goals_owner(
+        teleo, tmp_path):
+    launcher = teleo.start("launch", two_cars(tmp_path, cycles=0), "--agents-per-process",
+                           "2", "--no-record")
+    try:
+        teleo.run_info()
+        unnamed = teleo("goal", "post", "(package-delivered PACKET2)", "-p", "4")
+        assert unnamed.returncode == 1
+        assert "has 2 agents (A1, A2): say which one the goal is for with --agent" in \
+            unnamed.stderr
+        assert "Traceback" not in unnamed.stderr
+        posted = teleo("goal", "post", "(package-delivered PACKET2)", "-p", "4", "-a", "A2")
+        assert posted.returncode == 0 and "posted g1 for A2" in posted.stdout, posted.stderr
+        raised = teleo("goal", "priority", "g1", "6")   # no --agent: g1 is A2's
+        assert raised.returncode == 0 and "g1 now has priority 6" in raised.stdout, \
+            raised.stderr
+        assert teleo("goal", "cancel", "g1").returncode == 0
+        listed = json.loads(teleo("goal", "list", "--json").stdout)
+        assert [(g["id"], g["agent"], g["status"], g["priority"]) for g in listed] == [
+            ("g1", "A2", "cancelled", 6)]
+        ghost = teleo("goal", "cancel", "g9")
+        assert ghost.returncode == 1 and "has no goal 'g9'" in ghost.stderr
+    finally:
+        stopped = interrupt(launcher)
+    assert stopped == 0, teleo.launch_output()

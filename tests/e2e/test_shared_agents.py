@@ -9,32 +9,13 @@ import json
 import re
 
 import pytest
-from e2e_helpers import ROOT
+from e2e_helpers import ROOT, two_cars
 
 from tools.cpus import usable_cores
 
-FIXTURES = ROOT / "tests" / "e2e" / "fixtures"
-
-
-def _two_cars(tmp_path) -> str:
-    """Two cars holding their speed with ONE program that names no agent (``?self``)."""
-    program = (FIXTURES / "hold_speed.tlp").read_text().replace(
-        "(goals (at-desired-speed ME))", "(goals (at-desired-speed ?self))")
-    (tmp_path / "any_car.tlp").write_text(program)
-    cars = ('cars = [{ agent = "A1", street = "B", from = "FIRST", toward = "SECOND" }, '
-            '{ agent = "A2", street = "SECOND", from = "A", toward = "B" }]')
-    text = "\n".join([
-        "[run]", 'name = "two-cars"', 'mode = "lockstep"', "cycles = 25", "seed = 4", "",
-        "[world]", "grid = [3, 3]", "pedestrians = 2", "traffic = 0", cars, "",
-        *(f'[[agents]]\nid = "{a}"\nprogram = "any_car.tlp"\nsolver = false\n'
-          for a in ("A1", "A2"))])
-    path = tmp_path / "two_cars.toml"
-    path.write_text(text)
-    return str(path)
-
 
 def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):
-    scenario = _two_cars(tmp_path)
+    scenario = two_cars(tmp_path)
     apart = teleo("launch", scenario, "--no-record", "--json", timeout=300)
     shared = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "2",
                    timeout=300)
@@ -63,7 +44,7 @@ def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):
 
 
 def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):
-    done = teleo("launch", _two_cars(tmp_path), "--secure", "--agents-per-process", "1",
+    done = teleo("launch", two_cars(tmp_path), "--secure", "--agents-per-process", "1",
                  timeout=120)
     assert done.returncode == 1
     assert "--agents-per-process: only for a whole open run on one host" in done.stderr
@@ -72,7 +53,7 @@ def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):
 
 @pytest.mark.parametrize("value", ["many", "-1", "2.5"])
 def test_agents_per_process_must_be_a_count_or_auto(teleo, tmp_path, value):
-    done = teleo("launch", _two_cars(tmp_path), "--agents-per-process", value, timeout=60)
+    done = teleo("launch", two_cars(tmp_path), "--agents-per-process", value, timeout=60)
     assert done.returncode == 2
     assert (f"Invalid value for '--agents-per-process': '{value}' is not a count of agents "
             f"(0, 1, 2, ...) or auto") in done.stderr
