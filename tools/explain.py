@@ -15,7 +15,7 @@ from typing import Any
 
 import click
 
-from tools.records import RecordError, RunRecord, locate
+from tools.records import GoalHistory, RecordError, RunRecord, locate
 from tools.tree import decision_tree, fold, render_text, to_json
 
 PROGRAM_GOAL = re.compile(r"p\d+")  # the engine's ids of program goals (Engine.initial_state)
@@ -51,14 +51,12 @@ def _of_cycle(rec: RunRecord, kind: str, agent: str, cycle: int | None) -> tuple
 
 
 def goal_history(rec: RunRecord, agent: str, goal_id: str) -> list[dict[str, Any]]:
-    """Every status change of one goal, from the intentions (with the engine's notes)."""
-    changes: list[dict[str, Any]] = []
-    for cycle, intention in sorted(rec.by_cycle("intention", agent).items()):
-        for g in intention["decision"].get("goals", ()):
-            if g.get("id") == goal_id and (not changes or changes[-1]["status"] != g["status"]):
-                changes.append({"cycle": cycle, "status": g["status"], "goal": g.get("goal"),
-                                "priority": g.get("priority"), "note": g.get("note", "")})
-    return changes
+    """Every status change of one goal, from the intentions (with the engine's notes) and the
+    goal lists (a cancellation)."""
+    history = GoalHistory()
+    for _, record in rec.kinds_of(("intention", "goal-list"), agent):
+        history.feed(record)
+    return history.changes[agent].get(goal_id, [])
 
 
 def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None) -> str:

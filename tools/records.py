@@ -45,22 +45,43 @@ class RecordError(Exception):
 
 
 class GoalHistory:
-    """Each agent's goals' status changes, fed with intention records: agent -> goal id ->
-    [{"cycle", "status", "goal", "note"}] (one entry per change, first sighting included)."""
+    """Each agent's goals' status changes, fed with intention and goal-list records: agent ->
+    goal id -> [{"cycle", "status", "goal", "priority", "note"}] (one entry per change, first
+    sighting included). A user goal that leaves the agent's goal list without having failed
+    was cancelled: the executive never reports that, as it no longer has the goal."""
+
+    FINAL = frozenset({"failed", "cancelled"})
 
     def __init__(self) -> None:
         self.changes: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
         self._last: dict[tuple[str, str], str] = {}
+        self._listed: dict[str, dict[str, dict[str, Any]]] = {}  # agent -> id -> entry
 
     def feed(self, record: dict[str, Any]) -> None:
         agent, cycle = record.get("agent", ""), record["env"]["cycle"]
+        if record.get("kind") == "GoalList":
+            self._goal_list(agent, cycle, record.get("goals", ()))
+            return
         for goal in record.get("decision", {}).get("goals", ()):
-            status, gid = goal.get("status"), goal.get("id")
-            if self._last.get((agent, gid)) != status:
-                self._last[(agent, gid)] = status
-                self.changes[agent].setdefault(gid, []).append(
-                    {"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
-                     "note": goal.get("note", "")})
+            gid = goal.get("id")
+            if self._last.get((agent, gid)) not in (goal.get("status"), "cancelled"):
+                self._add(agent, gid, cycle, goal.get("status"), goal, goal.get("note", ""))
+
+    def _goal_list(self, agent: str, cycle: int, goals: Any) -> None:
+        now = {g.get("id"): g for g in goals if isinstance(g, dict)}
+        for gid, goal in self._listed.get(agent, {}).items():
+            if gid not in now and self._last.get((agent, gid)) not in self.FINAL:
+                self._add(agent, gid, cycle, "cancelled", goal, "withdrawn from the goal list")
+        self._listed[agent] = now
+
+    def _add(self, agent: str, gid: str, cycle: int, status: str, goal: dict[str, Any],
+             note: str) -> None:
+        self._last[(agent, gid)] = status
+        changes = self.changes[agent].setdefault(gid, [])
+        changes.append({"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
+                        "priority": goal.get("priority"), "note": note})
+        if len(changes) > 1 and changes[-2]["cycle"] > cycle:  # records of two keys crossed
+            changes.sort(key=lambda c: c["cycle"])
 
     def to_meta(self) -> dict[str, str]:
         return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
@@ -136,7 +157,7 @@ class RecordWriter:
             channel = self._channels[key] = self._mcap.register_channel(
                 topic=key, message_encoding=MessageEncoding.JSON,
                 schema_id=self._schema(record["kind"]))
-        if record["kind"] == "Intention":
+        if record["kind"] in ("Intention", "GoalList"):
             self.history.feed(record)
         self._mcap.add_message(channel_id=channel, log_time=max(0, log_ns),
                                data=orjson.dumps(record),
@@ -233,6 +254,14 @@ class RunRecord:
             if key.rsplit("/", 1)[-1] == kind or _stats_kind(key) == kind:
                 yield key, rec
 
+    def kinds_of(self, kinds: tuple[str, ...], agent: str | None = None
+                 ) -> Iterator[tuple[str, dict[str, Any]]]:
+        """Records of any of `kinds` (of `agent`), in the record's order."""
+        for key, rec in self.records():
+            if key.rsplit("/", 1)[-1] in kinds and (agent is None
+                                                     or keys.agent_of_key(key) == agent):
+                yield key, rec
+
     def agents(self) -> list[str]:
         return sorted({a for key, _ in self.records() if (a := keys.agent_of_key(key))})
 
@@ -247,7 +276,7 @@ class RunRecord:
         if meta is not None:
             return {agent: json.loads(text) for agent, text in meta.items()}
         history = GoalHistory()
-        for _, rec in self.kinds("intention"):
+        for _, rec in self.kinds_of(("intention", "goal-list")):
             history.feed(rec)
         return dict(history.changes)
 

@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from bus import keys
-from bus.messages import Envelope, Percepts, WorldEvent, WorldState
+from bus.messages import Envelope, GoalList, Intention, Percepts, WorldEvent, WorldState
 from bus.record import message_record
 from tools.cli import cli
 from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, coverage, locate
@@ -53,6 +53,34 @@ def test_the_summary_says_which_share_of_the_run_its_record_lacks(tmp_path) -> N
     assert coverage(tmp_path, 4)["missing"] == 0
     (tmp_path / RECORD_FILE).write_bytes(b"\x89MCAP0\r\n")   # never closed: count unknown
     assert coverage(tmp_path, 5)["missing"] is None
+
+
+def test_a_goal_that_leaves_the_goal_list_without_failing_was_cancelled(tmp_path) -> None:
+    """The executive never reports a cancellation (it no longer has the goal): the history
+    takes it from the goal-entry process's goal list; a failed goal, withdrawn too, stays
+    failed."""
+    env = lambda c: Envelope(1, "r1", c, "t", 99)  # noqa: E731
+    g1 = {"id": "g1", "goal": "(cruising ME)", "priority": 5}
+    g2 = {"id": "g2", "goal": "(flying ME)", "priority": 6}
+    listed = {0: [g1, g2], 1: [g1, g2], 2: [g1], 3: []}
+    told = {0: [("g1", "active"), ("g2", "active")], 1: [("g1", "satisfied"), ("g2", "failed")],
+            2: [("g1", "satisfied")], 3: []}
+    with RecordWriter(tmp_path / RECORD_FILE, "r1") as rec:
+        for cycle in range(4):
+            _add(rec, keys.world_state("r1"), WorldState(env(cycle), {"time": cycle}, {}, []))
+            _add(rec, keys.goal_list("r1", "ME"),
+                 GoalList(env(cycle), "ME", tuple({**g, "status": "active"}
+                                                  for g in listed[cycle])))
+            goals = [{"id": i, "status": s, "priority": 5} for i, s in told[cycle]]
+            _add(rec, keys.intention("r1", "ME"), Intention(env(cycle), "ME", {"goals": goals}))
+    history = RunRecord(tmp_path / RECORD_FILE).goal_history()["ME"]
+    assert [(c["cycle"], c["status"]) for c in history["g1"]] == [
+        (0, "active"), (1, "satisfied"), (3, "cancelled")]
+    assert [(c["cycle"], c["status"]) for c in history["g2"]] == [(0, "active"), (1, "failed")]
+    told = CliRunner().invoke(cli, ["explain", str(tmp_path / RECORD_FILE), "--goal", "g1"])
+    assert told.exit_code == 0, told.output
+    assert told.output.splitlines()[-1].split() == [
+        "cycle", "3", "cancelled", "--", "withdrawn", "from", "the", "goal", "list"]
 
 
 def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatch) -> None:
