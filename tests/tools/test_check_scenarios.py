@@ -41,6 +41,8 @@ def invoke(*args):
     (('id = "PACKET2"', 'id = "PACKET 2"'), r"\[world\] package 'PACKET 2': expected an id"),
     (('owner = "ME" },  #', 'owner = "YOU" },  #'),
      r"package PACKET2: owner 'YOU' is not an agent of this run"),
+    (('cars = [{ agent = "ME"', 'cars = [{ agent = "YOU"'),   # ME would start elsewhere
+     r"\[world\] cars: 'YOU' is not an agent of this run \(agents: ME\)"),
 ])
 def test_every_part_of_a_scenario_is_checked_before_it_runs(tmp_path, change, message):
     path = scenario(tmp_path, DEMO.replace(*change))

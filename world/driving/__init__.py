@@ -36,7 +36,7 @@ def create(table: dict[str, Any], seed: int, agents: list[str]):
 
 def check_config(table: dict[str, Any], agents: list[str]) -> None:
     """Everything about the table that can be checked before a run starts: keys, streets,
-    package addresses (a building must exist), car starts."""
+    package addresses (a building must exist), car starts (each an agent's)."""
     from world.driving.city import build_city
     from world.driving.config import load_world_config
     from world.driving.injection import ID
@@ -50,6 +50,10 @@ def check_config(table: dict[str, Any], agents: list[str]) -> None:
         if p.owner not in agents:
             raise ConfigError(f"[world] package {p.id}: owner {p.owner!r} is not an agent of "
                               f"this run (agents: {', '.join(agents)})")
+    for car in config.cars:
+        if car.agent not in agents:
+            raise ConfigError(f"[world] cars: {car.agent!r} is not an agent of this run "
+                              f"(agents: {', '.join(agents)})")
 
 
 def perceive(snapshot: dict[str, Any], agent: str) -> list[list[Any]]:
