@@ -1,7 +1,8 @@
 """Checking a whole scenario before anything runs: the world table against its domain, every
-agent's program, every scripted goal against its agent's program and every scripted event's
-kind. `teleo check SCENARIO`, `teleo launch` and `teleo simulate` all call `check_scenario`,
-so a mistake is one line naming the file and the field, never a crash 10 s into a run."""
+agent's program (and its actions against those the world knows), every scripted goal against
+its agent's program and every scripted event's kind. `teleo check SCENARIO`, `teleo launch`
+and `teleo simulate` all call `check_scenario`, so a mistake is one line naming the file and
+the field, never a crash 10 s into a run."""
 
 from __future__ import annotations
 
@@ -37,6 +38,9 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
         except ProgramError as exc:
             raise ScenarioError(f"{where}: agent {agent.id}: program {agent.program}:\n{exc}") \
                 from None
+        problem = _unknown_action(programs[agent.id], domain.name, domain.actions)
+        if problem:
+            raise ScenarioError(f"{where}: agent {agent.id}: {problem}")
     for k, goal in enumerate(scenario.goals):
         problem = _goal_problem(goal, programs[goal.agent])
         if problem:
@@ -47,6 +51,16 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
             raise ScenarioError(f"{where}: [[events]] #{k + 1}.kind: expected one of "
                                 f"{list(domain.event_kinds)}, got {kind!r}")
     return programs
+
+
+def _unknown_action(program: Program, domain: str, known: tuple[str, ...]) -> str:
+    """The first action of ``program`` its world does not know ("" if none, or if the
+    domain does not say what it knows): the world would fail it every time it is sent."""
+    for action in program.actions():
+        if known and action.name not in known:
+            return (f"{action.loc}: action {action.name} is not one the {domain} world knows "
+                    f"({' '.join(known)})")
+    return ""
 
 
 def _goal_problem(goal: ScriptedGoal, program: Program) -> str:

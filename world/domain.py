@@ -77,7 +77,9 @@ class Restartable(Protocol):
 @dataclass(frozen=True)
 class Domain:
     """A domain's hooks. ``violations`` names the counters that are breaches of a law or a
-    safety rule (a run's summary lists them); ``event_kinds`` the events ``inject`` knows."""
+    safety rule (a run's summary lists them); ``event_kinds`` the events ``inject`` knows;
+    ``actions`` the action names ``apply_actions`` knows (a program sending another is
+    refused by `teleo check` of a scenario: the world would fail it every cycle)."""
 
     name: str
     summary: str
@@ -89,6 +91,7 @@ class Domain:
     event_kinds: tuple[str, ...] = ()
     achievements: tuple[str, ...] = field(default=())  # counters of work done (deliveries)
     restore: Callable[[bytes], World] | None = None     # the inverse of World.checkpoint
+    actions: tuple[str, ...] = ()
 
 
 # name -> module whose DOMAIN attribute is the Domain (imported on first use, so a process

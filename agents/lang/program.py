@@ -91,3 +91,19 @@ class Program:
     def skills_for(self, pred: str) -> tuple[Skill, ...]:
         """Skills whose head is ``pred``, in program order."""
         return self.skills_by_pred.get(pred, ())
+
+    def actions(self) -> tuple[ActionTemplate, ...]:
+        """Every action the program can send its world, in program order: skills' :actions,
+        the atomic actions of SCS bodies (seed 002), operators' :actions and :on-failure
+        (seed 003)."""
+        from .scs.syntax import Act, Atomic, walk_steps
+
+        out: list[ActionTemplate] = []
+        for skill in self.skills:
+            out.extend(skill.actions)
+            for _, step in walk_steps(skill.body) if skill.body is not None else ():
+                steps = step.steps if isinstance(step, Atomic) else (step,)
+                out.extend(x.action for x in steps if isinstance(x, Act))
+        for op in self.sections.get("operators", ()):
+            out.extend((*op.skill.actions, *op.on_failure))
+        return tuple(out)

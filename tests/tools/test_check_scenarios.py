@@ -143,3 +143,17 @@ def test_a_program_path_too_long_to_look_up_is_not_found(tmp_path):
         load_checked(path)
     result = invoke("check", path)
     assert result.exit_code == 1 and "Traceback" not in result.output
+
+
+def test_an_action_the_world_does_not_know_is_refused_with_its_place(tmp_path):
+    """The world would fail (*fly 6.25) every cycle, and the run would say it completed."""
+    program = tmp_path / "flying.tlp"
+    text = DRIVING.read_text()
+    program.write_text(text.replace("(*gas 6.25)", "(*fly 6.25)", 1))
+    line = text[:text.index("(*gas 6.25)")].count("\n") + 1
+    path = scenario(tmp_path, DEMO.replace('"programs/driving.tlp"', f'"{program}"'))
+    result = invoke("check", path)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    assert f"agent ME: {program}:{line}:" in result.output
+    assert "action *fly is not one the driving world knows (*cruise *gas *brake *straighten " \
+           "*steer)" in result.output

@@ -48,6 +48,18 @@ def test_unknown_agent_and_action_fail_with_their_names(name: str) -> None:
 
 
 @pytest.mark.parametrize("name", DOMAINS)
+def test_the_actions_a_domain_says_it_knows_are_the_ones_its_world_knows(name: str) -> None:
+    """``Domain.actions`` is what `teleo check` holds programs to: each name is one the world
+    takes (an outcome may fail for its arguments, never as an unknown action)."""
+    domain = get_domain(name)
+    assert domain.actions
+    world = domain.create({}, 1, ["ME"])
+    for action in domain.actions:
+        [out] = world.apply_actions("ME", [[action]])
+        assert "unknown action" not in out["reason"], (action, out)
+
+
+@pytest.mark.parametrize("name", DOMAINS)
 def test_safe_actions_are_accepted(name: str) -> None:
     world = get_domain(name).create({}, 1, ["ME"])
     outcomes = world.apply_actions("ME", world.safe_actions("ME"))

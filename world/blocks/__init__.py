@@ -27,6 +27,7 @@ from world.pictures import is_animation
 
 VIOLATIONS = ("blocks_dropped",)
 ACHIEVEMENTS = ("blocks_moved",)
+ACTIONS = ("*pickup", "*unstack", "*putdown", "*stack", "*wait")  # what apply_actions knows
 EVENT_KINDS = ("add", "remove", "knock", "slip")
 
 
@@ -74,4 +75,4 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
 
 DOMAIN = Domain("blocks", "the Blocks World (seed 000, Figure 3): a table, blocks, a gripper "
                 "per agent", create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS,
-                ACHIEVEMENTS)
+                ACHIEVEMENTS, actions=ACTIONS)

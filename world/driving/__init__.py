@@ -23,6 +23,7 @@ from world.pictures import is_animation
 
 VIOLATIONS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
               "speeding_cycles")
+ACTIONS = ("*cruise", "*gas", "*brake", "*straighten", "*steer")  # what apply_actions knows
 EVENT_KINDS = ("pedestrian", "block", "unblock", "package")
 
 
@@ -87,4 +88,4 @@ def restore(blob: bytes):
 
 DOMAIN = Domain("driving", "urban driving (seed 000): a city, traffic, pedestrians, packages",
                 create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",),
-                restore=restore)
+                restore=restore, actions=ACTIONS)

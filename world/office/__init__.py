@@ -29,6 +29,7 @@ from world.pictures import is_animation
 
 VIOLATIONS = ("bumps",)
 ACHIEVEMENTS = ("deliveries", "acquisitions", "observations")
+ACTIONS = ("*goto", "*acquire", "*deliver", "*observe", "*say", "*stop")  # what apply_actions knows
 EVENT_KINDS = ("open", "close", "block", "move", "false-success", "cool", "item", "give",
                "occupants", "obstacle", "clear", "stall")   # world/office/events.py
 
@@ -83,4 +84,5 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
 
 DOMAIN = Domain("office", "office delivery (seed 003): rooms, corridors, doors, people, mail, "
                 "faxes and coffee, a robot with high-level operations",
-                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ACHIEVEMENTS)
+                create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ACHIEVEMENTS,
+                actions=ACTIONS)

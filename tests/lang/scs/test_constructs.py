@@ -232,3 +232,9 @@ def test_a_step_that_has_just_ended_ends_its_alternative_though_the_condition_fa
     assert d.step() == [["*e"]]                    # P1 gone: the alternative ended
     assert d.state.scs.model == (("served", "P1"),)
     assert d.scs["choices"][0]["succeeded"] == 1
+
+
+def test_a_program_lists_the_actions_its_bodies_can_send():
+    # what `teleo check SCENARIO` holds against the world's actions (tools/scenario_check.py)
+    engine = body_program("(do (atomic (*a 1) (assert (mark ?x))) (do-any (*b) (*c ?x)))")
+    assert [str(a) for a in engine.program.actions()] == ["(*a 1)", "(*b)", "(*c ?x)"]
