@@ -8,11 +8,14 @@ completion").
 
 from __future__ import annotations
 
+import errno
 import importlib
 import logging
 import re
 
 import click
+
+from tools.paths import describe_os_error
 
 # (module, attribute holding a list of click commands). Each module owns its subcommands.
 _COMMAND_MODULES = (
@@ -35,7 +38,22 @@ SUMMARY_CHARS = 66
 command name in 80 columns (click's own summaries stop at 45 and at the first dot)."""
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _Group(click.Group):
+    """The top-level group: an OSError that escapes a command (a file it could not read or
+    write) is one `Error:` line naming the file and the reason, exit 1, not a traceback.
+    Every output option checks its file up front (tools/paths.py); this is the safety net.
+    A closed pipe (EPIPE) is left to click, which exits quietly."""
+
+    def invoke(self, ctx: click.Context) -> object:
+        try:
+            return super().invoke(ctx)
+        except OSError as exc:
+            if exc.errno == errno.EPIPE:
+                raise
+            raise click.ClickException(describe_os_error(exc)) from exc
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="teleo", prog_name="teleo",
                       message="%(prog)s %(version)s")
 @click.option("-v", "--verbose", count=True, help="More logging (-v info, -vv debug).")

@@ -159,7 +159,8 @@ def render(model: Model, alive: set[str], incarnations: dict[str, int],
 @click.option("--key", "-k", help="Show the decoded last message of the key ending with this, "
                                   "e.g. agent/ME/intention.")
 @click.option("--once", is_flag=True, help="Watch 2 s, print the tables once, exit.")
-@click.option("--seconds", type=float, help="Watch this long [s], print once, exit.")
+@click.option("--seconds", type=click.FloatRange(min=0, min_open=True),
+              help="Watch this long [s], print once, exit.")
 @runfile.run_option
 def inspect(key: str | None, once: bool, seconds: float | None, run_id: str | None) -> None:
     """Live view of the running launch: processes, keys, rates, latency.

@@ -20,6 +20,7 @@ from agents.lang.limits import read_json
 from agents.lang.loader import read_text
 from agents.lang.outcomes import as_outcomes
 from agents.lang.terms import sort_key
+from tools.paths import OutputPath
 
 include_option = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
                         help="Extra file read into the same program (e.g. concepts a table of "
@@ -103,7 +104,7 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
               help="The outcomes of the previous cycle's actions: a JSON list of "
                    '{"action": [...], "status": "done"|"failed", "reason": "..."}.')
 @click.option("--state", "state_file", type=click.Path(), help="Engine state (JSON) to start from.")
-@click.option("--save-state", "save_file", type=click.Path(), help="Write the next state here.")
+@click.option("--save-state", "save_file", type=OutputPath(), help="Write the next state here.")
 @click.option("--goal", "goals", multiple=True,
               help="Add a user goal, e.g. '(package-delivered PACKET2)'; append :P for priority "
                    "P, e.g. '(clear B):1'. Repeatable.")

@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 import logging
 import os
+import re
 import secrets
 import signal
 import sys
@@ -32,6 +33,8 @@ import click
 
 from tools import runfile, summary
 from tools.cpus import usable_cores
+from tools.paths import OutputPath, picture_check
+from tools.plot import plot_check
 from tools.run_plan import (
     Plan,
     PlanError,
@@ -85,9 +88,9 @@ class PerProcess(click.ParamType):
 @click.option("--cycles", type=click.IntRange(min=0), help="Cycles to run (0: forever).")
 @click.option("--seed", type=int, help="World seed (overrides [run].seed).")
 @click.option("--mode", type=click.Choice(["lockstep", "realtime"]), help="Clock mode.")
-@click.option("--summary", "summary_file", type=click.Path(dir_okay=False),
+@click.option("--summary", "summary_file", type=OutputPath(),
               help="Write the summary JSON here.")
-@click.option("--render", "render_file", type=click.Path(dir_okay=False),
+@click.option("--render", "render_file", type=OutputPath(picture_check),
               help="Draw the run: a .png of the last state or a .gif of the run.")
 @click.option("--secure", is_flag=True, help="TLS, a user per process and access control "
               "(also [run] secure = true).")
@@ -107,7 +110,7 @@ class PerProcess(click.ParamType):
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
               help="Start every agent from the skills learned in an earlier run (its "
                    "learned-AGENT.tlp); the run's own file holds them plus the new ones.")
-@click.option("--plot", "plot_file", type=click.Path(dir_okay=False),
+@click.option("--plot", "plot_file", type=OutputPath(plot_check),
               help="Plot the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 @click.option("--agents-per-process", type=PerProcess(), default="0", metavar="K|auto",
@@ -145,6 +148,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             raise PlanError("--agents-per-process: only for a whole open run on one host "
                             "(not with --secure, --only, --join or --listen beyond it)")
         plan = with_bus_mode(plan)
+        if plan.joined:
+            _reach_router(plan)
     except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
@@ -156,7 +161,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         outcome = supervise(plan)
         if not plan.runs_world:
             _echo_joined(plan, outcome)
-            raise SystemExit(1 if outcome.left_down else 0)
+            raise SystemExit(1 if outcome.left_down or outcome.ended else 0)
         result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
                                outcome.left_down, outcome.ended, outcome.requested_stop)
         _finish(result, scenario, plan.run_dir, summary_file, render_file, plot_file, as_json)
@@ -255,6 +260,26 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
                 else start_timeout(len(local)))
     check_secrets(plan)
     return plan
+
+
+def _reach_router(plan: Plan) -> None:
+    """Refuse a --join whose router does not answer (within the bus's connect timeout, 5 s),
+    before anything is started or written: no run folder, no process left behind."""
+    from bus.errors import BusError
+    from bus.node import open_node
+    from tools.run_plan import bus_config
+
+    try:
+        with open_node(bus_config(plan, "launch"), plan.run, f"join-{os.getpid()}"):
+            pass
+    except BusError as exc:
+        reason = _RUST_PLACE.sub("", str(exc.__cause__ or exc)).strip()
+        raise PlanError(f"--join: cannot reach the router at {plan.endpoint}: {reason}") \
+            from exc
+
+
+_RUST_PLACE = re.compile(r"\s+at \S+\.rs:\d+\.?$")
+"""Where in zenoh's Rust source an error was raised, at the end of its message."""
 
 
 def _check_run_id(run: str) -> None:

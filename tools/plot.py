@@ -18,7 +18,13 @@ from typing import Any
 
 import click
 
+from tools.paths import OutputPath, suffix_check
 from tools.records import RecordError, RunRecord, locate
+
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+"""What a plot is written as (matplotlib's own backends), by the file's suffix."""
+plot_check = suffix_check(PLOT_SUFFIXES, "a plot")
+"""The check of a plot's file name for `--plot` and `plot --out` (tools/paths.py)."""
 
 STATUS_COLOURS = {"satisfied": "#3a9a48", "active": "#2f6fd6", "suspended": "#e59a1d",
                   "impasse": "#d23c3c", "failed": "#222222", "pending": "#c9c9c9"}
@@ -158,7 +164,11 @@ def _rolling(values: list[float], window: int) -> list[float]:
 
 
 def plot_record(path: Path, out: Path) -> Path:
-    """Draw the record at `path` into the PNG `out`; raises RecordError."""
+    """Draw the record at `path` into `out` (a PNG, SVG or PDF by its suffix); raises
+    RecordError."""
+    problem = plot_check(out)
+    if problem is not None:
+        raise RecordError(problem)
     import matplotlib
 
     matplotlib.use("Agg")
@@ -199,8 +209,8 @@ def plot_command_output(run: str | Path, out: Path) -> str:
 
 @click.command()
 @click.argument("run", metavar="RUN")
-@click.option("--out", type=click.Path(dir_okay=False, path_type=Path), default=None,
-              help="PNG to write (default: plot.png beside the record).")
+@click.option("--out", type=OutputPath(plot_check, path_type=Path), default=None,
+              help="PNG (or .svg, .pdf) to write (default: plot.png beside the record).")
 def plot(run: str, out: Path | None) -> None:
     """Plot a run record: speed and limit (driving), counters, goal timeline, stage times."""
     try:

@@ -28,6 +28,7 @@ from typing import Any
 
 import click
 
+from bus.errors import BusError
 from tools import runfile
 from tools.progress import WorldProgress
 from tools.run_plan import Plan, bus_config, process_specs, start_timeout
@@ -92,9 +93,9 @@ def supervise(plan: Plan) -> Outcome:
     except KeyboardInterrupt:
         click.echo("interrupted: stopping the run")
         outcome.requested_stop = True
-    except click.ClickException as exc:
-        outcome.ended = exc.message
-        click.echo(f"Error: {exc.message}", err=True)
+    except (click.ClickException, BusError) as exc:  # BusError: the router cannot be reached
+        outcome.ended = exc.message if isinstance(exc, click.ClickException) else str(exc)
+        click.echo(f"Error: {outcome.ended}", err=True)
     finally:
         t0 = time.monotonic()
         sup.stop_all(["world"], keep=["router"])

@@ -13,6 +13,7 @@ from typing import Any
 
 import click
 
+from tools.paths import OutputPath, picture_check
 from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
 from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
@@ -20,6 +21,7 @@ from world.errors import WorldError
 from world.pictures import is_animation, picture_format
 from world.toml_text import read_toml
 
+_POSITIVE = click.FloatRange(min=0, min_open=True)  # --scale [px/m], --follow [m]
 MAX_SNAPSHOT_CHARS = 256 << 20
 """[characters] of a snapshots file `teleo render` reads (a day-long run's is ~100 MB)."""
 
@@ -98,17 +100,17 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
 
 @click.command()
 @click.argument("source", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("--out", "out", required=True, type=click.Path(dir_okay=False, path_type=Path),
+@click.option("--out", "out", required=True, type=OutputPath(picture_check, path_type=Path),
               help="FILE.png or FILE.jpg (one cycle) or FILE.gif (the whole run).")
 @click.option("--agent", default=None, help="Whose car, range and counters to show.")
-@click.option("--cycle", "cycle", type=int, default=None,
+@click.option("--cycle", "cycle", type=click.IntRange(min=0), default=None,
               help="PNG: the cycle to draw (default: the last).")
-@click.option("--every", type=int, default=1, show_default=True,
+@click.option("--every", type=click.IntRange(min=1), default=1, show_default=True,
               help="GIF: use every N-th snapshot.")
-@click.option("--scale", type=float, default=None, help="Pixels per metre.")
-@click.option("--follow", type=float, default=None,
+@click.option("--scale", type=_POSITIVE, default=None, help="Pixels per metre.")
+@click.option("--follow", type=_POSITIVE, default=None,
               help="Draw only a square of this side [m] that follows the agent's car.")
-@click.option("--steps", type=int, default=100, show_default=True,
+@click.option("--steps", type=click.IntRange(min=0), default=100, show_default=True,
               help="Scenario source: cycles to simulate.")
 @click.option("--seed", type=int, default=None,
               help="Scenario source: seed (default: the scenario's).")
