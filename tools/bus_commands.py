@@ -24,6 +24,10 @@ from bus.record import from_record
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
 from tools import runfile
+from tools.paths import OutputPath
+
+_SECONDS = click.FloatRange(min=0, min_open=True)
+"""A watch of S > 0 seconds (--seconds of echo and record)."""
 
 
 def _split(text: str) -> list[str]:
@@ -71,8 +75,9 @@ def _json_line(key: str, t_ns: int, payload: bytes) -> str:
 @click.command()
 @click.argument("keyexpr", default="**")
 @click.option("--filter", "text", default=None, help="Only lines containing TEXT.")
-@click.option("--count", type=int, default=None, help="Exit after N printed messages.")
-@click.option("--seconds", type=float, default=None, help="Exit after S seconds.")
+@click.option("--count", type=click.IntRange(min=1), default=None,
+              help="Exit after N printed messages.")
+@click.option("--seconds", type=_SECONDS, default=None, help="Exit after S seconds.")
 @runfile.run_option
 @bus_options
 def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | None,
@@ -81,10 +86,9 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
     'world/state' or 'agent/ME/**' (default: everything), or a full 'teleo/RUN/...'."""
     from tools.target import find_target
 
-    try:
-        keys.check_keyexpr(keyexpr)
-    except BusError as exc:
-        raise click.BadParameter(str(exc), param_hint="KEYEXPR") from None
+    problem = _keyexpr_problem(keyexpr)
+    if problem is not None:
+        raise click.BadParameter(problem, param_hint="KEYEXPR")
     target = find_target(bus_config, run=run_id)
     keyexpr = _full_key(keyexpr, target.run)
     click.echo(f"listening on {keyexpr} of {target.who}", err=True)
@@ -95,6 +99,28 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
             _print_messages(node.subscribe(keyexpr, raw=True), text, count, end, stop)
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
+
+
+def _keyexpr_problem(keyexpr: str) -> str | None:
+    """What is wrong with a key expression (bus.keys.check_keyexpr's words), or None. The
+    repair it suggests for empty chunks ('a//b' -> 'a/b') is kept only when that repair is
+    itself a valid key expression; otherwise the rest of what is wrong is said instead."""
+    try:
+        keys.check_keyexpr(keyexpr)
+        return None
+    except BusError as exc:
+        problem = str(exc)
+    repaired = "/".join(c for c in keyexpr.split("/") if c)
+    suggestion = f"; e.g. {repaired!r}"
+    if not problem.endswith(suggestion):
+        return problem
+    if not repaired:
+        return problem.removesuffix(suggestion)
+    try:
+        keys.check_keyexpr(repaired)
+        return problem
+    except BusError as rest:
+        return f"{problem.removesuffix(suggestion)}; without the empty chunk: {rest}"
 
 
 def _print_messages(inbox, text: str | None, count: int | None, end: float | None,
@@ -115,11 +141,12 @@ def _print_messages(inbox, text: str | None, count: int | None, end: float | Non
 
 
 @click.command()
-@click.argument("file", type=click.Path(dir_okay=False, writable=True, path_type=Path))
+@click.argument("file", type=OutputPath(path_type=Path))
 @click.option("--run", "run_id", default=None,
               help="Run id: records teleo/<run>/** (default: the running launch's run).")
-@click.option("--seconds", type=float, default=None, help="Stop after S seconds.")
-@click.option("--count", type=int, default=None, help="Stop after N messages.")
+@click.option("--seconds", type=_SECONDS, default=None, help="Stop after S seconds.")
+@click.option("--count", type=click.IntRange(min=1), default=None,
+              help="Stop after N messages.")
 @bus_options
 def record(file: Path, run_id: str | None, seconds: float | None, count: int | None,
            bus_config: BusConfig) -> None:
@@ -127,7 +154,7 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
 
     Without --connect it records the running launch; with --connect, the run given by --run
     on that router."""
-    from tools.recorder import BusRecorder
+    from tools.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
     from tools.target import find_target
 
     if run_id is not None:
@@ -153,16 +180,21 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
         if (end is not None and time.monotonic() >= end) or \
                 (count is not None and recorder.received >= count):
             break
-    writer = recorder.stop()
-    click.echo(f"recorded {writer.messages} messages ({writer.cycles} cycles) of run {run_id} "
-               f"to {file}", err=True)
+    # what was sent until now and no more (the run goes on publishing); bounded, so that a
+    # clock or a replay that fools "sent before the stop" cannot hold the command
+    writer = recorder.stop(settle_s=FOREGROUND_SETTLE_S, timeout=FOREGROUND_STOP_S)
+    cycles = "no cycle" if recorder.first_cycle is None else \
+        f"{recorder.cycles} cycles, {recorder.first_cycle}..{recorder.last_cycle}"
+    click.echo(f"recorded {writer.messages} messages ({cycles}) of run {run_id} to {file}",
+               err=True)
 
 
 @click.command()
 @click.argument("file", metavar="RECORD", type=click.Path())
-@click.option("--speed", type=float, default=1.0, show_default=True,
+@click.option("--speed", type=click.FloatRange(min=0), default=1.0, show_default=True,
               help="Time scale on world time (2: twice as fast; 0: as fast as possible).")
-@click.option("--wait", "wait_s", type=float, default=2.0, show_default=True,
+@click.option("--wait", "wait_s", type=click.FloatRange(min=0), default=2.0,
+              show_default=True,
               help="Wait up to S seconds for subscribers on the recorded keys first.")
 @click.option("--onto", "onto", default=None, metavar="RUN",
               help="The running launch to replay onto (default: the only one).")

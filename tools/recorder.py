@@ -19,6 +19,7 @@ from bus.messages import (
     Actions,
     Beliefs,
     Envelope,
+    GoalList,
     Intention,
     Message,
     Percepts,
@@ -33,32 +34,44 @@ from tools.records import RECORD_FILE, RecordWriter
 log = logging.getLogger(__name__)
 RECORDER_META = "teleo.recorder"
 LOOK_S = 0.02  # [s] between looks at the subscription when nothing waits
+FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken after the stop
+FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
 
 
 class BusRecorder:
     """Records `teleo/<run>/**` into a RecordWriter on a thread of its own.
 
-    `start()` returns once the subscription is declared; `stop()` takes what is still in
-    flight (until the bus has been quiet for `quiet_s`) and closes the record. The thread keeps
-    the launcher's priority: when it ran at nice 10, on a loaded machine, the scheduler kept it
-    waiting while it held the GIL, which stalled zenoh's callback thread (the record's inbox
-    was then fed by a callback), and the router dropped what it held for the record (the last
-    64 cycles of 8262 lost, and a stop of 16 s while the thread caught up).
+    `start()` returns once the subscription is declared; `stop()` records what was sent
+    before it and no more (see there) and closes the record. The thread keeps the launcher's
+    priority: when it ran at nice 10, on a loaded machine, the scheduler kept it waiting while
+    it held the GIL, which stalled zenoh's callback thread (the record's inbox was then fed by
+    a callback), and the router dropped what it held for the record (the last 64 cycles of
+    8262 lost, and a stop of 16 s while the thread caught up).
     """
 
     def __init__(self, cfg: BusConfig, run: str, path: Path, meta: dict[str, str] | None = None,
                  process: str = "record") -> None:
         self.cfg, self.run, self.process = cfg, run, process
         self.writer = RecordWriter(path, run, meta)
-        self.received = 0
-        self.dropped = 0
+        self.received = 0  # messages taken for the record (sent before the stop)
+        self.dropped = 0  # of those, not recorded (not a bus message)
+        self.after_stop = 0  # messages sent after the stop: left out
+        self.first_cycle: int | None = None  # of the messages recorded (cycle >= 0)
+        self.last_cycle: int | None = None
+        self._cycles: set[int] = set()  # the distinct cycles of the messages recorded
         self.cpu_s = 0.0
-        self._announce, self._quiet_s = False, 0.3
+        self._announce, self._quiet_s, self._settle_s = False, 0.3, None
+        self._stop_ns: int | None = None  # wall clock of the stop [ns]: later sends left out
         self.error: BaseException | None = None
         self._ready = threading.Event()
         self._stop = threading.Event()
         self._abandon = threading.Event()  # stop() waited long enough: write nothing more
         self._thread = threading.Thread(target=self._main, name="teleo-record", daemon=True)
+
+    @property
+    def cycles(self) -> int:
+        """How many distinct cycles the recorded messages belong to."""
+        return len(self._cycles)
 
     def start(self, timeout: float = 30.0, announce: bool = False) -> BusRecorder:
         """Subscribe (and, with `announce`, declare the liveliness token `process` after it)."""
@@ -68,10 +81,25 @@ class BusRecorder:
             raise BusError(f"recorder of run {self.run}: could not subscribe: {self.error}")
         return self
 
-    def stop(self, quiet_s: float = 0.3, timeout: float = 30.0) -> RecordWriter:
-        """Finish: drain until quiet, close the record (with this recorder's own costs in
-        its metadata `teleo.recorder`); returns the writer (its counts)."""
-        self._quiet_s = quiet_s
+    def stop(self, quiet_s: float = 0.3, timeout: float = 30.0,
+             settle_s: float | None = None) -> RecordWriter:
+        """Finish: record every message sent before this call and none sent after it, close
+        the record (with this recorder's own costs in its metadata `teleo.recorder`); returns
+        the writer.
+
+        What was sent before the call is written: what waits in the subscription's queue,
+        then what is still in flight, until none of it has arrived for `quiet_s` (the launch
+        stops its recorder once every process has stopped, while the router may still hold
+        what they published last). What is sent after the call is left out (`after_stop`),
+        so a live run, whose bus never falls quiet, does not hold the stop: waiting for a
+        quiet bus once made `teleo record --seconds 2` record 32 s. "Before" is by the
+        sender's wall clock (env.sent_ns), which a message from another host with a clock
+        behind ours, or a replayed record, can fool: `settle_s` bounds how long messages
+        in flight are still taken once the queue is caught up (None: no bound; `timeout`
+        bounds the whole stop, after which nothing more is written)."""
+        self._quiet_s, self._settle_s = quiet_s, settle_s
+        if self._stop_ns is None:
+            self._stop_ns = time.time_ns()
         self._stop.set()
         self._thread.join(timeout)
         if self._thread.is_alive():  # left behind: the summary says what the record lacks
@@ -81,6 +109,7 @@ class BusRecorder:
             self._thread.join(max(timeout, 5.0))  # it ends after the record it is writing
         self.writer.meta(RECORDER_META, {"received": str(self.received),
                                          "dropped": str(self.dropped),
+                                         "after_stop": str(self.after_stop),
                                          "cpu_ms": f"{self.cpu_s * 1e3:.1f}"})
         self.writer.close()
         return self.writer
@@ -99,32 +128,71 @@ class BusRecorder:
             self._ready.set()
             log.error("recorder of run %s stopped: %s", self.run, exc)
 
-    def _pump(self, inbox: FifoInbox) -> None:
-        """Take what waits every LOOK_S and write it, until stopped and quiet for `_quiet_s`
-        (or abandoned): one wake-up for a batch, not one per message."""
-        quiet_since = None
+    def _pump(self, inbox: FifoInbox, most: int = 4096) -> None:
+        """Take what waits every LOOK_S and write it (one wake-up for a batch, not one per
+        message); once stopped, until nothing sent before the stop has arrived for
+        `_quiet_s`, or `_settle_s` after the queue was first caught up (or abandoned)."""
+        quiet_since = caught_up = None
         while not self._abandon.is_set():
-            batch = inbox.drain()
-            if batch:
+            stopping = self._stop.is_set()  # read first: a batch that is not full then
+            batch = inbox.drain(most)  # holds all that had arrived by the stop
+            if self._write_all(batch):
                 quiet_since = None
-                self._write_all(batch)
-                continue
-            if self._stop.is_set():
+            elif stopping:
                 quiet_since = quiet_since or time.monotonic()
-                if time.monotonic() - quiet_since >= self._quiet_s:
+            if stopping:
+                now = time.monotonic()
+                if caught_up is None and len(batch) < most:
+                    caught_up = now  # all that had arrived by the stop is written
+                if quiet_since is not None and now - quiet_since >= self._quiet_s:
                     return
-            time.sleep(LOOK_S)
+                if caught_up is not None and self._settle_s is not None \
+                        and now - caught_up >= self._settle_s:
+                    return
+            if len(batch) < most:
+                time.sleep(LOOK_S)
 
-    def _write_all(self, batch: list[tuple[str, bytes]]) -> None:
+    def _write_all(self, batch: list[tuple[str, bytes]]) -> int:
+        """Write the messages of `batch` sent before the stop; how many were."""
+        taken = 0
         for key, payload in batch:
             if self._abandon.is_set():
-                return
-            self.received += 1
+                break
             try:
-                self.writer.add(key, to_record(key, payload))
+                record = to_record(key, payload)
+            except CodecError as exc:
+                self.received += 1
+                self.dropped += 1
+                log.warning("not recorded: %s", exc)
+                continue
+            stop_ns = self._stop_ns
+            if stop_ns is not None and _sent_ns(record) > stop_ns:
+                self.after_stop += 1
+                continue
+            self.received += 1
+            taken += 1
+            try:
+                self.writer.add(key, record)
             except (CodecError, KeyError, TypeError, ValueError) as exc:
                 self.dropped += 1
                 log.warning("not recorded: %s", exc)
+                continue
+            self._count_cycle(record)
+        return taken
+
+    def _count_cycle(self, record: dict[str, Any]) -> None:
+        cycle = record["env"].get("cycle")
+        if isinstance(cycle, int) and cycle >= 0:
+            self._cycles.add(cycle)
+            self.first_cycle = cycle if self.first_cycle is None else min(self.first_cycle,
+                                                                           cycle)
+            self.last_cycle = cycle if self.last_cycle is None else max(self.last_cycle, cycle)
+
+
+def _sent_ns(record: dict[str, Any]) -> int:
+    """When a record's message was sent [ns] (0 when its envelope does not say: kept)."""
+    sent = record["env"].get("sent_ns")
+    return sent if isinstance(sent, int) else 0
 
 
 def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
@@ -145,8 +213,8 @@ def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
 
 
 class SimRecorder:
-    """The channels of a launch, written from `teleo simulate`'s loop (no goal-list: there is
-    no goal-entry process; stats carry the in-process compute time of each stage)."""
+    """The channels of a launch, written from `teleo simulate`'s loop (stats carry the
+    in-process compute time of each stage; no goal-entry process, so no stats of one)."""
 
     def __init__(self, writer: RecordWriter, run: str) -> None:
         self.writer, self.run = writer, run
@@ -189,6 +257,12 @@ class SimRecorder:
         self._add(keys.intention(run, agent), Intention(env, agent, seen.decision.to_dict()))
         self._add(keys.actions(run, agent), Actions(
             env, agent, tuple(a.to_list() for a in seen.decision.actions)))
+
+    def goal_list(self, cycle: int, agent: str, goals: tuple[dict[str, Any], ...]) -> None:
+        """The user goals `agent` is given at `cycle`, as the goal-entry process publishes
+        them (a cancelled goal leaves the list: tools/records.py GoalHistory)."""
+        self._add(keys.goal_list(self.run, agent), GoalList(self._env(cycle, "goals"), agent,
+                                                            goals))
 
     def world_stats(self, cycle: int, ms: float) -> None:
         self._add(keys.stats(self.run, "world"),
