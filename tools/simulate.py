@@ -24,7 +24,9 @@ from agents.lang.solving.learned import learned_text, read_learned
 from agents.processes.goal_store import GoalStore, GoalStoreError
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
-from tools import sim_summary, summary
+from tools import records, sim_summary, summary
+from tools.paths import OutputPath, picture_check
+from tools.plot import plot_check
 from tools.progress import progress_cycles
 from tools.scenario_check import load_checked
 from world.domain import get_domain
@@ -148,6 +150,9 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         w0 = time.perf_counter()
         injected = [sim.inject(ev.event) for ev in scenario.events if ev.at_cycle == cycle]
         goals.before(cycle, states)
+        if recorder is not None:
+            for a in agents:
+                recorder.goal_list(cycle, a, goals.store.goal_list(a))
         snap = sim.snapshot_dict()
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
@@ -211,19 +216,20 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 
 @click.command("simulate")
 @click.argument("scenario", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("--cycles", type=click.IntRange(min=0), default=None,
-              help="Cycles to run (default: the scenario's).")
+@click.option("--cycles", type=click.IntRange(min=1), default=None,
+              help="Cycles to run (default: the scenario's; one whose cycles = 0, a launch's "
+                   "'until Ctrl-C', needs this).")
 @click.option("--seed", type=int, default=None, help="World seed (default: the scenario's).")
-@click.option("--trace", type=click.Path(dir_okay=False, path_type=Path), default=None,
+@click.option("--trace", type=OutputPath(path_type=Path), default=None,
               help="Write the run's trace here: one JSON line per cycle, as a launch's "
                    "trace.jsonl (docs/scenarios.md, \"Run files\").")
-@click.option("--render", type=click.Path(dir_okay=False, path_type=Path), default=None,
+@click.option("--render", type=OutputPath(picture_check, path_type=Path), default=None,
               help="Write a picture of the run (.png/.jpg: the last cycle, .gif: the run).")
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               default=None, help="Start every agent from the skills in this learned file.")
-@click.option("--learned-out", type=click.Path(dir_okay=False, path_type=Path), default=None,
+@click.option("--learned-out", type=OutputPath(path_type=Path), default=None,
               help="Write the learned skills (those started from, then the new ones) here.")
-@click.option("--plot", type=click.Path(dir_okay=False, path_type=Path), default=None,
+@click.option("--plot", type=OutputPath(plot_check, path_type=Path), default=None,
               help="Write plots of the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
 @click.option("--json", "as_json", is_flag=True,
@@ -242,6 +248,9 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
         if render:
             picture_format(render)
         sc, _ = load_checked(scenario)
+        if cycles is None and sc.run.cycles == 0:
+            raise click.UsageError(f"{scenario}: cycles = 0 runs a launch until Ctrl-C; a "
+                                   f"simulation needs a number: give --cycles N")
         recorder = None if no_record and not plot else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
                        learned=learned, recorder=recorder, show_progress=True)
@@ -280,6 +289,8 @@ def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path |
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
     result["record_missing"] = None if record is None else 0  # written in the loop: all of it
+    if record is not None:  # each goal's status changes, as a launch's summary has them
+        result["goals"] = records.with_history(result["goals"], Path(record).parent)
     if as_json:
         click.echo(json.dumps(result, indent=1))
         for note in notes:

@@ -98,7 +98,7 @@ def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatc
                                            "ME.executive")]
     assert counts == {k: out["cycles"] for k in (
         keys.world_state(run), keys.percepts(run, "ME"), keys.beliefs(run, "ME"),
-        keys.intention(run, "ME"), keys.actions(run, "ME"), *stages)}
+        keys.intention(run, "ME"), keys.actions(run, "ME"), keys.goal_list(run, "ME"), *stages)}
     # Figure 3: unstack C from B, put C down, unstack B from A (cycles that act)
     actions = [r["actions"] for _, r in sorted(rec.by_cycle("actions", "ME").items())]
     assert [a for a in actions if a] == [[["*unstack", "C", "B"]], [["*putdown", "C", "T"]],

@@ -23,7 +23,8 @@ def scenario(tmp_path: Path, goals: str) -> Path:
     return path
 
 
-def test_goal_ids_statuses_notes_and_a_scripted_cancel(tmp_path):
+def test_goal_ids_statuses_notes_and_a_scripted_cancel(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
     path = scenario(tmp_path, """
 [[goals]]
 goal = "(package-delivered PACKET9)"
@@ -50,5 +51,20 @@ at_cycle = 4
     assert got["g1"]["status"] == "failed"
     assert "no percept mentions PACKET9: is there such an object?" in got["g1"]["note"]
     assert (got["g2"]["status"], got["g2"]["updated_cycle"]) == ("cancelled", 4)
+    # each goal's history, from the run record, as a launch's summary has it
+    assert [(h["cycle"], h["status"]) for h in got["g2"]["history"]][-1] == (4, "cancelled")
+    assert got["g1"]["history"][-1]["status"] == "failed"
     assert (summary["mode"], summary["cycles"]) == ("simulate", 6)
     assert summary["goals_achieved"] == 0 and summary["counters"]["ME"]["deliveries"] == 0
+
+
+def test_a_scenario_that_runs_until_ctrl_c_needs_a_number_of_cycles(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, "")
+    path.write_text(path.read_text().replace("cycles = 650", "cycles = 0"))
+    refused = CliRunner().invoke(cli, ["simulate", str(path)])
+    assert refused.exit_code == 2 and "cycles = 0 runs a launch until Ctrl-C; a simulation " \
+        "needs a number: give --cycles N" in refused.output
+    assert not (tmp_path / "runs").exists()                 # nothing ran
+    ran = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "3", "--json"])
+    assert ran.exit_code == 0 and json.loads(ran.stdout)["cycles"] == 3, ran.output
