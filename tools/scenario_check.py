@@ -45,12 +45,31 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
         problem = _goal_problem(goal, programs[goal.agent])
         if problem:
             raise ScenarioError(f"{where}: [[goals]] #{k + 1}: {problem}")
+    _check_goal_ids(scenario)
     for k, event in enumerate(scenario.events):
         kind = event.event.get("kind")
         if domain.event_kinds and kind not in domain.event_kinds:
             raise ScenarioError(f"{where}: [[events]] #{k + 1}.kind: expected one of "
                                 f"{list(domain.event_kinds)}, got {kind!r}")
     return programs
+
+
+def _check_goal_ids(scenario: Scenario) -> None:
+    """A scripted cancel or priority change must name a goal the scenario has posted by then:
+    the goal-entry process gives posts the ids g1, g2, ... in the order it runs them (by cycle,
+    then file order); a request naming no such goal would be refused at run time, a line in
+    a log."""
+    posted: list[str] = []
+    order = sorted(enumerate(scenario.goals), key=lambda kg: (kg[1].at_cycle, kg[0]))
+    for k, goal in order:
+        if goal.op == "post":
+            posted.append(f"g{len(posted) + 1}")
+        elif goal.goal_id not in posted:
+            known = ", ".join(posted) if posted else "none"
+            raise ScenarioError(f"{scenario.path}: [[goals]] #{k + 1}: goal_id {goal.goal_id!r}:"
+                                f" the scenario has posted no such goal by cycle "
+                                f"{goal.at_cycle} (its posts get g1, g2, ... in order; by "
+                                f"then: {known})")
 
 
 def _unknown_action(program: Program, domain: str, known: tuple[str, ...]) -> str:

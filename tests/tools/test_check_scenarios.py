@@ -157,3 +157,13 @@ def test_an_action_the_world_does_not_know_is_refused_with_its_place(tmp_path):
     assert f"agent ME: {program}:{line}:" in result.output
     assert "action *fly is not one the driving world knows (*cruise *gas *brake *straighten " \
            "*steer)" in result.output
+
+
+def test_a_scripted_cancel_must_name_a_goal_the_scenario_has_posted_by_then(tmp_path):
+    cancel = '\n[[goals]]\nop = "cancel"\ngoal_id = "{}"\nforce = true\nat_cycle = {}\n'
+    path = scenario(tmp_path, DEMO + cancel.format("g2", 100))   # g2 is posted at cycle 150
+    result = invoke("check", path)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    assert "[[goals]] #3: goal_id 'g2': the scenario has posted no such goal by cycle 100 " \
+           "(its posts get g1, g2, ... in order; by then: g1)" in result.output
+    load_checked(scenario(tmp_path, DEMO + cancel.format("g2", 200), "later.toml"))
