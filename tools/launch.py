@@ -163,7 +163,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             _echo_joined(plan, outcome)
             raise SystemExit(1 if outcome.left_down or outcome.ended else 0)
         result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
-                               outcome.left_down, outcome.ended, outcome.requested_stop)
+                               outcome.left_down, outcome.ended, outcome.requested_stop,
+                               scenario.events)
         _finish(result, scenario, plan.run_dir, summary_file, render_file, plot_file, as_json)
     if as_json:
         click.echo(json.dumps(result, indent=1))

@@ -5,11 +5,12 @@ goal-entry process reports them), so a script reads either the same way; `mode` 
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
 from agents.lang.solving.learned import clause_heads
-from tools.summary import finish_status
+from tools.summary import finish_status, refused_events
 from tools.summary_agents import bodies, planner_section
 from world.domain import get_domain
 
@@ -48,6 +49,8 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         "trace": str(trace) if trace else "",
         "world_reason": "done",
         "cycle_time": {},   # one process, no bus: no stage shares
+        "events_refused": refused_events(
+            (json.loads(line) for line in run.trace if '"events"' in line), scenario.events),
     }
     return finish_status(summary)
 

@@ -22,6 +22,8 @@ The run's status (docs/faults.md, "What counts as a failed run"):
 
 from __future__ import annotations
 
+import json
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -50,10 +52,11 @@ def state_file(run_dir: Path, agent: str) -> Path:
 
 def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
           domain: str = "driving", left_down: tuple[str, ...] = (), ended: str = "",
-          requested_stop: bool = False) -> dict[str, Any]:
+          requested_stop: bool = False, scripted: Sequence[Any] = ()) -> dict[str, Any]:
     """The summary as a JSON-able dict. `base` holds run, scenario, mode, seed, requested
     cycles; `left_down`: processes the launcher gave up on; `ended`: the launcher's reason
-    for ending the run early; `requested_stop`: a user asked for the stop."""
+    for ending the run early; `requested_stop`: a user asked for the stop; `scripted`: the
+    scenario's events (ScriptedEvent: at_cycle, event)."""
     from world.domain import get_domain
 
     spec = get_domain(domain)
@@ -98,8 +101,21 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         **_record(run_dir, cycles),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
         "cycle_time": cycle_time(final.get("timing_ms"), cycles),
+        "events_refused": refused_events(trace, scripted),
     }
     return finish_status(summary, ended, requested_stop)
+
+
+def refused_events(trace: Iterable[dict[str, Any]], scripted: Sequence[Any]
+                   ) -> list[dict[str, Any]]:
+    """The scenario's own events that the world refused, [{"cycle", "event", "reason"}]
+    (one a user sent with `teleo event` had its verdict then): the run did not go as
+    written."""
+    due = {(ev.at_cycle, json.dumps(ev.event, sort_keys=True)) for ev in scripted}
+    return [{"cycle": line["cycle"], "event": e.get("event"), "reason": e.get("reason", "")}
+            for line in trace for e in line.get("events", ())
+            if e.get("status") == "failed"
+            and (line.get("cycle"), json.dumps(e.get("event"), sort_keys=True)) in due]
 
 
 def finish_status(summary: dict[str, Any], ended: str = "",
@@ -166,6 +182,8 @@ def _failures(s: dict[str, Any], ended: str) -> list[str]:
             + (f" ({g['note']})" if g.get("note") else "")
             for g in s["goals"] if g.get("status") in _NOT_KEPT]
     out += [f"goal store: {i}" for i in s["goal_store_incidents"] if i.startswith("GOALS LOST")]
+    out += [f"scripted event {json.dumps(e['event'], sort_keys=True)} at cycle {e['cycle']} "
+            f"refused by the world: {e['reason']}" for e in s.get("events_refused", ())]
     if ended:
         out.append(ended)
     return out

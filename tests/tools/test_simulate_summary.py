@@ -68,3 +68,21 @@ def test_a_scenario_that_runs_until_ctrl_c_needs_a_number_of_cycles(tmp_path, mo
     assert not (tmp_path / "runs").exists()                 # nothing ran
     ran = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "3", "--json"])
     assert ran.exit_code == 0 and json.loads(ran.stdout)["cycles"] == 3, ran.output
+
+
+def test_a_scripted_event_the_world_refuses_fails_the_run(tmp_path, monkeypatch):
+    """The scenario did not run as written: the summary says which event and why (an event
+    sent with `teleo event` gets its verdict then, and fails nothing)."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[events]]\nat_cycle = 2\nkind = "block"\nsegment = "S999"\n'
+                              '[[events]]\nat_cycle = 3\nkind = "pedestrian"\nahead_of = "ME"\n'
+                              'dist = 20\n')
+    result = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5", "--json"])
+    summary = json.loads(result.stdout)
+    assert result.exit_code == 1 and summary["status"] == "failed", result.output
+    assert summary["events_refused"] == [{"cycle": 2, "event": {"kind": "block",
+                                                                "segment": "S999"},
+                                          "reason": "inject: unknown segment 'S999'"}]
+    assert summary["failures"] == ['scripted event {"kind": "block", "segment": "S999"} at '
+                                   "cycle 2 refused by the world: inject: unknown segment "
+                                   "'S999'"]
