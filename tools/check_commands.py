@@ -100,7 +100,8 @@ def _echo(result: dict[str, Any]) -> None:
     """One file's result for a person: errors and warnings on stderr, the verdict."""
     path = result["file"]
     for item in result["errors"] + result["warnings"]:
-        where = f"{item['file']}:{item['line']}:{item['col']}: " if item["line"] else ""
+        where = f"{item['file']}:{item['line']}:{item['col']}: " if item["line"] else \
+            f"{item['file']}: "  # the whole file (it cannot be read, say)
         tag = "warning: " if item in result["warnings"] else ""
         click.echo(f"{where}{tag}{item['message']}", err=True)
     if not result["ok"]:

@@ -129,7 +129,8 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
             state = engine.add_goal(state, *_goal_option(g))
         result = engine.cycle(state, percepts, outcomes)
     except (LangError, json.JSONDecodeError) as exc:
-        click.echo(f"{state_file or program}: {exc}", err=True)
+        where, told = state_file or program, str(exc)
+        click.echo(told if told.startswith(f"{where}:") else f"{where}: {told}", err=True)
         sys.exit(1)
     if save_file:
         Path(save_file).write_text(json.dumps(result.state.to_dict(), indent=1) + "\n")

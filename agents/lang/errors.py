@@ -17,7 +17,8 @@ class Diagnostic:
 
     def __str__(self) -> str:
         tag = "warning: " if self.severity == "warning" else ""
-        return f"{self.source}:{self.line}:{self.col}: {tag}{self.message}"
+        where = f"{self.source}:{self.line}:{self.col}" if self.line else self.source  # 0: a file
+        return f"{where}: {tag}{self.message}"
 
 
 class LangError(Exception):

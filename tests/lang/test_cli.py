@@ -75,3 +75,14 @@ def test_step_reports_bad_goal_and_bad_percepts(tmp_path):
     bad.write_text("(self ME speed)")
     result = invoke("infer", PROGRAMS / "minidrive.tlp", "--percepts", bad)
     assert result.exit_code == 1 and "bad.txt:1:1: percept (self ME speed)" in result.output
+
+
+def test_a_file_that_cannot_be_read_is_named_once_without_a_line(tmp_path):
+    missing = tmp_path / "nosuch.tlp"
+    checked = invoke("check", missing)
+    assert checked.exit_code == 1
+    assert f"{missing}: cannot read file: No such file or directory" in checked.output
+    state = tmp_path / "nosuch.json"
+    stepped = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--state", state)
+    assert stepped.exit_code == 1
+    assert stepped.output.strip() == f"{state}: cannot read file: No such file or directory"
