@@ -105,7 +105,8 @@ def _kill(pids: list[int], sig: signal.Signals) -> None:
 def stop(run: str | None, timeout: float) -> None:
     """Stop RUN (default: the only registered run) and every process of it."""
     info = _target(run)
-    if runfile.alive(info.pid) and "launch" in _cmdline(info.pid):
+    launcher = runfile.alive(info.pid) and "launch" in _cmdline(info.pid)
+    if launcher:
         os.kill(info.pid, signal.SIGTERM)
         if _wait_gone([info.pid], "launch", timeout):
             click.echo(f"launcher {info.pid} did not stop within {timeout:g} s: killed",
@@ -120,7 +121,11 @@ def stop(run: str | None, timeout: float) -> None:
         click.echo(f"stopped {len(left)} process(es) of {info.run} left without a launcher"
                    + (f" ({len(stubborn)} killed)" if stubborn else ""))
     runfile.remove(info)
-    click.echo(f"run {info.run} stopped")
+    if launcher or left:
+        click.echo(f"run {info.run} stopped")
+    else:  # nothing of it was running: say what was done
+        click.echo(f"run {info.run} was not running (its launcher {info.pid} is gone); its "
+                   f"stale entry is removed")
 
 
 commands = [ps, stop]

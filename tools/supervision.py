@@ -85,9 +85,9 @@ def supervise(plan: Plan) -> Outcome:
         specs = process_specs(plan)
         for spec in specs:
             sup.start(spec)
-        where = "joined router" if plan.joined else "router"
+        where = "on the joined router" if plan.joined else "and a router at"  # not counted
         mode = ", secured" if plan.secrets else ", clients of the router" if plan.client else ""
-        click.echo(f"run {plan.run}: {len(specs)} processes, {where} {plan.endpoint}{mode}, "
+        click.echo(f"run {plan.run}: {len(specs)} processes {where} {plan.endpoint}{mode}, "
                    f"logs in {plan.run_dir / 'logs'}")
         info = _loop(plan, sup, journal, outcome)
     except KeyboardInterrupt:

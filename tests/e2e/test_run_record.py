@@ -59,7 +59,7 @@ def demo(tmp_path_factory):
     teleo = Teleo(folder)
     launcher = teleo.start("launch", str(DEMO), "--summary", str(folder / "summary.json"),
                            "--plot", str(folder / "plot.png"))
-    first = re.compile(r"run (\S+): \d+ processes, router (\S+),")
+    first = re.compile(r"run (\S+): \d+ processes and a router at (\S+),")
     assert wait_for(lambda: first.search(teleo.launch_output()) or launcher.poll() is not None,
                     120), teleo.launch_output()
     run, endpoint = first.search(teleo.launch_output()).groups()

@@ -92,6 +92,23 @@ def test_stop_cleans_up_what_a_killed_launcher_left(teleo):
         kill_all(info["pids"].values())
 
 
+def test_stop_of_a_run_nothing_is_left_of_says_so(teleo):
+    launcher = teleo.start("launch", str(scenario(teleo.run_dir)), "--cycles", "0")
+    info = teleo.run_info()
+    try:
+        wait_cycles(info, 5)
+        launcher.kill()           # its processes follow it (each watches its launcher)
+        launcher.wait(30)
+        assert wait_for(lambda: pids_alive(info["pids"].values()) == [], 30)
+        done = anywhere(teleo, "stop")
+        assert done.returncode == 0, done.stderr
+        assert done.stdout.strip() == (f"run {info['run']} was not running (its launcher "
+                                       f"{info['pid']} is gone); its stale entry is removed")
+        assert teleo.run_files() == []
+    finally:
+        kill_all(info["pids"].values())
+
+
 def test_tools_say_where_they_looked_when_no_run_is_there(teleo):
     done = anywhere(teleo, "goal", "list")
     assert done.returncode != 0

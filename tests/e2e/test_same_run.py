@@ -18,7 +18,7 @@ def test_simulate_and_a_lockstep_launch_give_the_same_trace_goal_ids_and_summary
     launched = teleo("launch", str(HOLD_SPEED), "--json", timeout=300)
     assert launched.returncode == 0, launched.stderr
     summary = json.loads(launched.stdout)                 # stdout holds the JSON and nothing else
-    assert "processes, router" in launched.stderr       # the launch's own lines went to stderr
+    assert "processes and a router at" in launched.stderr  # the launch's lines went to stderr
     simulated = teleo("simulate", str(HOLD_SPEED), "--json", "--trace",
                       str(tmp_path / "sim.jsonl"), timeout=300)
     assert simulated.returncode == 0, simulated.stderr

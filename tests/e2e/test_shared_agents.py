@@ -75,9 +75,9 @@ def test_a_launch_too_big_for_a_peer_mesh_runs_its_processes_as_clients(teleo, t
                   timeout=300)
     assert clients.returncode == 0, clients.stderr[-3000:]
     assert peers.returncode == 0, peers.stderr[-3000:]
-    assert re.search(r"run \S+: 35 processes, router \S+, clients of the router,",
+    assert re.search(r"run \S+: 35 processes and a router at \S+, clients of the router,",
                      clients.stderr)
-    assert re.search(r"run \S+: 3 processes, router \S+, logs in", peers.stderr)
+    assert re.search(r"run \S+: 3 processes and a router at \S+, logs in", peers.stderr)
     traces = [open(json.loads(r.stdout)["trace"]).read() for r in (clients, peers)]
     assert traces[0] == traces[1]
     lines = [json.loads(line) for line in traces[0].splitlines()]
