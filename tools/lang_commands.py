@@ -20,6 +20,7 @@ from agents.lang.limits import read_json
 from agents.lang.loader import read_text
 from agents.lang.outcomes import as_outcomes
 from agents.lang.terms import sort_key
+from agents.processes.goal_store import MAX_PRIORITY, rank_problem
 from tools.paths import OutputPath
 
 include_option = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),
@@ -74,12 +75,27 @@ def _sorted_beliefs(beliefs) -> list:
 
 
 def _goal_option(option: str) -> tuple[str, int | None]:
-    """'(clear B):1' -> ('(clear B)', 1); without ':P' (P up to 18 digits) no priority."""
+    """'(clear B):1' -> ('(clear B)', 1); without ':P' (P an integer) no priority; a priority
+    outside 1..MAX_PRIORITY is refused, as `teleo goal post` refuses it."""
     text, sep, prio = option.rpartition(":")
     prio = prio.strip()
-    if sep and text and prio.isascii() and prio.isdigit() and len(prio) <= 18:
-        return text, int(prio)
-    return option, None
+    digits = prio[1:] if prio[:1] in "+-" else prio
+    if not (sep and text and digits.isascii() and digits.isdigit() and len(digits) <= 18):
+        return option, None
+    if not 1 <= int(prio) <= MAX_PRIORITY:
+        raise click.BadParameter(f"{option!r}: priority {int(prio)} is not in 1..{MAX_PRIORITY}",
+                                 param_hint="'--goal'")
+    return text, int(prio)
+
+
+def _ranked(engine: Engine, goal: str, priority: int | None, force: bool) -> None:
+    """Refuse, as the goal-entry process does, a priority that ranks a user goal above the
+    program's own goals (the laws) unless ``force``."""
+    if priority is None or force:
+        return
+    problem = rank_problem(tuple(str(g.literal) for g in engine.program.goals), priority)
+    if problem:
+        raise click.BadParameter(f"{goal}: {problem} (--force)", param_hint="'--goal'")
 
 
 @click.command()
@@ -108,13 +124,15 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 @click.option("--goal", "goals", multiple=True,
               help="Add a user goal, e.g. '(package-delivered PACKET2)'; append :P for priority "
                    "P, e.g. '(clear B):1'. Repeatable.")
+@click.option("--force", is_flag=True,
+              help="Accept a --goal priority that ranks it above the program's own goals.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
 @click.option("--mechanism", default="means-ends", show_default=True,
               help="What answers an impasse: means-ends (seed 000) or rogue (seed 003).")
 @include_option
 def step(program: str, percepts_file: str, outcomes_file: str | None, state_file: str | None,
-         save_file: str | None, goals: tuple[str, ...], as_json: bool, mechanism: str,
-         includes: tuple[str, ...]) -> None:
+         save_file: str | None, goals: tuple[str, ...], force: bool, as_json: bool,
+         mechanism: str, includes: tuple[str, ...]) -> None:
     """Run one cycle of PROGRAM: beliefs, goals, skill path, actions, why."""
     try:
         engine = Engine(_load(program, includes), solver=mechanism)
@@ -126,7 +144,9 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
         state = (EngineState.from_dict(read_json(read_text(state_file), state_file))
                  if state_file else engine.initial_state())
         for g in goals:
-            state = engine.add_goal(state, *_goal_option(g))
+            text, priority = _goal_option(g)
+            _ranked(engine, text, priority, force)
+            state = engine.add_goal(state, text, priority)
         result = engine.cycle(state, percepts, outcomes)
     except (LangError, json.JSONDecodeError) as exc:
         where, told = state_file or program, str(exc)

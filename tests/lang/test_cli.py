@@ -86,3 +86,18 @@ def test_a_file_that_cannot_be_read_is_named_once_without_a_line(tmp_path):
     stepped = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--state", state)
     assert stepped.exit_code == 1
     assert stepped.output.strip() == f"{state}: cannot read file: No such file or directory"
+
+
+def test_step_holds_a_goals_priority_to_the_rules_of_goal_post():
+    goal = "(package-delivered PACKET1)"
+    zero = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--goal", f"{goal}:0")
+    assert zero.exit_code == 2 and "priority 0 is not in 1..1000000" in zero.output
+    negative = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--goal", f"{goal}:-4")
+    assert negative.exit_code == 2 and "priority -4 is not in 1..1000000" in negative.output
+    # minidrive's own goals are p1..p3: priority 1 would rank the errand above two laws
+    above = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--goal", f"{goal}:1")
+    assert above.exit_code == 2
+    assert "priority 1 ranks the goal above the program's standing goals p2" in above.output
+    forced = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--goal", f"{goal}:1",
+                    "--force")
+    assert forced.exit_code == 0 and "    1 g4       impasse" in forced.output, forced.output
