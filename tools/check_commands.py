@@ -20,7 +20,7 @@ import click
 
 from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
-from agents.lang.solving.learned import is_learned_text, read_learned
+from agents.lang.solving.learned import is_learned_text, program_named, read_learned
 from tools.lang_commands import include_option
 from tools.tree import shown_path
 
@@ -60,18 +60,36 @@ def _program(path: str, includes: tuple[str, ...]) -> tuple[dict[str, Any], Any]
             "skills": len(program.skills), "goals": len(program.goals)}, program
 
 
-def _learned(path: str, program: Any) -> dict[str, Any]:
+def _learned(path: str, program: Any, includes: tuple[str, ...]) -> dict[str, Any]:
+    """A learned file against ``program`` (the program named before it), else against the
+    one its first line names."""
     result = {"file": path, "kind": "learned", "ok": False, "warnings": []}
-    if program is None:
-        return {**result, "errors": [_diag(Diagnostic(
-            path, 1, 1, "a file of learned skills: name the valid program it was learned "
-                        "with before it (teleo check PROGRAM LEARNED)"))]}
     try:
-        clauses = read_learned(program, read_text(path), path)
+        text = read_text(path)
+        if program is None:
+            program = _its_program(path, text, includes)
+        clauses = read_learned(program, text, path)
     except ProgramError as exc:
         return {**result, "errors": [_diag(d) for d in exc.errors]}
     return {**result, "ok": True, "errors": [], "skills": len(clauses),
             "program": program.sources[0]}
+
+
+def _its_program(path: str, text: str, includes: tuple[str, ...]) -> Any:
+    """The program a learned file names in its first line, loaded; ProgramError (at the
+    file's first line) when it names none, or one that does not load."""
+    named = program_named(text)
+    if not named:
+        raise ProgramError([Diagnostic(path, 1, 1, "a file of learned skills that names no "
+                                       "program: name the program it was learned with before "
+                                       "it (teleo check PROGRAM LEARNED)")])
+    try:
+        return load_program(named, *includes)
+    except ProgramError as exc:
+        raise ProgramError([Diagnostic(path, 1, 1, f"learned with {named} (its first line), "
+                                       f"which does not load: {exc.errors[0]}; name the "
+                                       f"program before it (teleo check PROGRAM LEARNED)")]) \
+            from None
 
 
 def _scenario(path: str) -> dict[str, Any]:
@@ -130,11 +148,12 @@ def check(files: tuple[str, ...], includes: tuple[str, ...], as_json: bool) -> N
 
     Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
     fully: world table, programs, scripted goals and events. A file of learned skills is
-    checked against the program named before it (PROGRAM LEARNED)."""
+    checked against the program named before it (PROGRAM LEARNED), else against the one its
+    first line names."""
     results, program = [], None
     for path in files:
         if _is_learned(path):
-            results.append(_learned(path, program))
+            results.append(_learned(path, program, includes))
         elif is_scenario(path):
             results.append(_scenario(path))
         else:

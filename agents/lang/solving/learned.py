@@ -34,6 +34,13 @@ def clause_heads(text: str) -> list[str]:
             if isinstance(f, SList) and f.items and isinstance(f.items[0], SList)]
 
 
+def program_named(text: str) -> str:
+    """The program a learned file says it was learned with (its first line), or ""."""
+    first = text.split("\n", 1)[0]
+    return first[len(HEADER) + len(" for "):].strip() if first.startswith(f"{HEADER} for ") \
+        else ""
+
+
 def is_learned_text(text: str) -> bool:
     """True for a file written by ``learned_text``."""
     return text.startswith(HEADER)

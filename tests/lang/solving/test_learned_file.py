@@ -58,11 +58,18 @@ def test_teleo_check_refuses_a_learned_file_for_another_program(learned_file):
            "(head of skill unstackable#1)" in result.output
 
 
-def test_teleo_check_wants_the_program_first(learned_file):
+def test_teleo_check_alone_uses_the_program_the_first_line_names(learned_file, tmp_path,
+                                                                  monkeypatch):
+    monkeypatch.chdir(ROOT)   # the file names programs/blocks.tlp, as it was given the run
+    result = invoke("check", learned_file)
+    assert result.exit_code == 0, result.output
+    assert f"{learned_file}: ok (2 learned skills for programs/blocks.tlp)" in result.output
+    monkeypatch.chdir(tmp_path)   # where programs/blocks.tlp is not
     result = invoke("check", learned_file)
     assert result.exit_code == 1
-    assert f"{learned_file}:1:1: a file of learned skills: name the valid program it was " \
-           "learned with before it (teleo check PROGRAM LEARNED)" in result.output
+    assert f"{learned_file}:1:1: learned with programs/blocks.tlp (its first line), which " \
+           "does not load: programs/blocks.tlp: cannot read file: No such file or directory; " \
+           "name the program before it (teleo check PROGRAM LEARNED)" in result.output
 
 
 def test_a_malformed_learned_file_is_refused_with_file_line_col(tmp_path, learned):
