@@ -199,9 +199,12 @@ def locate(run: str | Path) -> Path:
         if c.is_file():
             return c
     runs = runfile.base_dir() / "runs"
-    known = sorted(p.name for p in runs.iterdir() if (p / RECORD_FILE).is_file()) \
+    known = sorted((p for p in runs.iterdir() if (p / RECORD_FILE).is_file()),
+                   key=lambda p: (p / RECORD_FILE).stat().st_mtime, reverse=True) \
         if runs.is_dir() else []
-    hint = f"; runs with a record in {runs}: {', '.join(known[-5:])}" if known else \
+    more = f" and {len(known) - 5} older" if len(known) > 5 else ""
+    hint = f"; runs with a record in {runs}, newest first: " \
+        f"{', '.join(p.name for p in known[:5])}{more}" if known else \
         f"; no run in {runs} has a record"
     raise RecordError(f"{run}: no run record here (looked for "
                       f"{', '.join(str(c) for c in candidates)}){hint}")

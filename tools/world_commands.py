@@ -14,6 +14,7 @@ from typing import Any
 import click
 
 from tools.paths import OutputPath, picture_check
+from tools.records import RecordError, locate
 from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
 from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
@@ -99,7 +100,7 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
 
 
 @click.command()
-@click.argument("source", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.argument("source", metavar="SOURCE", type=click.Path(path_type=Path))
 @click.option("--out", "out", required=True, type=OutputPath(picture_check, path_type=Path),
               help="FILE.png or FILE.jpg (one cycle) or FILE.gif (the whole run).")
 @click.option("--agent", default=None, help="Whose car, range and counters to show.")
@@ -118,8 +119,14 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
            scale: float | None, follow: float | None, steps: int, seed: int | None) -> None:
     """Draw a run or a scenario to a PNG, JPEG or GIF.
 
-    SOURCE: a run's snapshots (.jsonl/.json), a run record (.mcap), or a scenario .toml
-    (simulated for --steps cycles with its own seed)."""
+    SOURCE: a run's snapshots (.jsonl/.json), a run record (an .mcap, a run folder or a
+    run id, as `teleo explain` takes), or a scenario .toml (simulated for --steps cycles with
+    its own seed)."""
+    if not source.is_file():
+        try:
+            source = locate(source)
+        except RecordError as exc:
+            raise click.ClickException(str(exc)) from None
     try:
         picture_format(out)
         rows = load_snapshots(source, steps, seed)

@@ -182,3 +182,17 @@ def test_simulate_times_the_stages_apart_yet_decides_as_engine_cycle(tmp_path) -
         outcomes = world.apply_actions("ME", actions)
         world.step()
     assert modelled > 0  # the world model took part
+
+
+def test_render_takes_a_run_as_explain_does(tmp_path, monkeypatch) -> None:
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    runner = CliRunner()
+    out = json.loads(runner.invoke(cli, ["simulate", str(FIGURE3), "--json"]).stdout)
+    run_dir = Path(out["record"]).parent
+    for source in (run_dir.name, str(run_dir), out["record"]):   # id, folder, file
+        drawn = runner.invoke(cli, ["render", source, "--out", str(tmp_path / "r.png")])
+        assert drawn.exit_code == 0, drawn.output
+        assert (tmp_path / "r.png").read_bytes()[:4] == b"\x89PNG"
+    missing = runner.invoke(cli, ["render", "nope", "--out", str(tmp_path / "r.png")])
+    assert missing.exit_code == 1 and "nope: no run record here" in missing.output
+    assert f"newest first: {run_dir.name}" in missing.output
