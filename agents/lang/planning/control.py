@@ -76,8 +76,8 @@ class Control:
                     rejected.add(args[0])
                 else:
                     prefer.append((args[0], args[1]))
-        pool = [g for g in view.candidates if (g in chosen or not any(
-            r.verb == "select" for r in self.rules if r.kind == "goal")) and g not in rejected]
+        # a select rule that fires narrows the choice; one that does not fire leaves it whole
+        pool = [g for g in view.candidates if (g in chosen or not chosen) and g not in rejected]
         return _prefer(pool, prefer)
 
     def order(self, view: OperatorView, alts: tuple[Alternative, ...]

@@ -42,3 +42,14 @@ def test_without_goal_rules_every_goal_is_selected_and_rejects_and_prefers_apply
     assert control.select_goals(view({"g1": 1, "g2": 5, "g3": 5}, set())) == ["g3", "g1"]
     assert control.firings == ["reject goal NOT-G2 g2 p5", "prefer goal G3-FIRST g3 p5 over "
                                "g1 p1"]
+
+
+def test_a_select_rule_that_does_not_fire_leaves_the_choice_whole():
+    """Seed 003, section 3: control rules "reduce the number of choices"; a select rule whose
+    condition holds for no candidate selects nothing, and blocks nothing (every request
+    waited, "not selected", for good)."""
+    control = Control(rules("""
+(control-rules
+  (control-rule ONLY-G9 (if (candidate-goal g9)) (then select goal g9)))"""))
+    assert control.select_goals(view({"g1": 1, "g2": 5}, set())) == ["g1", "g2"]
+    assert control.firings == []
