@@ -8,6 +8,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..sexpr import Atom, SList, to_text
+from ..terms import Var
 from .syntax import (
     GOAL_META,
     KINDS,
@@ -125,7 +126,18 @@ def control_section(p: Any, node: SList) -> None:
             p.parts.sections.setdefault("control-rules", []).append(rule)
 
 
+def _prodigy_vars(node: Any) -> Any:
+    """``node`` with PRODIGY's variables ``<goal>`` (seed 003, Table 2) as ``?goal``."""
+    if isinstance(node, SList):
+        return SList(tuple(_prodigy_vars(x) for x in node.items), node.line, node.col)
+    if isinstance(node, Atom) and isinstance(node.value, str) and len(node.value) > 2 \
+            and node.value[0] == "<" and node.value[-1] == ">":
+        return Atom(Var(node.value[1:-1]), node.line, node.col)
+    return node
+
+
 def _rule(p: Any, item: SList) -> ControlRule | None:
+    item = _prodigy_vars(item)
     parts = item.items
     if len(parts) != 4 or not isinstance(parts[1], Atom) or _head(parts[2]) != "if" \
             or _head(parts[3]) != "then" or len(parts[2].items) != 2:

@@ -58,6 +58,9 @@ def test_table_2_loads_as_printed_in_the_seed():
         ("SELECT-TOP-PRIORITY-AND-COMPATIBLE-GOALS", "select", "goal")
     assert rule.cond.name == "and" and [c.name for c in rule.cond.args] == ["candidate-goal",
                                                                             "or"]
+    # PRODIGY's own variables, <goal>, as the seed prints them, read as ?goal
+    angled = load_program_text(TOY + TABLE_2.replace("?goal", "<goal>"), "t2.tlp")
+    assert angled.sections["control-rules"][-1] == rule
 
 
 def test_teleo_check_accepts_the_office_program():
