@@ -98,6 +98,13 @@ class Tick(Choosing):
 
     def atomic(self, node: Act | Atomic, frame: Frame | None, at: tuple, env: dict) -> Res:
         """An atomic action or group: issue it; next cycle, succeed or fail by its outcome."""
+        if frame is not None and frame.pending and frame.outcome == "running":
+            # seed 002, Appendix C: an atomic action "is guaranteed to terminate within a
+            # bounded time and cannot be interrupted": one whose outcome has not come yet is
+            # still under way, and is sent again (the world continues a running operation)
+            self.actions = [Action.from_list(a) for a in frame.pending]
+            return Res(R.ACT, frame.but(outcome="", issued=self.cycle),
+                       status=ThreadStatus.ACTING)
         if frame is not None and frame.pending:
             shown = " ".join(str(Action.from_list(a)) for a in frame.pending)
             if frame.outcome == "done":

@@ -31,7 +31,7 @@ from ..outcomes import Outcome
 from ..paths import Found, PathFinder, Remembered, Walk
 from ..program import Skill
 from ..state import StoredStep
-from ..terms import Action, Literal
+from ..terms import Literal
 from .constructs import Tick
 from .results import R, Res
 from .section import ScsSection
@@ -148,16 +148,18 @@ def _settle(root: Frame | None, pool: list[tuple[tuple, Outcome]], cycle: int) -
     if leaf.issued != cycle - 1:
         return root.with_leaf(leaf.but(outcome="failed", reason=f"no outcome: issued at "
                                        f"cycle {leaf.issued}, now cycle {cycle}"))
-    status, reason = "done", ""
+    status, reason, running = "done", "", []
     for a in leaf.pending:
         j = next((k for k, (done, _) in enumerate(pool) if done == a), None)
-        if j is None:
-            status, reason = "failed", f"no outcome reported for {Action.from_list(a)}"
-            break
+        if j is None:  # not ended yet: an operation that lasts (the office world's *goto)
+            running.append(a)
+            continue
         o = pool.pop(j)[1]
         if not o.ok:
             status, reason = "failed", o.reason or "failed"
             break
+    if status == "done" and running:  # sent again this cycle, which continues it
+        return root.with_leaf(leaf.but(pending=tuple(running), outcome="running"))
     return root.with_leaf(leaf.but(outcome=status, reason=reason))
 
 

@@ -35,7 +35,8 @@ class Frame:
     failures retried; ``rounds``: repeat rounds done; ``since``: cycle the current child
     started; ``began``: cycle the current repeat round started; ``pending``: the actions
     issued (neutral lists) at cycle ``issued``, awaiting their outcome; ``outcome``: "done"
-    or "failed" once known, ``reason`` the world's reason."""
+    or "failed" once known, "running" while the world has not reported one (the action is
+    sent again, which continues a lasting operation), ``reason`` the world's reason."""
 
     at: tuple[int, ...]
     bind: tuple = ()

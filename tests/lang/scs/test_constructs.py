@@ -238,3 +238,27 @@ def test_a_program_lists_the_actions_its_bodies_can_send():
     # what `teleo check SCENARIO` holds against the world's actions (tools/scenario_check.py)
     engine = body_program("(do (atomic (*a 1) (assert (mark ?x))) (do-any (*b) (*c ?x)))")
     assert [str(a) for a in engine.program.actions()] == ["(*a 1)", "(*b)", "(*c ?x)"]
+
+
+def test_an_action_that_lasts_several_cycles_is_sent_again_until_its_outcome_comes():
+    """Seed 002, Appendix C: an atomic action "is guaranteed to terminate within a bounded
+    time and cannot be interrupted". The office world reports an operation's outcome when
+    it ends (a *goto lasts until arrival), and sending it again continues it: the body waits
+    for each outcome instead of failing the action a cycle after it was sent."""
+    engine = body_program("(do (*a) (*b))")
+    state, outcomes, sent, running = engine.initial_state(seed=0), [], [], None
+    for _ in range(7):
+        result = engine.cycle(state, [["self", "ME"]], outcomes)
+        state, acts = result.state, [a.to_list() for a in result.decision.actions]
+        sent.append(acts[0][0] if acts else "-")
+        outcomes = []
+        if acts and acts[0] != (running or [None])[0]:
+            running = [acts[0], 3]            # a new operation, three cycles long
+        if running is not None:
+            running[1] -= 1
+            if running[1] == 0:
+                outcomes, running = [{"action": running[0], "status": "done"}], None
+    # a, b, then (the body succeeded, its goal still unmet) the skill entered afresh
+    assert sent == ["*a", "*a", "*a", "*b", "*b", "*b", "*a"]
+    tally = result.decision.section("scs").to_dict()["tally"]
+    assert tally.get("actions done") == 2 and "actions failed" not in tally, tally
