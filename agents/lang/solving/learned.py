@@ -65,6 +65,8 @@ def read_learned(program: Program, text: str, source: str) -> tuple[str, ...]:
 def _clauses(text: str, forms: list) -> tuple[str, ...]:
     """Split ``text`` at its top-level forms; each clause keeps the comment lines directly
     above it (the file header, separated by a blank line, is left out)."""
+    if not forms:  # nothing learned: the header alone
+        return ()
     lines = text.splitlines()
     starts = []
     for f in forms:

@@ -107,3 +107,13 @@ def test_simulate_writes_the_learned_file(tmp_path):
     # the program as the scenario names it, found from any directory (an absolute path)
     assert out.read_text().splitlines()[0].startswith("; teleo learned skills for ")
     assert out.read_text().splitlines()[0].endswith("programs/driving.tlp")
+
+
+def test_a_file_of_no_learned_skills_reads_back_empty(tmp_path):
+    """What a run that learned nothing writes (a launch's learned-AGENT.tlp)."""
+    empty = tmp_path / "learned-ME.tlp"
+    empty.write_text(learned_text((), str(BLOCKS)))
+    assert read_learned(load_program(BLOCKS), empty.read_text(), str(empty)) == ()
+    result = invoke("check", BLOCKS, empty)
+    assert result.exit_code == 0 and f"{empty}: ok (0 learned skills for {BLOCKS})" in \
+        result.output, result.output
