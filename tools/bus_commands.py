@@ -213,8 +213,14 @@ def replay(file: str, speed: float, wait_s: float, onto: str | None,
     except (RecordError, BusError) as exc:
         raise click.ClickException(str(exc)) from exc
     target = find_target(bus_config, run=onto)
+    if target.run == rec.run:
+        raise click.ClickException(
+            f"run {rec.run} is the running launch itself: its own record would be played into "
+            f"it, every cycle twice; stop it first, or replay onto another run's router "
+            f"(--onto RUN, --connect)")
+    hub = target.cfg.connect[0] if target.cfg.connect else ""
     click.echo(f"replaying run {rec.run} ({len(items)} messages) to {target.who}; watch it "
-               f"with `teleo view --run {rec.run}`", err=True)
+               f"with `teleo view --run {rec.run} --connect {hub}`", err=True)
     stop = stop_on_signals()
     with open_node(target.cfg, rec.run, f"replay-{os.getpid()}") as node:
         node.declare({key for key, _, _ in items})

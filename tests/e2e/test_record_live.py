@@ -113,3 +113,23 @@ def test_a_signal_ends_the_record_promptly_with_a_whole_file(live, tmp_path, sig
     assert "still draining" not in text, text
     _, _, span_s = check_said(text, path, info["run"])
     assert span_s <= 1.5 + took_s + 1.0, (span_s, text)
+
+
+def test_a_live_runs_own_record_is_not_replayed_into_it_and_another_runs_can_be_watched(
+        live, tmp_path):
+    teleo, info = live
+    own = tmp_path / "own.mcap"
+    assert teleo("record", str(own), "--seconds", "1", timeout=60).returncode == 0
+    refused = teleo("replay", str(own), "--speed", "0", timeout=60)
+    assert refused.returncode == 1 and "Traceback" not in refused.stderr
+    assert f"run {info['run']} is the running launch itself" in refused.stderr
+    # a run that is no launch's (one `teleo replay` plays) is followed on the launch's router
+    viewer = subprocess.Popen([*TELEO, "view", "--run", "some-replayed-run", "--port", "0"],
+                              cwd=ROOT, env=teleo.env, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    try:
+        first = viewer.stdout.readline()
+        assert "teleo view of run some-replayed-run" in first, first + viewer.stderr.read()
+    finally:
+        viewer.terminate()
+        viewer.wait(30)

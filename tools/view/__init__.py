@@ -35,7 +35,6 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
     """Serve a web page showing the running launch live (or RECORD: a run folder, run id or
     .mcap file): the world, each agent's goals and decision tree, processes and rates."""
     from tools.records import RecordError, locate
-    from tools.target import find_target
     from tools.view.feeds import BusFeed, load_file
     from tools.view.model import ViewModel
     from tools.view.server import ViewServer
@@ -46,7 +45,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         if record is not None:
             load_file(model, locate(record))
         else:
-            target = find_target(bus_config, run=run_id)
+            target = _target(bus_config, run_id)
             model.run = run_id or target.run
             feed = BusFeed(model, target).start()
         server = ViewServer(model, port)
@@ -71,6 +70,23 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         server.server_close()
         if feed is not None:
             feed.close()
+
+
+def _target(bus_config: BusConfig, run_id: str | None):
+    """The bus to follow: the launch of run `run_id` (or the only one); a run that is no
+    launch's (one `teleo replay` plays) on the only running launch's router."""
+    from tools.target import TargetError, connect_given, find_target
+
+    try:
+        return find_target(bus_config, run=run_id)
+    except TargetError:
+        if run_id is None or connect_given():
+            raise
+        try:
+            return find_target(bus_config)
+        except TargetError:
+            pass
+        raise
 
 
 commands = [view]
