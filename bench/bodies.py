@@ -19,6 +19,7 @@ Run: .venv/bin/python bench/bodies.py [--cycles N]
 
 from __future__ import annotations
 
+import argparse
 import statistics
 import sys
 import time
@@ -99,6 +100,15 @@ def main(cycles: int = 60) -> None:
                   f"{body_ms / skill_ms:.2f} |")
 
 
+def _count(text: str) -> int:
+    """A count >= 1, else a usage error."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a count >= 1, got {text!r}")
+    return int(text)
+
+
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    main(int(args[args.index("--cycles") + 1]) if "--cycles" in args else 60)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--cycles", type=_count, metavar="N", default=60,
+                        help="cycles timed per case (default 60)")
+    main(parser.parse_args().cycles)

@@ -250,7 +250,7 @@ def main() -> None:
     ap.add_argument("--sizes", default="10,100,1000,10000", type=_sizes,
                     help="object counts, comma-separated")
     ap.add_argument("--kinds", default=",".join(KINDS), type=_kinds,
-                    help=f"rows, comma-separated: {', '.join(KINDS)}")
+                    help=f"rows, comma-separated: {', '.join(KINDS)}".replace("%", "%%"))
     ap.add_argument("--gc", choices=("on", "off", "freeze"), default="on",
                     help="garbage collector during the runs (freeze: gc.freeze() after the "
                          "first two cycles)")

@@ -314,7 +314,8 @@ def describe(item: object) -> str:
 
 
 @click.command()
-@click.option("--n", default=100_000, show_default=True, help="Inputs per reader.")
+@click.option("--n", default=100_000, type=click.IntRange(min=1), show_default=True,
+              help="Inputs per reader.")
 @click.option("--seed", default=1, show_default=True)
 @click.option("--reader", "names", multiple=True,
               type=click.Choice(["program", "percepts", "goal", "event", "scenario",

@@ -109,8 +109,10 @@ def burst(endpoint: str, run: str, agent: str, requests: list, clients: int) -> 
 
 
 @click.command()
-@click.option("--requests", default=1200, show_default=True, help="Requests in the burst.")
-@click.option("--window", default=5.0, show_default=True, help="Seconds measured before/after.")
+@click.option("--requests", default=1200, type=click.IntRange(min=1), show_default=True,
+              help="Requests in the burst.")
+@click.option("--window", default=5.0, type=click.FloatRange(min=0, min_open=True),
+              show_default=True, help="Seconds measured before/after.")
 @click.option("--scenario", default=str(ROOT / "scenarios" / "driving_demo.toml"),
               show_default=True, type=click.Path(exists=True))
 @click.option("--seed", default=4, show_default=True, help="Seed of the request mix.")

@@ -164,7 +164,7 @@ def run_pass(engine: Engine, world_kind: type, todo: list[Problem], learned: tup
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--problems", type=int, default=30)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--world", choices=["sim", "model"], default=None)

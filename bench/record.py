@@ -46,7 +46,7 @@ def launch(scenario: Path, record: bool) -> tuple[float, int, int, float]:
 
 
 @click.command()
-@click.option("--pairs", type=int, default=5, show_default=True)
+@click.option("--pairs", type=click.IntRange(min=1), default=5, show_default=True)
 @click.option("--scenario", type=click.Path(exists=True, path_type=Path),
               default=ROOT / "scenarios" / "driving_demo.toml", show_default=True)
 def main(pairs: int, scenario: Path) -> None:

@@ -149,9 +149,17 @@ def markdown(head: tuple[str, ...], rows: list[tuple]) -> str:
     return "\n".join(lines)
 
 
+def _seeds(text: str) -> str:
+    """``text`` if it is comma-separated integers, else a usage error saying so."""
+    if not all(p.strip().lstrip("-").isdigit() for p in text.split(",")):
+        raise click.BadParameter(f"expected seeds like 1,2,3, got {text!r}")
+    return text
+
+
 @click.command()
-@click.option("--seeds", default="1,2,3,4,5", help="World seeds for the behaviour check.")
-@click.option("--jobs", default=2, type=int, help="Runs in parallel.")
+@click.option("--seeds", default="1,2,3,4,5", callback=lambda _c, _p, v: _seeds(v),
+              help="World seeds for the behaviour check.")
+@click.option("--jobs", default=2, type=click.IntRange(min=1), help="Runs in parallel.")
 @click.option("--write", is_flag=True, help="Regenerate programs/tables/*.tlp first.")
 @click.option("--skip-runs", is_flag=True, help="Print the tables only.")
 def main(seeds: str, jobs: int, write: bool, skip_runs: bool) -> None:

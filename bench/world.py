@@ -36,9 +36,16 @@ def steps_per_second(vehicles: int, pedestrians: int, steps: int) -> tuple[float
     return stepping, (time.perf_counter() - t0) / 200 * 1e3
 
 
+def _positive(text: str) -> int:
+    """A count of steps >= 1, else a usage error."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a count of steps >= 1, got {text!r}")
+    return int(text)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("--steps", type=_positive, default=2000)
     args = parser.parse_args()
     print(f"world bench: default city (4 x 4 streets, 100 m blocks), dt 0.1 s, {args.steps} steps")
     print(f"{'vehicles':>9} {'pedestrians':>12} {'steps/s':>10} {'x realtime':>11} "
