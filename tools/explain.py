@@ -21,12 +21,19 @@ from tools.tree import decision_tree, fold, render_text, to_json
 PROGRAM_GOAL = re.compile(r"p\d+")  # the engine's ids of program goals (Engine.initial_state)
 
 
-def _open(run: str, agent: str | None) -> tuple[RunRecord, str]:
+def _open(run: str, agent: str | None, goal_id: str | None = None) -> tuple[RunRecord, str]:
+    """The record of ``run`` and the agent asked about: the one named, the only one, or the
+    one whose goal ``goal_id`` is (goal ids are the run's)."""
     try:
         rec = RunRecord(locate(run))
         agents = rec.agents()
     except RecordError as exc:
         raise click.ClickException(str(exc)) from exc
+    if agent is None and goal_id is not None and len(agents) > 1:
+        owners = [a for a in agents if any(g.get("id") == goal_id for i in
+                                           rec.by_cycle("intention", a).values()
+                                           for g in i["decision"].get("goals", ()))]
+        agent = owners[0] if len(owners) == 1 else None
     if agent is None:
         if len(agents) != 1:
             raise click.UsageError(f"run {rec.run} has agents {', '.join(agents) or 'none'}: "
@@ -124,7 +131,7 @@ def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
     skills passed over and why (RUN: a run folder, a run id or an .mcap file)."""
     if goal_id is not None and (cycle is not None or percepts):
         raise click.UsageError("--goal shows a goal's whole history: leave out --cycle/--percepts")
-    rec, agent = _open(run, agent)
+    rec, agent = _open(run, agent, goal_id)
     if goal_id is not None:
         changes = goal_history(rec, agent, goal_id)
         if not changes:

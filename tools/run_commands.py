@@ -38,7 +38,8 @@ def _belongs(pid: int, run: str) -> bool:
 
 
 @click.command("ps")
-@click.option("--json", "as_json", is_flag=True, help="One JSON object per run.")
+@click.option("--json", "as_json", is_flag=True,
+              help="JSON lines: one object per run (no line when none is registered).")
 def ps(as_json: bool) -> None:
     """List the runs on this host with their processes."""
     runs = runfile.all_runs()

@@ -196,3 +196,19 @@ def test_render_takes_a_run_as_explain_does(tmp_path, monkeypatch) -> None:
     missing = runner.invoke(cli, ["render", "nope", "--out", str(tmp_path / "r.png")])
     assert missing.exit_code == 1 and "nope: no run record here" in missing.output
     assert f"newest first: {run_dir.name}" in missing.output
+
+
+def test_explain_of_a_goal_finds_its_agent_in_a_run_of_several(tmp_path, monkeypatch) -> None:
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    runner = CliRunner()
+    two = ROOT / "scenarios" / "two_cars.toml"
+    out = json.loads(runner.invoke(cli, ["simulate", str(two), "--cycles", "105",
+                                         "--json"]).stdout)
+    owner = {g["id"]: g["agent"] for g in out["goals"]}
+    assert len(set(owner.values())) == 2, owner
+    for goal_id, agent in owner.items():   # goal ids are the run's: no --agent needed
+        told = runner.invoke(cli, ["explain", out["record"], "--goal", goal_id])
+        assert told.exit_code == 0, told.output
+        assert told.output.startswith(f"goal {goal_id} of {agent}: ")
+    asked = runner.invoke(cli, ["explain", out["record"]])   # a decision: whose, then?
+    assert asked.exit_code == 2 and "choose one with --agent" in asked.output
