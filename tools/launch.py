@@ -132,6 +132,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     more than 30 (docs/bus.md). Environment: TELEO_RUN_DIR, where runs are kept (else
     ./out); TELEO_PROFILE=DIR, every process writes a cProfile of its run to DIR.
     """
+    if plot_file and no_record:
+        raise click.UsageError("--plot draws the run record: leave out --no-record")
     _catch_signals()
     try:
         if render_file:
@@ -142,7 +144,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
         per_process, cpus = _per_process(agents_per_process, len(scenario.agents))
-        plan = replace(plan, learned=learned, record=not no_record or bool(plot_file),
+        plan = replace(plan, learned=learned, record=not no_record,
                        agents_per_process=per_process)
         if per_process and (plan.client or only):
             raise PlanError("--agents-per-process: only for a whole open run on one host "

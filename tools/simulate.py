@@ -251,7 +251,9 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
         if cycles is None and sc.run.cycles == 0:
             raise click.UsageError(f"{scenario}: cycles = 0 runs a launch until Ctrl-C; a "
                                    f"simulation needs a number: give --cycles N")
-        recorder = None if no_record and not plot else SimRecorder.create(sc)
+        if plot and no_record:
+            raise click.UsageError("--plot draws the run record: leave out --no-record")
+        recorder = None if no_record else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
                        learned=learned, recorder=recorder, show_progress=True)
     except (ScenarioError, LangError, WorldError) as exc:

@@ -111,6 +111,15 @@ def test_a_plot_suffix_is_checked_before_the_run(command, here):
     assert not (here / "runs").exists() and not (here / "x.txt").exists()
 
 
+@pytest.mark.parametrize("command", ["simulate", "launch"])
+def test_a_plot_without_the_record_it_draws_is_refused(command, here):
+    done = CliRunner().invoke(cli, [command, str(FIGURE3), "--cycles", "10", "--plot", "p.png",
+                                    "--no-record"])
+    assert done.exit_code == 2 and "--plot draws the run record: leave out --no-record" in \
+        done.output
+    assert not (here / "runs").exists() and not (here / "p.png").exists()
+
+
 def test_the_outputs_still_go_into_folders_that_are_not_there_yet(here):
     done = CliRunner().invoke(cli, ["simulate", str(FIGURE3), "--cycles", "10", "--trace",
                                     "a/t.jsonl", "--render", "b/c/r.png", "--learned-out",
