@@ -50,7 +50,6 @@ from tools.run_secrets import RunSecrets, host_of, make_secrets
 from tools.scenario_check import load_checked
 from tools.supervision import Outcome, supervise
 from world.errors import WorldError
-from world.pictures import picture_format
 from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
@@ -136,8 +135,6 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         raise click.UsageError("--plot draws the run record: leave out --no-record")
     _catch_signals()
     try:
-        if render_file:
-            picture_format(render_file)
         scenario, _ = load_checked(scenario_file)
         if learned:
             check_learned(scenario, learned)

@@ -31,7 +31,6 @@ from tools.progress import progress_cycles
 from tools.scenario_check import load_checked
 from world.domain import get_domain
 from world.errors import WorldError
-from world.pictures import picture_format
 from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
 from world.trace import trace_line
 
@@ -245,8 +244,6 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
 
     recorder = None
     try:
-        if render:
-            picture_format(render)
         sc, _ = load_checked(scenario)
         if cycles is None and sc.run.cycles == 0:
             raise click.UsageError(f"{scenario}: cycles = 0 runs a launch until Ctrl-C; a "

@@ -19,7 +19,7 @@ from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
 from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
 from world.errors import WorldError
-from world.pictures import is_animation, picture_format
+from world.pictures import is_animation
 from world.toml_text import read_toml
 
 _POSITIVE = click.FloatRange(min=0, min_open=True)  # --scale [px/m], --follow [m]
@@ -128,7 +128,6 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
         except RecordError as exc:
             raise click.ClickException(str(exc)) from None
     try:
-        picture_format(out)
         rows = load_snapshots(source, steps, seed)
         if not rows:
             raise click.ClickException(f"{source}: no world snapshots in it")
