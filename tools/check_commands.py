@@ -119,6 +119,7 @@ def _echo(result: dict[str, Any]) -> None:
     path = result["file"]
     for item in result["errors"] + result["warnings"]:
         where = f"{item['file']}:{item['line']}:{item['col']}: " if item["line"] else \
+            "" if item["message"].startswith(f"{item['file']}:") else \
             f"{item['file']}: "  # the whole file (it cannot be read, say)
         tag = "warning: " if item in result["warnings"] else ""
         click.echo(f"{where}{tag}{item['message']}", err=True)

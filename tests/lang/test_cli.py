@@ -82,6 +82,9 @@ def test_a_file_that_cannot_be_read_is_named_once_without_a_line(tmp_path):
     checked = invoke("check", missing)
     assert checked.exit_code == 1
     assert f"{missing}: cannot read file: No such file or directory" in checked.output
+    scenario = tmp_path / "nosuch.toml"
+    told = invoke("check", scenario)
+    assert told.exit_code == 1 and told.output.strip() == f"{scenario}: scenario file not found"
     state = tmp_path / "nosuch.json"
     stepped = invoke("step", PROGRAMS / "minidrive.tlp", "--percepts", T3, "--state", state)
     assert stepped.exit_code == 1
