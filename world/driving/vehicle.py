@@ -16,6 +16,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from world.driving import ACTIONS
+
 MAX_ACCEL = 3.0       # [m/s^2] at throttle 100
 MAX_BRAKE = 8.0       # [m/s^2] at brake 100
 DRAG = 0.0048         # [1/m] quadratic drag coefficient
@@ -78,8 +80,7 @@ def apply_action(c: Controls, action: Any) -> dict[str, Any]:
         return _outcome(action)
     limits = {"*gas": (0.0, 100.0), "*brake": (0.0, 100.0), "*steer": (-MAX_WHEEL, MAX_WHEEL)}
     if name not in limits:
-        return _outcome(action, f"unknown action {name!r}; known: *cruise *gas *brake "
-                                "*straighten *steer")
+        return _outcome(action, f"unknown action {name!r}; known: {' '.join(ACTIONS)}")
     value, reason = _number_arg(action, *limits[name])
     if value is None:
         return _outcome(action, reason)

@@ -22,11 +22,12 @@ import math
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+from world.office import ACTIONS
 from world.office.robot import Operation, Robot, Site, start_goto
 
 BODY = {"*goto": ("goto", 1), "*acquire": ("acquire", 2), "*deliver": ("deliver", 2),
         "*observe": ("observe", 1)}
-KNOWN = ("*goto", "*acquire", "*deliver", "*observe", "*say", "*stop")
+KNOWN = ACTIONS  # the office Domain says the same (world/office/__init__.py)
 
 
 @dataclass
