@@ -60,8 +60,19 @@ class Chromium:
                 assert "error" not in reply, f"{method}: {reply['error']}"
                 return reply["result"]
 
-    def goto(self, url: str) -> None:
+    def goto(self, url: str, timeout: float = 60) -> None:
+        """Open `url` and wait until the page (its scripts included) has loaded."""
         self.send("Page.navigate", url=url)
+        end = time.monotonic() + timeout
+        while self.evaluate("[location.href, document.readyState]") != [url, "complete"]:
+            assert time.monotonic() < end, f"{url} did not load in {timeout:g} s"
+            time.sleep(0.05)
+
+    def viewport(self, width: int, height: int) -> None:
+        """Make the page's viewport exactly `width` x `height` CSS pixels (the window of
+        --window-size loses some height to the browser's own frame)."""
+        self.send("Emulation.setDeviceMetricsOverride", width=width, height=height,
+                  deviceScaleFactor=1, mobile=False)
 
     def evaluate(self, expression: str) -> Any:
         """The value of a JavaScript expression in the page (JSON-able)."""

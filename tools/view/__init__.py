@@ -35,7 +35,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
     """Serve a web page showing the running launch live (or RECORD: a run folder, run id or
     .mcap file): the world, each agent's goals and decision tree, processes and rates."""
     from tools.records import RecordError, locate
-    from tools.view.feeds import BusFeed, load_file
+    from tools.view.feeds import BusFeed, load_file, scenario_of
     from tools.view.model import ViewModel
     from tools.view.server import ViewServer
 
@@ -47,6 +47,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         else:
             target = _target(bus_config, run_id)
             model.run = run_id or target.run
+            model.programs.from_scenario(scenario_of(model.run))
             feed = BusFeed(model, target).start()
         server = ViewServer(model, port)
     except RecordError as exc:

@@ -14,7 +14,8 @@ from bus.errors import BusError, CodecError
 from bus.node import open_node
 from bus.presence import Presence
 from bus.record import to_record
-from tools.records import RunRecord
+from tools import runfile
+from tools.records import RUN_META, RunRecord
 from tools.target import Target
 from tools.view.model import ViewModel
 
@@ -25,9 +26,19 @@ LEARN_RUN_S = 30.0  # [s] a view of a named router waits this long for a first m
 def load_file(model: ViewModel, path: Path) -> None:
     """Feed every record of a run record file (the page can then step through all of it)."""
     rec = RunRecord(path)
-    model.source = f"record {path}"
+    model.source, model.recorded = f"record {path}", True
+    model.programs.from_scenario(rec.meta.get(RUN_META, {}).get("scenario", ""))
     for key, record in rec.records():
         model.add(key, record)
+
+
+def scenario_of(run: str | None) -> str:
+    """The scenario file of the running launch of `run`, from the run registry ("" when no
+    launch of it is registered: a replay, or a router named with --connect)."""
+    try:
+        return runfile.find(run).scenario if run else ""
+    except runfile.NoRunningLaunch:
+        return ""
 
 
 class BusFeed:
