@@ -4,7 +4,8 @@ served on 127.0.0.1 (docs/view.md).
 One subscriber (tools/view/feeds.py) reads the bus into a model (model.py); the server
 (server.py) pushes the newest cycle to the page as server-sent events and answers the page's
 requests for past cycles; the page (static/) draws the world and each agent's goals, decision
-tree and actions, with a timeline to step back, and the processes with their rates.
+tree, actions and beliefs panel (why each unsatisfied goal is false: beliefs.py), with a
+timeline to step back, a badge saying live, ended or record, and the processes with rates.
 """
 
 from __future__ import annotations

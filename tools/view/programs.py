@@ -19,10 +19,12 @@ log = logging.getLogger(__name__)
 
 
 class Programs:
-    """Thread-safe: a feed adds candidates, server threads load and check."""
+    """Thread-safe: a feed adds candidates, server threads load and check (an Engine keeps
+    what it inferred last, so the check runs one at a time)."""
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
+        self._checking = threading.Lock()            # one inference at a time per view
         self._candidates: dict[str, list[str]] = {}
         self._loaded: dict[str, Program | str] = {}  # path -> the program, or why it failed
         self._engines: dict[str, Engine] = {}        # path -> an engine for the check
@@ -57,16 +59,21 @@ class Programs:
                 self.add(agent, where.rsplit(":", 2)[0])
 
     def get(self, agent: str) -> tuple[Program | None, str]:
-        """(the program of `agent`, its file), or (None, why there is none)."""
+        """(the program of `agent`, its file), or (None, why there is none). A file is read
+        once, outside the lock (a feed adding candidates meanwhile does not wait)."""
         with self._lock:
-            tried = []
-            for path in self._candidates.get(agent, ()):
+            candidates = list(self._candidates.get(agent, ()))
+        tried = []
+        for path in candidates:
+            with self._lock:
                 found = self._loaded.get(path)
-                if found is None:
-                    found = self._loaded[path] = _load(path)
-                if isinstance(found, Program):
-                    return found, path
-                tried.append(found)
+            if found is None:
+                found = _load(path)
+                with self._lock:
+                    found = self._loaded.setdefault(path, found)
+            if isinstance(found, Program):
+                return found, path
+            tried.append(found)
         if not tried:
             return None, (f"no program known for {agent}: neither the run's scenario nor a "
                           "decision of this agent names a program file")
@@ -76,7 +83,7 @@ class Programs:
                 beliefs: list) -> str:
         """"" when `program` infers the recorded `beliefs` from the recorded `percepts` (and
         the agent's world `model`), else a sentence saying how they differ."""
-        with self._lock:
+        with self._checking:
             engine = self._engines.get(path)
             if engine is None:
                 engine = self._engines[path] = Engine(program, solver=None)

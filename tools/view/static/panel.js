@@ -130,7 +130,7 @@ function beliefsPanel(w) {
   if (w.error) box.append(el("p", "warn", w.error));
   if (w.warning) box.append(el("p", "warn", w.warning));
   box.append(el("h3", "", "why not satisfied"));
-  if (!w.goals.length) box.append(el("p", "hint", "every goal is satisfied"));
+  if (!w.goals.length) box.append(el("p", "hint", "no goal of this cycle's decision is unsatisfied"));
   for (const g of w.goals) {
     const li = el("li", "why-goal");
     li.dataset.id = g.id;

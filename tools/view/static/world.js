@@ -133,7 +133,7 @@ function ring(ctx, x, y, r, label) {
   ctx.arc(x, y, r, 0, 2 * Math.PI);
   ctx.stroke();
   ctx.fillStyle = COLOURS.named;
-  ctx.fillText(label, x, y - r - 3);
+  ctx.fillText(label, x, y + r + 11);  // below: a car's label is above it
 }
 
 function drawBlocks(canvas, map, frame, focus) {
