@@ -199,3 +199,19 @@ def test_a_frame_of_a_record_has_the_beliefs_panel(served) -> None:
     why = json.loads(_get(url + "api/frame?cycle=12")[1])["agents"]["ME"]["why"]
     assert why["program"].endswith("hold_speed.tlp") and why["warning"] == ""
     assert why["count"] == len(why["beliefs"]) > 0
+
+
+def test_malformed_percepts_beliefs_or_paths_get_a_sentence_not_a_dead_page(record) -> None:
+    model = ViewModel()
+    load_file(model, record)
+    env = {"v": 1, "run": "hold-1", "cycle": 5, "sender": "test", "sent_ns": 0}
+    bad = [("percepts", {"kind": "Percepts", "percepts": [["man"], [1, 2]], "memory": []}),
+           ("beliefs", {"kind": "Beliefs", "beliefs": [[], 7]}),
+           ("intention", {"kind": "Intention", "decision": {
+               "goals": [{"id": "p1", "status": "active", "instance": "(((("}],
+               "path": ["x", {"where": 5, "bindings": []}], "parallel": 3}})]
+    for kind, body in bad:
+        model.add(f"teleo/hold-1/agent/ME/{kind}", {**body, "env": env, "agent": "ME"})
+        why = model.frame(5)["agents"]["ME"]["why"]
+        assert why["error"] or why["warning"] or why["goals"][0]["note"], (kind, why)
+    assert "do not read" in model.frame(5)["agents"]["ME"]["why"]["error"]

@@ -14,6 +14,7 @@ goal is false; a goal that failed stays in the goal table of every later cycle.
 
 from __future__ import annotations
 
+import logging
 import threading
 import time
 from collections import OrderedDict, deque
@@ -26,11 +27,14 @@ import orjson
 from agents.lang import LangError
 from bus import keys
 from tools.records import GoalHistory
-from tools.tree import decision_tree, to_json
+from tools.tree import Node, decision_tree, to_json
 from tools.view import scene
 from tools.view.beliefs import listing, why
 from tools.view.programs import Programs
 
+log = logging.getLogger(__name__)
+MALFORMED = (LangError, TypeError, ValueError, KeyError, IndexError, AttributeError)
+"""What reading a malformed percept, belief or decision of a record raises."""
 RATE_WINDOW_NS = 5_000_000_000  # rates are taken over the last 5 s
 TRAIL_STEP_M = 0.5              # a car's trail gets a point each time it has moved this far
 QUIET_S = 5.0                   # [s] a run without liveliness tokens that sent nothing for
@@ -121,7 +125,8 @@ class ViewModel:
                 slot["beliefs"] = orjson.dumps(record.get("beliefs", []))
             else:
                 slot["self"] = record.get("self", {})
-                model = (record.get("memory") or {}).get("model", [])
+                memory = record.get("memory")
+                model = memory.get("model", []) if isinstance(memory, dict) else []
                 slot["percepts"] = orjson.dumps([record.get("percepts", []), model])
 
     def _world(self, cycle: int, snapshot: dict[str, Any]) -> None:
@@ -174,12 +179,16 @@ class ViewModel:
         decision = slot.get("decision")
         goals = decision.get("goals", []) if decision else []
         listed = {g.get("id") for g in goals}
+        try:
+            tree = to_json(decision_tree(decision, f"{agent}, cycle {cycle}")) \
+                if decision else None
+        except MALFORMED as exc:  # a record is only shape-checked (bus/record.py)
+            tree = to_json(Node("decision", f"{agent}, cycle {cycle}: the decision does not "
+                                            f"read: {exc!r}"))
         return {"self": slot.get("self", {}),
                 "goals": goals + [g for g in failed if g["id"] not in listed],
                 "actions": decision.get("actions", []) if decision else [],
-                "tree": to_json(decision_tree(decision, f"{agent}, cycle {cycle}"))
-                if decision else None,
-                "why": self._why(agent, slot)}
+                "tree": tree, "why": self._why(agent, cycle, slot)}
 
     def _failed_before(self, agent: str, cycle: int) -> list[dict[str, Any]]:
         """The goals of `agent` whose status at `cycle` is failed (from their history: the
@@ -193,7 +202,7 @@ class ViewModel:
                             "instance": "", "failed_at": last["cycle"]})
         return out
 
-    def _why(self, agent: str, slot: dict[str, Any]) -> dict[str, Any] | None:
+    def _why(self, agent: str, cycle: int, slot: dict[str, Any]) -> dict[str, Any] | None:
         """The beliefs panel of one agent's cycle (None when its beliefs are not held)."""
         if "beliefs" not in slot or "decision" not in slot:
             return None
@@ -201,14 +210,19 @@ class ViewModel:
         percepts, model = orjson.loads(slot["percepts"]) if "percepts" in slot else ([], [])
         program, source = self.programs.get(agent)
         if program is None:
-            return {"error": source, "goals": [], "path": [], **listing(beliefs)}
+            try:
+                return {"error": source, "goals": [], "path": [], **listing(beliefs)}
+            except MALFORMED as exc:
+                return {"error": f"{source}; the beliefs do not read: {exc!r}", "goals": [],
+                        "path": [], "count": 0, "beliefs": []}
         try:
             panel = why(program, slot["decision"], percepts, beliefs)
-        except LangError as exc:
-            return {"error": f"cycle not explained: {exc}", "goals": [], "path": [],
-                    **listing(beliefs)}
-        warning = self.programs.differs(source, program, percepts, model, beliefs) \
-            if percepts else "no percepts recorded for this cycle"
+            warning = self.programs.differs(source, program, percepts, model, beliefs) \
+                if percepts else "no percepts recorded for this cycle"
+        except MALFORMED as exc:  # a record is only shape-checked (bus/record.py)
+            log.warning("view: %s cycle %s not explained: %r", agent, cycle, exc)
+            return {"error": f"this cycle's records do not read: {exc!r}", "goals": [],
+                    "path": [], "count": len(beliefs), "beliefs": []}
         return {"program": source, "warning": warning, **panel}
 
     def status(self, now_ns: int) -> dict[str, Any]:

@@ -51,9 +51,10 @@ class Programs:
 
     def saw(self, agent: str, decision: dict[str, Any]) -> None:
         """The files a decision's skills were written in (`where` = file:line:col)."""
-        steps = [*decision.get("path", ()),
-                 *(s for p in decision.get("parallel", ()) for s in p.get("path", ()))]
-        for step in steps:
+        if not isinstance(decision, dict):
+            return
+        paths = [decision.get("path"), *(p.get("path") for p in _dicts(decision.get("parallel")))]
+        for step in (s for path in paths for s in _dicts(path)):
             where = str(step.get("where", ""))
             if where.count(":") >= 2:
                 self.add(agent, where.rsplit(":", 2)[0])
@@ -99,6 +100,11 @@ class Programs:
         return (f"{path} infers other beliefs from this cycle's percepts than the agent had "
                 f"({len(extra)} more, {len(lost)} fewer: {sample}): the file may have changed "
                 "since the run; the reasons below read the recorded beliefs")
+
+
+def _dicts(items: Any) -> list[dict]:
+    """The maps of a list (a record is only shape-checked: anything else is skipped)."""
+    return [i for i in items if isinstance(i, dict)] if isinstance(items, list) else []
 
 
 def _load(path: str) -> Program | str:
