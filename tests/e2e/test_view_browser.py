@@ -104,6 +104,9 @@ def test_the_page_shows_goals_and_their_statuses_changing(teleo, tmp_path):
             active = next(h["cycle"] for h in history if h["status"] == "active")
             go_to(page, active)
             assert page.evaluate(ROWS)["g2"] == "active"
+            # the beliefs panel of a live cycle, its reasons read from the launch's program
+            panel = page.evaluate("document.querySelector('#agents .beliefs').innerText")
+            assert "reasons from " in panel and "deliver_ahead.tlp" in panel, panel
             assert page.evaluate("document.getElementById('live').classList.contains('on')") \
                 is False
             # the launch stops: the badge says the run has ended (not a green "connected")
