@@ -215,3 +215,18 @@ def test_malformed_percepts_beliefs_or_paths_get_a_sentence_not_a_dead_page(reco
         why = model.frame(5)["agents"]["ME"]["why"]
         assert why["error"] or why["warning"] or why["goals"][0]["note"], (kind, why)
     assert "do not read" in model.frame(5)["agents"]["ME"]["why"]["error"]
+
+
+def test_the_program_check_agrees_with_a_run_whose_scs_bodies_assert_facts(tmp_path) -> None:
+    """errands.tlp's bodies assert facts (seed 002's world model): a simulate record echoes
+    no agent memory, so the check infers with the model the previous decision held."""
+    scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
+    path = tmp_path / "errands.mcap"
+    with RecordWriter(path, "errands-1", {"scenario": str(scenario.path)}) as writer:
+        simulate(scenario, cycles=300, recorder=SimRecorder(writer, "errands-1"))
+    model = ViewModel()
+    load_file(model, path)
+    panels = [model.frame(c)["agents"]["ME"]["why"] for c in range(0, 300, 3)]
+    assert all(p["program"].endswith("errands.tlp") for p in panels)
+    assert [p["warning"] for p in panels if p["warning"]] == []
+    assert any(b.startswith("(served ME ") for p in panels for b in p["beliefs"])

@@ -166,6 +166,10 @@ class ViewModel:
             if c is None:
                 return None
             slots = {a: dict(c.agents.get(a, {})) for a in sorted(self.agents)}
+            before = self.cycles.get(cycle - 1)
+            for a, slot in slots.items():  # the world model the agent inferred with
+                prior = before.agents.get(a, {}).get("decision") if before else None
+                slot["prior_model"] = _scs_model(prior)
             failed = {a: self._failed_before(a, cycle) for a in slots}
             trails = {a: [[x, y] for k, x, y in pts if k <= cycle]
                       for a, pts in self.trails.items()}
@@ -208,6 +212,7 @@ class ViewModel:
             return None
         beliefs = orjson.loads(slot["beliefs"])
         percepts, model = orjson.loads(slot["percepts"]) if "percepts" in slot else ([], [])
+        model = model or slot["prior_model"]  # a simulate record echoes no agent memory
         program, source = self.programs.get(agent)
         if program is None:
             try:
@@ -263,3 +268,11 @@ class ViewModel:
         with self.changed:
             picked = [k for k in self.cycles if k <= cycle and (k % 10 == 0 or k == cycle)]
             return [{**self._static, **self.cycles[k].moving} for k in picked]
+
+
+def _scs_model(decision: Any) -> list:
+    """The world model (SCS facts, seed 002) an agent held after a decision: what it sent
+    with its actions, so what its inference used the next cycle; [] when none."""
+    section = decision.get("scs") if isinstance(decision, dict) else None
+    model = section.get("model") if isinstance(section, dict) else None
+    return model if isinstance(model, list) else []
