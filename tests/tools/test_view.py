@@ -230,3 +230,13 @@ def test_the_program_check_agrees_with_a_run_whose_scs_bodies_assert_facts(tmp_p
     assert all(p["program"].endswith("errands.tlp") for p in panels)
     assert [p["warning"] for p in panels if p["warning"]] == []
     assert any(b.startswith("(served ME ") for p in panels for b in p["beliefs"])
+
+
+def test_an_intention_whose_decision_is_no_map_is_refused_and_the_cycle_still_shown() -> None:
+    model = ViewModel()
+    _cycle(model, 0, [])
+    env = {"v": 1, "run": "hand-1", "cycle": 0, "sender": "test", "sent_ns": 0}
+    with pytest.raises(TypeError, match="Intention.decision: expected a map, got list"):
+        model.add(keys.intention("hand-1", "ME"), {"kind": "Intention", "env": env,
+                                                   "agent": "ME", "decision": [1, 2]})
+    assert model.frame(0)["agents"]["ME"]["goals"] == []   # the earlier decision stays

@@ -17,7 +17,7 @@ from bus.record import to_record
 from tools import runfile
 from tools.records import RUN_META, RunRecord
 from tools.target import Target
-from tools.view.model import ViewModel
+from tools.view.model import MALFORMED, ViewModel
 
 log = logging.getLogger(__name__)
 LEARN_RUN_S = 30.0  # [s] a view of a named router waits this long for a first message
@@ -91,5 +91,5 @@ class BusFeed:
             try:
                 self.model.add(item.key, to_record(item.key, item.payload), len(item.payload),
                                item.t_ns)
-            except (CodecError, KeyError, TypeError) as exc:
-                log.warning("view: dropped %s", exc)
+            except (CodecError, *MALFORMED) as exc:  # a record is only shape-checked
+                log.warning("view: dropped %s: %r", item.key, exc)

@@ -118,8 +118,11 @@ class ViewModel:
             self.agents.add(agent)
             slot = self.cycles[cycle].agents.setdefault(agent, {})
             if kind == "Intention":
-                slot["decision"] = record["decision"]
+                if not isinstance(record["decision"], dict):
+                    raise TypeError(f"Intention.decision: expected a map, got "
+                                    f"{type(record['decision']).__name__}")
                 self.goals.feed(record)
+                slot["decision"] = record["decision"]
                 self.programs.saw(agent, record["decision"])
             elif kind == "Beliefs":
                 slot["beliefs"] = orjson.dumps(record.get("beliefs", []))
