@@ -113,8 +113,15 @@ def hz(keyexpr: str, window: int, bw: bool, seconds: float | None, as_json: bool
     as 'world/state' or 'agent/*/actions' (one line per key it matches), or a full
     'teleo/RUN/...'. Exit 1 when no message came at all."""
     target, full = reach_keys(keyexpr, run_id, bus_config, "rates of")
+    reported = [-1]  # messages seen at the last report: the end repeats none
 
-    def report(meters: dict[str, Meter]) -> None:
+    def report(meters: dict[str, Meter], final: bool = False) -> None:
+        seen = sum(m.count for m in meters.values())
+        if seen == reported[0]:
+            if not final and not as_json:
+                click.echo(f"no new messages on {_short(full, target.run)}")
+            return
+        reported[0] = seen
         for key in sorted(meters):
             name, figures = _short(key, target.run), meters[key].figures()
             click.echo(json.dumps({"key": name, **figures.to_dict()}) if as_json
@@ -129,7 +136,7 @@ def hz(keyexpr: str, window: int, bw: bool, seconds: float | None, as_json: bool
                                    + (f" within {seconds:g} s" if seconds else "")
                                    + ": is the run going (teleo inspect), and the key "
                                      "expression right?")
-    report(meters)
+    report(meters, final=True)
 
 
 commands = [hz]
