@@ -21,6 +21,7 @@ from ..solving.task import literal
 from .backchain import build, check, replan_note
 from .control import Control, GoalView
 from .domain import with_facts
+from .memory import objects, perceived_about, reopen
 from .merge import Choice, choose, detour, fcfs, visits
 from .monitor import Env, apply_model
 from .state import Applied, Executing, Finished, PlannerState, Task
@@ -86,7 +87,9 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
     out = Decided(ps)
     control = Control(env.domain.rules, out.firings)
     before = {t.goal_id: (t.status, t.note) for t in ps.tasks}
-    tasks = [t for t in (_planned(t, env, control, out, events) for t in ps.tasks) if t]
+    tasks = [reopen(t, lambda f, t=t: env.holds(f, t.knowledge), env.cycle, events)
+             for t in ps.tasks]
+    tasks = [t for t in (_planned(t, env, control, out, events) for t in tasks) if t]
     for _ in range(8):   # planner-only steps are applied at once, then the choice is redone
         ready = [_gate(t, env, out, events) for t in tasks]
         tasks = [t for t in ready if t.goal_id not in out.failed]
@@ -110,8 +113,9 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
             events.append(f"cycle {env.cycle}: {t.goal_id} {t.status}: {t.note}")
     proposed = None
     if out.choice is not None and out.choice.step.actions:
-        proposed = Executing(out.choice.step, out.choice.tasks, env.cycle,
-                             out.choice.step.actions)
+        step = out.choice.step
+        proposed = Executing(step, out.choice.tasks, env.cycle, step.actions,
+                             before=perceived_about(env.domain, env.store, objects(step)))
     done = ps.finished + tuple(_finish(t, env.cycle, "failed", out.failed[t.goal_id])
                                for t in ps.tasks if t.goal_id in out.failed)
     ps = replace(ps, tasks=tuple(t for t in tasks if t.goal_id not in out.failed),
@@ -129,7 +133,8 @@ def _planned(t: Task, env: Env, control: Control, out: Decided, events: list[str
     why = t.replan or (check(env.domain, t.plan, goal, base, env.pidx) if t.plan else "")
     if t.plan and not why:
         return t
-    built = build(env.domain, goal, base, env.pidx, control, env.metric)
+    passed: dict = {}
+    built = build(env.domain, goal, base, env.pidx, control, env.metric, t.standing(), passed)
     if built.failed:
         out.failed[t.goal_id] = built.failed
         events.append(f"cycle {env.cycle}: {t.goal_id} failed: {built.failed}")
@@ -139,6 +144,8 @@ def _planned(t: Task, env: Env, control: Control, out: Decided, events: list[str
         f"replanned ({why}): {replan_note(t.plan, built.steps)}" if why else
         f"tail-plan: {shown}"))
     events += [f"cycle {env.cycle}: rule fired: {f}" for f in control.firings[fired:]]
+    events += [f"cycle {env.cycle}: {t.goal_id} passes over {x.step} for {x.achieves}: "
+               f"excluded since cycle {x.since}" for xs in passed.values() for x in xs]
     return replace(t, plan=built.steps, replan="")
 
 
@@ -203,4 +210,4 @@ def figures(ps: PlannerState, env: Env) -> object:
 
 def _finish(t: Task, cycle: int, status: str, reason: str = "") -> Finished:
     return Finished(t.goal_id, t.goal, t.priority, t.seq, t.arrived, cycle, status, reason,
-                    t.places)
+                    t.places, t.excluded)
