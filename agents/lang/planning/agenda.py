@@ -8,8 +8,10 @@
    back-chainer when it does not; the goal control rules select the requests to work on
    (Table 2: the top priority and those compatible with it; the others wait); requests whose
    next place is unreachable, or that wait after a failure, are blocked; planner-only steps
-   (no command) are applied in the model at once; and among the first steps of the selected
-   tail-plans the one of least expected travel is proposed (agents/lang/planning/merge.py).
+   (no command) are applied in the model at once; among the first steps of the selected
+   tail-plans the one of least expected travel is proposed (agents/lang/planning/merge.py),
+   unless it leaves the place the robot is in while a step of a selected or waiting request
+   can be done there at no cost to the others (agents/lang/planning/opportunity.py).
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from .domain import with_facts
 from .memory import objects, perceived_about, reopen
 from .merge import Choice, choose, detour, fcfs, visits
 from .monitor import Env, apply_model
+from .opportunity import opportunity
 from .state import Applied, Executing, Finished, PlannerState, Task
 
 MAX_MERGED = 4          # lower-priority requests merged with the top-priority ones [requests]
@@ -97,7 +100,8 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
         tasks = [selected.get(t.goal_id, t) for t in tasks]
         plans = {t.goal_id: t.plan for t in tasks if t.status == "selected" and t.plan}
         last = ps.head[-1].tasks if ps.head else ()
-        out.choice = choose(env.metric, plans, {t.goal_id: t.seq for t in tasks}, last)
+        out.choice = choose(env.metric, plans, {t.goal_id: t.seq for t in tasks}, last,
+                            env.carry())
         step = out.choice.step if out.choice else None
         if step is None or step.actions:
             break
@@ -111,6 +115,7 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
     for t in tasks:
         if before.get(t.goal_id, ("new", ""))[0] != t.status and t.status != "new":
             events.append(f"cycle {env.cycle}: {t.goal_id} {t.status}: {t.note}")
+    out.choice = opportunity(tasks, out.choice, env, events) or out.choice
     proposed = None
     if out.choice is not None and out.choice.step.actions:
         step = out.choice.step

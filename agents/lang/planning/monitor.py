@@ -25,6 +25,7 @@ from ..store import FactStore, PerceptIndex
 from ..terms import Literal
 from .domain import Domain, Metric, project, with_facts
 from .memory import exclude
+from .merge import Carry
 from .state import Applied, Exclusion, Executing, PlannerState, PlanStep
 from .state import Task as Request
 
@@ -56,6 +57,13 @@ class Env:
 
     def place(self) -> str:
         return self.domain.place(self.store)
+
+    def carry(self) -> Carry | None:
+        """The load constraint of a merge here, when the program and percepts say it."""
+        cap = self.metric.capacity
+        if cap is None:
+            return None
+        return Carry(self.domain.carried(self.store), cap, self.domain.load_delta)
 
 
 def monitor(ps: PlannerState, env: Env, outcomes: tuple[Outcome, ...],

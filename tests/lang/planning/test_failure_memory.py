@@ -11,7 +11,6 @@ Figure 7 in the office world with its prefer rule alone (no reject rule), in one
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import pytest
 from hypothesis import given, settings
@@ -20,7 +19,7 @@ from hypothesis import strategies as st
 from agents.lang import Engine, EngineState, load_program_text
 from agents.lang.planning.state import PlannerState
 
-from .office_runs import ROOT, Office
+from .office_runs import FIGURE_7, ROOT, Office, prefer_only
 from .office_runs import run as run_office
 
 ROOMS = """
@@ -189,23 +188,6 @@ def test_the_memory_survives_a_restart_and_reads_back():
 
 
 # -- seed 003, Figure 7, with LOOK-AT-CLOSEST-CONF-ROOM-FIRST alone ------------------------
-FIGURE_7 = [
-    ("<goto-room r-5309>", "verified"), ("<select-conference-room r-5309>", "applied"),
-    ("<observe-conference-room r-5309>", "not-achieved"),
-    ("<goto-room r-5311>", "verified"), ("<select-conference-room r-5311>", "applied"),
-    ("<observe-conference-room r-5311>", "verified"), ("<schedule-meeting r-5311>", "verified")]
-
-
-def prefer_only(tmp_path) -> str:
-    """programs/office_rogue.tlp without its AVOID-OCCUPIED-CONF-ROOMS reject rule."""
-    text = (ROOT / "programs" / "office_rogue.tlp").read_text()
-    start = text.index("  (control-rule AVOID-OCCUPIED-CONF-ROOMS")
-    end = text.index("  ; where the robot is and how far")
-    path = tmp_path / "office_prefer_only.tlp"
-    path.write_text(text[:start] + text[end:])
-    return str(path)
-
-
 @pytest.fixture(scope="module")
 def figure7_prefer_only(tmp_path_factory):
     from dataclasses import replace
@@ -214,7 +196,7 @@ def figure7_prefer_only(tmp_path_factory):
     from world.run_scenario import load_scenario
     program = prefer_only(tmp_path_factory.mktemp("fig7"))
     scenario = load_scenario(ROOT / "scenarios" / "office_figure7.toml")
-    scenario = replace(scenario, agents=tuple(replace(a, program=Path(program))
+    scenario = replace(scenario, agents=tuple(replace(a, program=program)
                                               for a in scenario.agents))
     return Office(simulate(scenario, 400))
 
