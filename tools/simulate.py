@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -125,12 +126,14 @@ def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str
 
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
              keep_every: int = 0, learned: Path | None = None, recorder: Any = None,
-             show_progress: bool = False) -> SimRun:
+             show_progress: bool = False,
+             until: Callable[[dict[str, EngineState]], bool] | None = None) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
     file:line:col if it does not fit an agent's program); `recorder` (a
     tools.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
-    bar on a terminal (tools/progress.py)."""
+    bar on a terminal (tools/progress.py); `until`: stop after the first cycle at whose end
+    it answers True for the agents' states (a benchmark's run ends when its work is done)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
@@ -185,6 +188,8 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         sim.step()
         if recorder is not None:
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
+        if until is not None and until(states):
+            break
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
     run.states = states

@@ -86,3 +86,20 @@ def test_a_scripted_event_the_world_refuses_fails_the_run(tmp_path, monkeypatch)
     assert summary["failures"] == ['scripted event {"kind": "block", "segment": "S999"} at '
                                    "cycle 2 refused by the world: inject: unknown segment "
                                    "'S999'"]
+
+
+def test_a_run_stops_at_the_end_of_the_first_cycle_its_until_accepts():
+    """simulate(until=...) ends a run once its work is done (bench/office.py)."""
+    from tools.simulate import simulate
+    from world.run_scenario import load_scenario
+
+    scenario = load_scenario(ROOT / "scenarios" / "office_figure6.toml")
+    whole = simulate(scenario)
+
+    def both_done(states) -> bool:
+        return len(states["ME"].planner.finished) == 2
+    cut = simulate(scenario, until=both_done)
+    end = next(k for k, r in enumerate(whole.records)
+               if r["ME"]["planner"]["finished"] and len(r["ME"]["planner"]["finished"]) == 2)
+    assert len(cut.records) == end + 1 < len(whole.records)
+    assert cut.records == whole.records[:end + 1]

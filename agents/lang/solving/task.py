@@ -120,10 +120,16 @@ class Task:
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
             ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground, applicable):
+            if self._chainable(ground, applicable) and self.admits(s, b, goal):
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
+
+    def admits(self, s: Skill, b: dict, goal: Literal) -> bool:
+        """Whether skill ``s`` under bindings ``b`` may be chained on for ``goal`` at all
+        (before the best-ranked are kept); the planner's failure memory says no to a choice
+        that failed (agents/lang/planning/backchain.py)."""
+        return True
 
     def _by_concept(self, clause: ConceptClause, goal: Literal) -> list[Alternative]:
         b0 = unify_head(clause.head, goal, {})
@@ -147,10 +153,11 @@ class Task:
         unsat = [c for c in ground if not self.holds(c)]
         return (applicable or bool(unsat)) and all(pushable(c) for c in unsat)
 
-    @staticmethod
-    def _best(ranked: list) -> list:
+    per_clause = MAX_PER_CLAUSE   # bindings kept per clause (the planner keeps more)
+
+    def _best(self, ranked: list) -> list:
         ranked.sort(key=lambda r: (r[0], r[1]))
-        return ranked[:MAX_PER_CLAUSE]
+        return ranked[:self.per_clause]
 
     def rank(self, conds: list) -> tuple:
         """Sort key of a way to chain off (smaller first): the most conditions holding,
