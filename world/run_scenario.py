@@ -19,7 +19,7 @@ from bus.errors import KeyFormatError
 from bus.keys import check_chunk
 from world.domain import DEFAULT_DOMAIN, DOMAINS
 from world.overrides import TABLES, Override, OverrideError, apply_overrides, parse_override
-from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only
+from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only, shown
 from world.scenario_types import (
     AGENT_STAGES,
     GOAL_OPS,
@@ -118,8 +118,8 @@ def read_draft(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ())
     before = len(errors)
     if is_table(world, "[world]", errors):
         domain = world.get("domain", DEFAULT_DOMAIN)
-        if domain not in DOMAINS:
-            errors.add(f"[world].domain: expected one of {list(DOMAINS)}, got {domain!r:.60}")
+        if not isinstance(domain, str) or domain not in DOMAINS:
+            errors.add(f"[world].domain: expected one of {list(DOMAINS)}, got {shown(domain)}")
     if len(errors) > before:
         spoilt.add("world")
         world = {}
@@ -134,7 +134,7 @@ def _array(doc: dict[str, Any], name: str, errors: Errors) -> list[Any]:
     if isinstance(value, list):
         return value
     errors.add(f"[[{name}]]: expected an array of tables ([[{name}]] entries), "
-               f"got {value!r:.60}")
+               f"got {shown(value)}")
     return []
 
 
@@ -144,8 +144,8 @@ def _run(table: Any, errors: Errors) -> RunSettings:
         return RunSettings()
     only(table, set(RUN_FIELDS), where, errors)
     mode = table.get("mode", "lockstep")
-    if mode not in {m.value for m in Mode}:
-        errors.add(f"{where}.mode: expected 'lockstep' or 'realtime', got {mode!r:.60}")
+    if not isinstance(mode, str) or mode not in {m.value for m in Mode}:
+        errors.add(f"{where}.mode: expected 'lockstep' or 'realtime', got {shown(mode)}")
         mode = "lockstep"
     return RunSettings(
         name=field(table, "name", str, "run", where, errors, (run_name_ok, RUN_NAME_RULE)),
@@ -205,7 +205,7 @@ def _agent(table: Any, index: int, errors: Errors) -> AgentSpec | None:
         if stage not in AGENT_STAGES or isinstance(count, bool) or not isinstance(count, int) \
                 or count < 0:
             errors.add(f"{where}.respawn: expected {{stage = max restarts >= 0}} with stage "
-                       f"in {list(AGENT_STAGES)}, got {stage} = {count!r:.40}")
+                       f"in {list(AGENT_STAGES)}, got {stage} = {shown(count, 40)}")
     mechanism = field(table, "mechanism", str, "means-ends", where, errors)
     solver = field(table, "solver", bool, True, where, errors)
     if agent_id is None:
@@ -264,9 +264,9 @@ def _goal(table: Any, index: int, agents: list[str], errors: Errors,
         force=field(table, "force", bool, False, where, errors),
     )
     if goal.agent and goal.agent not in agents:
-        errors.add(f"{where}.agent: expected one of {agents}, got {goal.agent!r:.60}")
+        errors.add(f"{where}.agent: expected one of {agents}, got {shown(goal.agent)}")
     if goal.op not in GOAL_OPS:
-        errors.add(f"{where}.op: expected one of {list(GOAL_OPS)}, got {goal.op!r:.60}")
+        errors.add(f"{where}.op: expected one of {list(GOAL_OPS)}, got {shown(goal.op)}")
     elif goal.op == "post" and not goal.goal:
         errors.add(f"{where}.goal: a post needs the goal text, e.g. '(package-delivered P1)'")
     elif goal.op != "post" and not goal.goal_id:

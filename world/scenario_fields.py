@@ -38,7 +38,7 @@ def is_table(value: Any, where: str, errors: Errors) -> bool:
     """Whether ``value`` is a table; records the error when not."""
     if isinstance(value, dict):
         return True
-    errors.add(f"{where}: expected a table, got {value!r:.60}")
+    errors.add(f"{where}: expected a table, got {shown(value)}")
     return False
 
 
@@ -53,12 +53,18 @@ def field(table: dict[str, Any], key: str, kind: type | tuple, default: Any, whe
     value = table.get(key, default)
     if isinstance(value, bool) and kind is not bool or not isinstance(value, kind):
         expected = "true or false" if kind is bool else _kind_name(kind)
-        errors.add(f"{where}.{key}: expected {expected}, got {value!r:.60}")
+        errors.add(f"{where}.{key}: expected {expected}, got {shown(value)}")
         return None if default is REQUIRED else default
     if check is not None and not check[0](value):
-        errors.add(f"{where}.{key}: expected {check[1]}, got {value!r:.60}")
+        errors.add(f"{where}.{key}: expected {check[1]}, got {shown(value)}")
         return None if default is REQUIRED else default
     return value
+
+
+def shown(value: Any, most: int = 60) -> str:
+    """``value`` as a message shows it: its repr, cut to ``most`` characters with "..."."""
+    text = repr(value)
+    return text if len(text) <= most else text[:most - 3] + "..."
 
 
 def _kind_name(kind: type | tuple) -> str:
