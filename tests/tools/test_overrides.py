@@ -17,7 +17,13 @@ from hypothesis import strategies as st
 from tools.cli import cli
 from tools.records import RunRecord
 from tools.scenario_check import load_checked
-from world.overrides import STRING_FIELDS, OverrideError, parse_override
+from world.overrides import (
+    STRING_FIELDS,
+    Override,
+    OverrideError,
+    apply_overrides,
+    parse_override,
+)
 from world.run_scenario import ScenarioError, load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -36,9 +42,13 @@ def toml_text(doc: dict) -> str:
             return "[" + ", ".join(value(x) for x in v) + "]"
         return json.dumps(v)
 
-    lines = []
+    def is_tables(v) -> bool:
+        return isinstance(v, dict) or isinstance(v, list) and bool(v) and \
+            all(isinstance(e, dict) for e in v)
+
+    lines = [f"{k} = {value(v)}" for k, v in doc.items() if not is_tables(v)]
     for name, table in doc.items():
-        for entry in (table if isinstance(table, list) else [table]):
+        for entry in (table if isinstance(table, list) else [table]) if is_tables(table) else ():
             lines.append(f"[[{name}]]" if isinstance(table, list) else f"[{name}]")
             lines += [f"{k} = {value(v)}" for k, v in entry.items()]
     return "\n".join(lines) + "\n"
@@ -309,3 +319,32 @@ def test_simulate_applies_set_and_its_summary_and_record_say_so(tmp_path, monkey
     assert plain.exit_code == 0
     assert (tmp_path / "e.jsonl").read_text() == (tmp_path / "t.jsonl").read_text() != \
         (tmp_path / "p.jsonl").read_text()
+
+
+ANY = st.recursive(st.one_of(st.integers(-10, 10**6), st.booleans(), st.text(max_size=6),
+                             st.floats(-1e6, 1e6, allow_nan=False)),
+                   lambda inner: st.lists(inner, max_size=3)
+                   | st.dictionaries(st.sampled_from(["id", "agent", "x", "kind"]), inner,
+                                     max_size=3), max_leaves=6)
+EVERY_FIELD = [*FIELDS, ("run", "name"), ("run", "mode"), ("agents", "1"),
+               ("agents", "ME", "id"), ("agents", "ME", "program"), ("agents", "ME", "respawn"),
+               ("agents", "ME", "mechanism"), ("goals", "1"), ("goals", "1", "goal"),
+               ("goals", "1", "op"), ("goals", "1", "agent"), ("goals", "1", "goal_id"),
+               ("events", "1", "kind"), ("events", "1"), ("world", "cars"),
+               ("world", "packages"), ("world", "domain")]
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                  HealthCheck.function_scoped_fixture])
+@given(key=st.sampled_from(EVERY_FIELD), value=ANY)
+def test_any_value_in_any_place_is_accepted_or_refused_never_a_crash(tmp_path, key, value):
+    """Every table, field and entry of a scenario, given a value of any kind (as a file
+    could): the check accepts it or refuses it with ScenarioError lines, and goes on to
+    report the rest; nothing else is raised (TypeError, KeyError, AttributeError)."""
+    doc, wrong = apply_overrides(BASE, (Override(".".join(key), key, value),))
+    assert not wrong
+    path = write(tmp_path, doc)
+    try:
+        load_checked(path)
+    except ScenarioError as exc:
+        assert exc.errors and all(e.startswith(f"{path}: ") for e in exc.errors)
