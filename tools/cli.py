@@ -22,6 +22,7 @@ _COMMAND_MODULES = (
     "tools.check_commands",  # check                     (programs, learned files, scenarios)
     "tools.lang_commands",   # infer, step               (language engine)
     "tools.bus_commands",    # router, echo, record, replay (bus)
+    "tools.rate_commands",   # hz                        (bus rates)
     "tools.world_commands",  # render                    (world)
     "tools.launch",          # launch                    (processes)
     "tools.run_commands",    # ps, stop                  (runs on this host)

@@ -52,14 +52,15 @@ def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
 
 def parse_goal(text: str, program: Program | None = None) -> Literal:
     """Read a goal such as ``(package-delivered PACKET2)``; check concept and arity if given a
-    program. Raises GoalError with the reason (and line:col for a reading error); a text over
+    program. Raises GoalError with the reason (and the column for a reading error); a text over
     MAX_GOAL_CHARS is refused before it is read."""
     if len(text) > MAX_GOAL_CHARS:
         raise GoalError(f"goal {shorten(text)!r}: longer than {MAX_GOAL_CHARS} characters")
     forms, diags = read(text, "<goal>")
     errors = [d for d in diags if d.severity == "error"]
     if errors:
-        raise GoalError(f"goal {text!r}: {errors[0].line}:{errors[0].col}: {errors[0].message}")
+        raise GoalError(f"goal {text!r}: {_where(text, errors[0].line, errors[0].col)}: "
+                        f"{errors[0].message}")
     if len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:
         raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)")
     items = forms[0].items
@@ -73,6 +74,12 @@ def parse_goal(text: str, program: Program | None = None) -> Literal:
             raise GoalError(f"goal {text}: concept {lit.pred} takes "
                             f"{program.arity[lit.pred]} argument(s), got {len(lit.args)}")
     return lit
+
+
+def _where(text: str, line: int, col: int) -> str:
+    """A position in a goal's text, in words: it is a string typed by a user, not a file
+    (``column 7``; ``line 2, column 1`` when the text has several lines)."""
+    return f"column {col}" if "\n" not in text else f"line {line}, column {col}"
 
 
 def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Literal]:

@@ -50,7 +50,7 @@ def test_two_runs_side_by_side_are_listed_found_by_name_and_stopped_one_by_one(t
         assert unsure.returncode != 0 and "2 runs are running" in unsure.stderr
         named = anywhere(teleo, "goal", "list", "--run", other)
         assert named.returncode == 0 and "g1" in named.stdout
-        assert f"run {other}: router tcp/127.0.0.1:" in named.stderr
+        assert named.stderr.startswith(f"run {other} (router tcp/127.0.0.1:")
         wait_cycles(info, 5)
         echoed = anywhere(teleo, "echo", "world/state", "--count", "2", "--run", info["run"])
         assert echoed.returncode == 0, echoed.stderr
