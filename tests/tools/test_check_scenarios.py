@@ -217,7 +217,7 @@ def test_check_reports_every_error_of_a_scenario_at_once(tmp_path):
     assert result.exit_code == 1 and "Traceback" not in result.output
     assert result.output.splitlines() == [
         f"{bad}: [world] car ME: unknown street 'Z'",
-        f"{bad}: [[goals]] #1: goal '(cruising ME': 1:1: '(' is never closed (missing ')')",
+        f"{bad}: [[goals]] #1: goal '(cruising ME': column 1: '(' is never closed (missing ')')",
         f"{bad}: 2 errors"]
     agents = DEMO[DEMO.index("[[agents]]"):DEMO.index("[[goals]]")]
     typo = scenario(tmp_path, DEMO.replace("[run]\n", "[run]\ntypo_key = 1\n")
