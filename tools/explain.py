@@ -90,14 +90,19 @@ def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None)
 
 
 def _program(rec: RunRecord, agent: str) -> str:
-    """The agent's program file, from the run's scenario when it can still be read."""
+    """The agent's program file, from the run's scenario (with the `--set` the run was given)
+    when it can still be read."""
     from world.errors import WorldError
     from world.run_scenario import load_scenario
 
+    meta = rec.meta.get("teleo.run", {})
     try:
-        scenario = load_scenario(rec.meta.get("teleo.run", {}).get("scenario", ""))
+        overrides = json.loads(meta.get("overrides", "[]"))
+        scenario = load_scenario(meta.get("scenario", ""),
+                                 [str(o) for o in overrides] if isinstance(overrides, list)
+                                 else ())
         return str(next(a.program for a in scenario.agents if a.id == agent))
-    except (WorldError, OSError, StopIteration):
+    except (WorldError, OSError, StopIteration, ValueError):
         return "PROGRAM"
 
 

@@ -47,7 +47,7 @@ from tools.run_plan import (
     with_bus_mode,
 )
 from tools.run_secrets import RunSecrets, host_of, make_secrets
-from tools.scenario_check import load_checked
+from tools.scenario_check import load_checked, override_option
 from tools.supervision import Outcome, supervise
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError
@@ -117,6 +117,7 @@ class PerProcess(click.ParamType):
                    "(0: a process per stage; auto: the agents spread over this machine's "
                    "CPUs, the fastest from 2 agents on). Not with --secure, --only, --join "
                    "or --listen beyond this host.")
+@override_option
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
@@ -124,18 +125,20 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
            run_id: str | None, secrets_dir: str | None, learned: str | None,
            plot_file: str | None, no_record: bool, agents_per_process: int | str,
-           as_json: bool) -> None:
+           overrides: tuple[str, ...], as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run.
 
     The processes are zenoh peers of each other, or clients of the router when there are
-    more than 30 (docs/bus.md). Environment: TELEO_RUN_DIR, where runs are kept (else
-    ./out); TELEO_PROFILE=DIR, every process writes a cProfile of its run to DIR.
+    more than 30 (docs/bus.md). `--set KEY=VALUE` changes a field of the scenario for this
+    run (`--cycles`, `--seed` and `--mode` win over it). Environment: TELEO_RUN_DIR, where
+    runs are kept (else ./out); TELEO_PROFILE=DIR, every process writes a cProfile of its
+    run to DIR.
     """
     if plot_file and no_record:
         raise click.UsageError("--plot draws the run record: leave out --no-record")
     _catch_signals()
     try:
-        scenario, _ = load_checked(scenario_file)
+        scenario, _ = load_checked(scenario_file, overrides)
         if learned:
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
@@ -153,7 +156,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         raise click.ClickException(str(exc)) from exc
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
-            "secured": plan.secrets is not None}
+            "secured": plan.secrets is not None, "overrides": list(scenario.overrides)}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
         if per_process:
             click.echo(_layout(len(scenario.agents), per_process, cpus))
@@ -239,7 +242,7 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
         raise PlanError(f"a secured run listens and connects on tls/ endpoints, got "
                         f"{join or listen!r}")
     run = run_id or f"{scenario.run.name}-{secrets.token_hex(3)}"
-    _check_run_id(run)
+    _check_run_id(run, "--run" if run_id else "[run].name")
     local = select(scenario, only)
     run_dir = runfile.base_dir() / "runs" / run
     if join:
@@ -282,14 +285,16 @@ _RUST_PLACE = re.compile(r"\s+at \S+\.rs:\d+\.?$")
 """Where in zenoh's Rust source an error was raised, at the end of its message."""
 
 
-def _check_run_id(run: str) -> None:
+def _check_run_id(run: str, given_by: str) -> None:
+    """Refuse a run id that cannot be a bus key's chunk, naming where it came from (`--run`,
+    or the scenario's `[run].name`, which the scenario check refuses first)."""
     from bus.errors import KeyFormatError
     from bus.keys import check_chunk
 
     try:
         check_chunk(run, "run id")
     except KeyFormatError as exc:
-        raise PlanError(f"--run: {exc}") from exc
+        raise PlanError(f"{given_by}: {exc}") from exc
 
 
 def _echo_joined(plan: Plan, outcome: Outcome) -> None:

@@ -5,6 +5,7 @@ and `SimRecorder` writes the same channels from `teleo simulate`'s in-process lo
 
 from __future__ import annotations
 
+import json
 import logging
 import secrets
 import threading
@@ -200,7 +201,8 @@ def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
     """The launcher's recorder of `run`, subscribed before any process starts (so the
     record holds cycle 0), writing run_dir/record.mcap; None (said on the log) when it
     cannot subscribe: the run goes on unrecorded."""
-    meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain}
+    meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain,
+            "overrides": json.dumps(list(scenario.overrides))}  # the --set applied
     client = BusConfig(mode="client", connect=cfg.connect, listen=(),
                        credentials=cfg.credentials)  # a secured run: the operator's
     recorder = BusRecorder(client, run, run_dir / RECORD_FILE, meta, process="launch.record")
@@ -224,7 +226,8 @@ class SimRecorder:
         """A recorder writing runs/<name>-sim-<hex>/record.mcap under the runs folder."""
         run = f"{scenario.run.name}-sim-{secrets.token_hex(3)}"
         path = runfile.base_dir() / "runs" / run / RECORD_FILE
-        meta = {"source": "simulate", "scenario": str(scenario.path), "domain": scenario.domain}
+        meta = {"source": "simulate", "scenario": str(scenario.path), "domain": scenario.domain,
+                "overrides": json.dumps(list(scenario.overrides))}  # the --set applied
         return cls(RecordWriter(path, run, meta), run)
 
     def _add(self, key: str, msg: Message) -> None:

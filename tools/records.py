@@ -302,6 +302,13 @@ def with_history(goals: list[dict[str, Any]], run_dir: Path) -> list[dict[str, A
     except RecordError as exc:
         log.warning("no goal history: %s", exc)
         history = {}
+    return goals_with_history(goals, history)
+
+
+def goals_with_history(goals: list[dict[str, Any]],
+                       history: dict[str, dict[str, list[dict[str, Any]]]]
+                       ) -> list[dict[str, Any]]:
+    """``goals`` each with "history" from GoalHistory.changes (``with_history``)."""
     return [{**g, "history": [{"cycle": c["cycle"], "status": USER_STATUS.get(c["status"],
                                                                                c["status"])}
                               for c in history.get(g.get("agent"), {}).get(g.get("id"), [])]}

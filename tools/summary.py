@@ -213,6 +213,8 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"run {summary['run']} {state[summary['status']]}: {summary['cycles']} cycles "
                f"in {summary['elapsed_s']} s ({summary['cycles_per_s']} cycles/s, "
                f"{summary['mode']}, seed {summary['seed']})")
+    if summary.get("overrides"):
+        click.echo(f"  --set: {', '.join(summary['overrides'])}")
     for reason in summary["failures"]:
         click.echo(f"  failed: {reason}")
     late, dead = summary["late_stages"], summary["dead_stages"]

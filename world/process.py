@@ -197,16 +197,18 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
               help="Resume the run recorded in --out (a restarted world).")
 @click.option("--ready-timeout", type=float, default=READY_TIMEOUT, show_default=True,
               help="Seconds to wait for every stage to announce itself.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="A field of the scenario changed for this run (world/overrides.py).")
 @bus_options
 def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
          run_mode: str | None, out: str, again: bool, ready_timeout: float,
-         bus_config: BusConfig) -> None:
+         overrides: tuple[str, ...], bus_config: BusConfig) -> None:
     """The world process of one run."""
     logging.basicConfig(level=logging.INFO,
                         format="%(asctime)s world %(name)s %(levelname)s %(message)s")
     stop = stop_on_signals(child=True)
     try:
-        scenario = load_scenario(scenario_file)
+        scenario = load_scenario(scenario_file, overrides)
         run_world(bus_config, run, scenario,
                   scenario.run.cycles if cycles is None else cycles,
                   scenario.run.seed if seed is None else seed,

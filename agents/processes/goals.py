@@ -265,10 +265,13 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
 @click.option("--scenario", "scenario_file", required=True, type=click.Path(exists=True))
 @click.option("--store", "store_file", required=True, type=click.Path(dir_okay=False),
               help="JSON file keeping the goals across restarts.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="A field of the scenario changed for this run (world/overrides.py).")
 @bus_options
-def main(run: str, scenario_file: str, store_file: str, bus_config: BusConfig) -> None:
+def main(run: str, scenario_file: str, store_file: str, overrides: tuple[str, ...],
+         bus_config: BusConfig) -> None:
     """The goal-entry process of one run."""
-    serve(bus_config, run, load_scenario(scenario_file), Path(store_file))
+    serve(bus_config, run, load_scenario(scenario_file, overrides), Path(store_file))
 
 
 if __name__ == "__main__":
