@@ -17,8 +17,10 @@ of it, so a restarted world hands back the same.
 
 Exit status: 0 when the cycles are done or a signal stopped it; EXIT_CANNOT_RESUME when a
 restart cannot get back to the run's state, EXIT_NOT_READY when the stages did not all
-announce themselves in time (the launcher then ends the run with the reason in the log);
-anything else is a crash, after which the launcher restarts it with --resume.
+announce themselves in time, EXIT_CANNOT_WRITE when it cannot write its trace or health
+record (a full disk: it stops at the cycle it could not record, world/recorder.py) (the
+launcher then ends the run with the reason); anything else is a crash, after which the
+launcher restarts it with --resume.
 """
 
 from __future__ import annotations
@@ -44,6 +46,7 @@ from bus.node import Inbox, open_node
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
 from world.domain import Domain, World, get_domain
+from world.errors import CannotRecord
 from world.recorder import CHECKPOINT_EVERY, Recorder
 from world.resume import CannotResume, Resumed, can_checkpoint, resume
 from world.run_scenario import Scenario, ScenarioError, load_scenario
@@ -55,6 +58,7 @@ STALL_TIMEOUT = 30.0      # [s] lockstep waits this long for a live but silent s
 STALL_REPORT_S = 1.0      # [s] a lockstep cycle waiting longer is recorded as a stall
 EXIT_CANNOT_RESUME = 3
 EXIT_NOT_READY = 4
+EXIT_CANNOT_WRITE = 5
 __all__ = ["pipelines", "run_world"]
 
 
@@ -134,7 +138,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     if again:
         log.info("resumed at cycle %d (checkpoint %d, %d cycles replayed)", first,
                  begun.checkpoint, begun.replayed)
-    start, reason = time.monotonic(), "done"
+    start, reason, unwritable = time.monotonic(), "done", None
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
         asked = serve_later(node, keys.world_events(run))
@@ -177,12 +181,16 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
+        except CannotRecord as exc:  # a full disk: no cycle runs that nothing records
+            reason, unwritable = f"stopped: {exc}", exc
         collector.close()
         asked.close("the run ended before the event could be applied")
         completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
         rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
              "complete" if completed else "early", reason)
+    if unwritable is not None:
+        raise unwritable
     return completed
 
 
@@ -217,6 +225,9 @@ def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
     except NotReady as exc:
         log.error("%s", exc)
         raise SystemExit(EXIT_NOT_READY) from exc
+    except CannotRecord as exc:
+        log.error("%s", exc)
+        raise SystemExit(EXIT_CANNOT_WRITE) from exc
     except (ScenarioError, BusError) as exc:
         log.error("%s", exc)
         raise SystemExit(1) from exc
