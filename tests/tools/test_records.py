@@ -13,7 +13,8 @@ from bus import keys
 from bus.messages import Envelope, GoalList, Intention, Percepts, WorldEvent, WorldState
 from bus.record import message_record
 from tools.cli import cli
-from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, coverage, locate
+from tools.record_coverage import coverage
+from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, locate
 
 ROOT = Path(__file__).resolve().parents[2]
 FIGURE3 = ROOT / "scenarios" / "blocks_figure3.toml"
@@ -49,9 +50,12 @@ def test_the_summary_says_which_share_of_the_run_its_record_lacks(tmp_path) -> N
         for cycle in (0, 1, 1, 3, 4):                        # 1 twice (a re-sent state), 2 lost
             _add(rec, keys.world_state("r1"), WorldState(env(cycle), {"time": cycle}, {}, []))
     assert coverage(tmp_path, 5) == {"file": str(tmp_path / RECORD_FILE), "world_states": 4,
-                                     "missing": 1}
-    assert coverage(tmp_path, 4)["missing"] == 0
-    (tmp_path / RECORD_FILE).write_bytes(b"\x89MCAP0\r\n")   # never closed: count unknown
+                                     "missing": 1, "gaps": [[2, 2]]}
+    assert coverage(tmp_path, 2)["missing"] == 0             # the cycles 0 and 1 are there
+    assert coverage(tmp_path, 7)["gaps"] == [[2, 2], [5, 6]]   # the end never came
+    (tmp_path / RECORD_FILE).write_bytes(b"\x89MCAP0\r\n")   # never closed: read as it is
+    assert coverage(tmp_path, 5)["gaps"] == [[0, 4]]
+    (tmp_path / RECORD_FILE).write_bytes(b"not a record at all")
     assert coverage(tmp_path, 5)["missing"] is None
 
 
