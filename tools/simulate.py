@@ -288,6 +288,7 @@ def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path |
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
     result["record_missing"] = None if record is None else 0  # written in the loop: all of it
+    result["record_gaps"], result["record_failed"] = (None if record is None else []), None
     if record is not None:  # each goal's status changes, as a launch's summary has them
         result["goals"] = records.with_history(result["goals"], Path(record).parent)
     if as_json:
