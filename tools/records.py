@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import logging
+import struct
 from collections import defaultdict
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
@@ -265,7 +266,7 @@ class RunRecord:
                 try:
                     self.meta = {m.name: dict(m.metadata)
                                  for m in make_reader(f).iter_metadata()}
-                except (McapError, ValueError, OSError) as exc:  # OSError: too short for one
+                except (McapError, ValueError, OSError, struct.error) as exc:  # too short
                     self.truncated = True
                     log.warning("%s: no summary section (%s); reading it as far as it goes",
                                 self.path, exc)
@@ -285,8 +286,8 @@ class RunRecord:
                     reader = NonSeekingReader(f) if self.truncated else make_reader(f)
                     for _, ch, msg in reader.iter_messages(log_time_order=not self.truncated):
                         self._records.append((ch.topic, orjson.loads(msg.data)))
-            except (McapError, ValueError, orjson.JSONDecodeError) as exc:
-                if not self.truncated:
+            except (McapError, ValueError, struct.error, orjson.JSONDecodeError) as exc:
+                if not self.truncated:  # struct.error: a record cut inside a header
                     raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
             except OSError as exc:
                 raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc

@@ -216,3 +216,26 @@ def test_explain_of_a_goal_finds_its_agent_in_a_run_of_several(tmp_path, monkeyp
         assert told.output.startswith(f"goal {goal_id} of {agent}: ")
     asked = runner.invoke(cli, ["explain", out["record"]])   # a decision: whose, then?
     assert asked.exit_code == 2 and "choose one with --agent" in asked.output
+
+
+def test_a_record_cut_at_any_byte_reads_as_far_as_it_goes(tmp_path) -> None:
+    """A record whose disk filled (or whose writer was killed) is cut anywhere, even inside
+    a record's header (drill full-disk: struct.error escaped the reader): it reads back
+    what it holds, a run of its first cycles, or says it is not a record; never a crash."""
+    env = lambda c: Envelope(1, "r1", c, "t", 99)  # noqa: E731
+    whole = tmp_path / "whole.mcap"
+    with RecordWriter(whole, "r1") as rec:
+        for cycle in range(60):
+            _add(rec, keys.world_state("r1"), WorldState(env(cycle), {"time": cycle,
+                                                                        "pad": "x" * 300},
+                                                         {}, []))
+    data = whole.read_bytes()
+    cut = tmp_path / RECORD_FILE
+    for end in range(0, len(data), 97):
+        cut.write_bytes(data[:end])
+        try:
+            held = sorted(r["env"]["cycle"] for _, r in RunRecord(cut).records())
+        except RecordError as exc:
+            assert "not a readable run record" in str(exc)
+            continue
+        assert held == list(range(len(held))), (end, held)
