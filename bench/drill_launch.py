@@ -26,7 +26,7 @@ class Launch:
     TELEO_RUN_DIR, when not `folder`, where its summary and output go)."""
 
     def __init__(self, folder: Path, scenario: Path, *args: str,
-                 runs_in: Path | None = None) -> None:
+                 runs_in: Path | None = None, preexec_fn=None) -> None:
         args = (*args, *(a for a in EXTRA if a not in args))
         self.folder = folder
         self.state = runs_in or folder
@@ -35,7 +35,8 @@ class Launch:
         self._info: dict[str, Any] | None = None
         self.proc = subprocess.Popen(
             [TELEO, "launch", str(scenario), "--summary", str(folder / "summary.json"), *args],
-            cwd=ROOT, env=self.env, stdout=self.out, stderr=subprocess.STDOUT)
+            cwd=ROOT, env=self.env, stdout=self.out, stderr=subprocess.STDOUT,
+            preexec_fn=preexec_fn)  # noqa: PLW1509 (the drill has no threads then)
 
     def info(self, timeout: float = 120.0) -> dict[str, Any]:
         """The run file, once the launcher has registered the run (every process up); the

@@ -11,6 +11,7 @@ or are attacked (docs/faults.md holds the table these figures feed).
     .venv/bin/python bench/drills.py foreign              # a stranger on a secured run's bus
     .venv/bin/python bench/drills.py full-disk            # a 2 MB run folder (root: tmpfs)
     .venv/bin/python bench/drills.py teleo-stop --seconds 60  # `teleo stop` of a long run
+    .venv/bin/python bench/drills.py slow-record          # a recorder short of CPU (root)
     .venv/bin/python bench/drills.py kill --secure        # the same on a secured bus
 
 Each trial is a real `teleo launch` of the driving demo (or --scenario) in lockstep, in its
@@ -35,7 +36,12 @@ from typing import Any
 
 import click
 from drill_launch import DEMO, EXTRA, ROOT, Launch, Reference, pids_alive, reference, wait_for
-from record_drills import drill_full_disk, drill_router_record, drill_teleo_stop
+from record_drills import (
+    drill_full_disk,
+    drill_router_record,
+    drill_slow_record,
+    drill_teleo_stop,
+)
 
 TARGETS = ("goals", "ME.perception", "ME.inference", "ME.executive", "world", "router")
 
@@ -182,13 +188,14 @@ def _print(rows: list[dict[str, Any]]) -> None:
         click.echo("  " + "  ".join(f"{k}={v}" for k, v in row.items()))
 
 
-ONE_RUN = ("launcher", "foreign", "ctrl-c", "full-disk", "teleo-stop")  # no reference needed
+ONE_RUN = ("launcher", "foreign", "ctrl-c", "full-disk", "teleo-stop", "slow-record")
+# (those need no undisturbed run to compare with)
 
 
 @click.command()
 @click.argument("which", type=click.Choice(["kill", "stop", "router", "router-record",
                                             "launcher", "ctrl-c", "foreign", "full-disk",
-                                            "teleo-stop", "all"]))
+                                            "teleo-stop", "slow-record", "all"]))
 @click.option("--trials", default=1, show_default=True, help="Trials per target.")
 @click.option("--seconds", default=2.0, show_default=True,
               help="SIGSTOP length; for teleo-stop, how long the run runs first [s].")
@@ -199,8 +206,10 @@ ONE_RUN = ("launcher", "foreign", "ctrl-c", "full-disk", "teleo-stop")  # no ref
 @click.option("--size", default="2m", show_default=True, help="full-disk: the tmpfs size.")
 @click.option("--fill-at", type=int, default=300, show_default=True,
               help="full-disk: the cycle at which the second trial fills the disk at once.")
+@click.option("--quota", default=5000, show_default=True,
+              help="slow-record: the launcher's CPU [us per 100 ms].")
 def main(which: str, trials: int, seconds: float, seed: int, scenario: Path,
-         secure: bool, size: str, fill_at: int) -> None:
+         secure: bool, size: str, fill_at: int, quota: int) -> None:
     """Run fault drills against real launches and print what happened."""
     rng = random.Random(seed)
     EXTRA[:] = ["--secure"] if secure else []
@@ -236,6 +245,8 @@ def main(which: str, trials: int, seconds: float, seed: int, scenario: Path,
                 rows.append(drill_foreign(folder(), scenario))
             if which in ("full-disk", "all"):
                 rows += [drill_full_disk(folder(), scenario, size, at) for at in (None, fill_at)]
+            if which in ("slow-record", "all"):
+                rows.append(drill_slow_record(folder(), scenario, quota))
             if which in ("teleo-stop", "all"):
                 rows.append(drill_teleo_stop(folder(), scenario, seconds if which != "all"
                                              else 20.0))

@@ -37,6 +37,7 @@ RECORDER_META = "teleo.recorder"
 LOOK_S = 0.02  # [s] between looks at the subscription when nothing waits
 FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken after the stop
 FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
+PROGRESS_S = 0.05  # [s] a launch's recorder says the cycle it has reached at most this often
 
 
 class BusRecorder:
@@ -62,9 +63,13 @@ class BusRecorder:
         self._cycles: set[int] = set()  # the distinct cycles of the messages recorded
         self.cpu_s = 0.0
         self._announce, self._quiet_s, self._settle_s = False, 0.3, None
+        self._until: int | None = None  # stop(): the cycles the record must reach
         self._stop_ns: int | None = None  # wall clock of the stop [ns]: later sends left out
         self.error: BaseException | None = None
         self.failed: dict[str, Any] = {}  # the write that failed: {"cycle", "reason"}
+        self._own = keys.stats(run, process)  # a launch's recorder says its progress there
+        self._node = None  # the session it says it on (a launch's recorder only)
+        self._told, self._told_at = -1, 0.0  # the cycle last said, and when [s]
         self.cut = False  # stop() left out what was still queued (its time was up, or asked)
         self._ready = threading.Event()
         self._stop = threading.Event()
@@ -86,7 +91,8 @@ class BusRecorder:
 
     def stop(self, quiet_s: float = 0.3, timeout: float = 30.0,
              settle_s: float | None = None,
-             progress: Callable[[BusRecorder, float], None] | None = None) -> RecordWriter:
+             progress: Callable[[BusRecorder, float], None] | None = None,
+             until: int | None = None) -> RecordWriter:
         """Finish: record every message sent before this call and none sent after it, close
         the record (with this recorder's own costs in its metadata `teleo.recorder`); returns
         the writer.
@@ -102,8 +108,12 @@ class BusRecorder:
         in flight are still taken once the queue is caught up (None: no bound). `timeout`
         bounds the whole stop, and `cut_short()` (a second Ctrl-C) ends it at once: what is
         still queued then is left out (`cut`), and the record's metadata says which cycles
-        it holds. `progress(self, seconds)` is called about once a second while it drains."""
-        self._quiet_s, self._settle_s = quiet_s, settle_s
+        it holds. `progress(self, seconds)` is called about once a second while it drains.
+        `until`: the cycles the run ran (a launch: its trace's lines); the drain does not end
+        on a quiet bus before the world state of the last of them is written (a recorder
+        starved of CPU reads in bursts, and a quiet spell is not the end: drill
+        slow-record), unless the record cannot be written."""
+        self._quiet_s, self._settle_s, self._until = quiet_s, settle_s, until
         if self._stop_ns is None:
             self._stop_ns = time.time_ns()
         self._stop.set()
@@ -154,7 +164,10 @@ class BusRecorder:
         try:
             with open_node(self.cfg, self.run, self.process) as node:
                 inbox = node.subscribe_fifo(keys.run_all(self.run))
-                if self._announce:
+                if self.process == keys.RECORDER:
+                    node.declare([self._own])
+                    self._node = node
+                if self._announce or self._node is not None:
                     node.announce()
                 self._ready.set()
                 self._pump(inbox)
@@ -180,13 +193,28 @@ class BusRecorder:
                 now = time.monotonic()
                 if caught_up is None and len(batch) < most:
                     caught_up = now  # all that had arrived by the stop is written
-                if quiet_since is not None and now - quiet_since >= self._quiet_s:
+                if quiet_since is not None and now - quiet_since >= self._quiet_s \
+                        and (self.failed or self._until is None
+                             or self.writer.cycles >= self._until):
                     return
                 if caught_up is not None and self._settle_s is not None \
                         and now - caught_up >= self._settle_s:
                     return
+            self._tell_progress()
             if len(batch) < most:
                 time.sleep(LOOK_S)
+
+    def _tell_progress(self) -> None:
+        """A launch's recorder: publish, every PROGRESS_S at most, the last cycle it holds
+        whole (every message of a cycle is sent before the next world state, so it is the
+        one before the latest world state written), for the world to keep pace with."""
+        whole = self.writer.cycles - 2
+        now = time.monotonic()
+        if self._node is None or whole <= self._told or now - self._told_at < PROGRESS_S:
+            return
+        self._told, self._told_at = whole, now
+        self._node.publish(self._own, ProcessStats(self._node.envelope(whole), self.process,
+                                                   0.0, 0))
 
     def _write_all(self, batch: list[tuple[str, bytes]]) -> int:
         """Write the messages of `batch` sent before the stop; how many were."""
@@ -194,6 +222,8 @@ class BusRecorder:
         for key, payload in batch:
             if self._abandon.is_set():
                 break
+            if key == self._own:  # its own progress: not a message of the run
+                continue
             try:
                 record = to_record(key, payload)
             except CodecError as exc:
@@ -247,7 +277,7 @@ def run_recorder(cfg: BusConfig, run: str, run_dir: Path, scenario: Any) -> BusR
     2026-12-02); a client among clients waits for the router with them, and the lockstep
     world re-sends the cycle it waits on, which every stage answers again."""
     meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain}
-    return BusRecorder(cfg, run, run_dir / RECORD_FILE, meta, process="launch.record")
+    return BusRecorder(cfg, run, run_dir / RECORD_FILE, meta, process=keys.RECORDER)
 
 
 class SimRecorder:

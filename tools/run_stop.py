@@ -93,7 +93,8 @@ def stop_run(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
     sup.stop_all(["world"], keep=["router"])
     lap("processes")
     if held.recorder is not None:  # drained while the router still holds what it is owed
-        held.recorder.stop(timeout=DRAIN_TIMEOUT_S, progress=drain_progress(plan.run_dir))
+        held.recorder.stop(timeout=DRAIN_TIMEOUT_S, progress=drain_progress(plan.run_dir),
+                           until=trace_cycles(plan.run_dir) if plan.runs_world else None)
         outcome.recorder = held.recorder.report()
         lap("record")
     sup.stop_all([], last=["router"])

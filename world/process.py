@@ -10,6 +10,10 @@ bus.clock.Clock, apply them (the world's safe action for an agent whose actions 
 arrive) and step the physics by dt. The files it keeps in DIR are described in
 world/recorder.py. `--resume` (the launcher restarting a world that died) first brings the
 simulation back to the cycle the run had reached (world/resume.py), then goes on from there.
+In lockstep the world also keeps pace with the launch's recorder: it does not begin a cycle
+more than `record_window` cycles ahead of the last one the recorder has written whole (its
+ProcessStats say which), so that on a loaded machine the run slows down rather than lose the
+end of its record (bus/clock.py Clock.keep_pace; no wait when there is no recorder).
 Each agent's memory (what its executive sends with its actions: world-model facts, SCS
 threads and discount factors) is kept and handed back in the next world state, so a restarted
 agent process loses none of it (docs/bus.md, "Agent memory"); the trace records each change
@@ -56,6 +60,8 @@ READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
 RESTART_TIMEOUT = 30.0    # [s] lockstep waits this long for a crashed stage to come back
 STALL_TIMEOUT = 30.0      # [s] lockstep waits this long for a live but silent stage
 STALL_REPORT_S = 1.0      # [s] a lockstep cycle waiting longer is recorded as a stall
+RECORD_BACKLOG = 8192     # [messages] see record_window
+HOLD_REPORT_S = 1.0       # [s] a wait for the record longer than this is in health.jsonl
 EXIT_CANNOT_RESUME = 3
 EXIT_NOT_READY = 4
 EXIT_CANNOT_WRITE = 5
@@ -92,6 +98,16 @@ def _inject(sim: World, due: list[dict[str, Any]], events_in: Inbox, asked: Pend
         pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
                                   str(outcome.get("reason", "")), outcome))
     return injected
+
+
+def record_window(agents: int) -> int:
+    """[cycles] a lockstep run may be ahead of its recorder: about RECORD_BACKLOG messages
+    (a world state and its stats, each agent's percepts, beliefs, intention, actions, goal
+    list and three stats, the goal-entry process's stats per cycle), an eighth of what the
+    recorder's queue holds, so that no sender ever waits for it with messages queued (a
+    process that stops drops them: 7,447 of 120,000 in tests/e2e/test_record_drain.py's
+    case, 8,124 of 45,594 cycles in drill d4d) and its drain at a stop stays short."""
+    return max(20, RECORD_BACKLOG // (8 * agents + 3))
 
 
 def _actions_of(sim: World, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
@@ -148,6 +164,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
+        pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
         collector = Collector()
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
@@ -159,6 +176,10 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 if stop.is_set():
                     reason = "stopped by a signal"
                     break
+                if pace:  # the run never outruns its record by more than `pace` cycles
+                    held = clock.keep_pace(keys.RECORDER, t - 1 - pace)
+                    if held > HOLD_REPORT_S:
+                        rec.event("record-wait", cycle=t, seconds=round(held, 3))
                 w0 = time.perf_counter()
                 injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
                 snap = sim.snapshot_dict()
