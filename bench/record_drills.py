@@ -82,7 +82,7 @@ def drill_full_disk(folder: Path, scenario: Path, size: str, fill_at: int | None
 
 
 def _fill(path: Path) -> None:
-    with path.open("wb") as f:
+    with path.open("wb", buffering=0) as f:  # unbuffered: nothing left to flush on close
         try:
             while True:
                 f.write(b"\0" * 65536)

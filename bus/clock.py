@@ -125,32 +125,39 @@ class Clock:
             raise ClockStopped(cycle, report.dead, report)
         return report
 
-    def keep_pace(self, process: str, cycle: int, stuck_s: float = 10.0) -> float:
+    def keep_pace(self, process: str, cycle: int, stuck_s: float = 10.0,
+                  resend: WorldState | None = None) -> float:
         """Wait until `process` (not a stage: the launch's recorder) has reported, in its
-        ProcessStats, cycle `cycle` or a later one; returns the seconds waited [s]. No wait
-        while its token is absent (no recorder, or it died), nor once it has made no
-        progress for `stuck_s` [s]; a stop interrupts it (CycleInterrupted). Lockstep only:
-        what a run sends while a subscriber lags waits in the senders' queues, and a process
-        that stops drops what its queue still holds (tests/e2e/test_record_drain.py)."""
+        ProcessStats, cycle `cycle` or a later one (-1: it has begun); returns the seconds
+        waited [s]. No wait while its token is absent (no recorder, or it died), nor once it
+        has made no progress for `stuck_s` [s]; a stop interrupts it (CycleInterrupted).
+        `resend`: the state to publish again every `resend_s` while it waits (a state it
+        may have missed: the stages answer it from their caches). Lockstep only: what a run
+        sends while a subscriber lags waits in the senders' queues, and a process that stops
+        drops what its queue still holds (tests/e2e/test_record_drain.py)."""
         self._note_stats()
-        seen = self.last_seen.get(process, -1)
+        seen = self.last_seen.get(process, -2)
         if seen >= cycle or self._stuck.get(process) == seen \
                 or process not in self.node.presence.snapshot():
             return 0.0  # there, stuck at the cycle it was given up at (until it moves), gone
-        start = moved = time.monotonic()
-        while self.last_seen.get(process, -1) < cycle:
+        start = moved = sent = time.monotonic()
+        while self.last_seen.get(process, -2) < cycle:
             if self.stop.is_set():
                 raise CycleInterrupted(cycle, {process})
             if process not in self.node.presence.snapshot():
                 break
-            if time.monotonic() - moved > stuck_s:
+            now = time.monotonic()
+            if now - moved > stuck_s:
                 log.warning("%s has not moved from cycle %d for %.0f s: not waited for",
                             process, seen, stuck_s)
                 self._stuck[process] = seen
                 break
+            if resend is not None and now - sent >= self.resend_s:
+                self.node.publish(self._state_key, resend)
+                sent = now
             time.sleep(_POLL_S)
             self._note_stats()
-            if self.last_seen.get(process, -1) > seen:
+            if self.last_seen.get(process, -2) > seen:
                 seen, moved = self.last_seen[process], time.monotonic()
         return time.monotonic() - start
 

@@ -38,6 +38,7 @@ LOOK_S = 0.02  # [s] between looks at the subscription when nothing waits
 FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken after the stop
 FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
 PROGRESS_S = 0.05  # [s] a launch's recorder says the cycle it has reached at most this often
+AGAIN_S = 0.5      # [s] and says it again this often when it has not moved
 
 
 class BusRecorder:
@@ -69,7 +70,7 @@ class BusRecorder:
         self.failed: dict[str, Any] = {}  # the write that failed: {"cycle", "reason"}
         self._own = keys.stats(run, process)  # a launch's recorder says its progress there
         self._node = None  # the session it says it on (a launch's recorder only)
-        self._told, self._told_at = -1, 0.0  # the cycle last said, and when [s]
+        self._told, self._told_at = -2, 0.0  # the cycle last said (-1: it has begun), when
         self.cut = False  # stop() left out what was still queued (its time was up, or asked)
         self._ready = threading.Event()
         self._stop = threading.Event()
@@ -205,13 +206,15 @@ class BusRecorder:
                 time.sleep(LOOK_S)
 
     def _tell_progress(self) -> None:
-        """A launch's recorder: publish, every PROGRESS_S at most, the last cycle it holds
-        whole (every message of a cycle is sent before the next world state, so it is the
-        one before the latest world state written), for the world to keep pace with."""
+        """A launch's recorder: publish, every PROGRESS_S at most (every AGAIN_S when it has
+        not moved), the last cycle it holds whole (every message of a cycle is sent before
+        the next world state, so it is the one before the latest world state written; -1:
+        it has the first), for the world to keep pace with."""
         whole = self.writer.cycles - 2
         now = time.monotonic()
-        if self._node is None or whole <= self._told or now - self._told_at < PROGRESS_S:
-            return
+        if self._node is None or now - self._told_at < (
+                PROGRESS_S if whole > self._told else AGAIN_S):  # said again now and then:
+            return                                             # a restarted world learns it
         self._told, self._told_at = whole, now
         self._node.publish(self._own, ProcessStats(self._node.envelope(whole), self.process,
                                                    0.0, 0))

@@ -165,6 +165,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
         pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
+        state: WorldState | None = None  # the last one published
         collector = Collector()
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
@@ -176,18 +177,19 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 if stop.is_set():
                     reason = "stopped by a signal"
                     break
-                if pace:  # the run never outruns its record by more than `pace` cycles
-                    held = clock.keep_pace(keys.RECORDER, t - 1 - pace)
+                if pace and t > first:  # never more than `pace` cycles ahead of the record,
+                    held = clock.keep_pace(  # and its first cycle in it before the next
+                        keys.RECORDER, t - 1 - pace if t > first + 1 else -1,
+                        resend=state if t == first + 1 else None)
                     if held > HOLD_REPORT_S:
                         rec.event("record-wait", cycle=t, seconds=round(held, 3))
                 w0 = time.perf_counter()
                 injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
                 snap = sim.snapshot_dict()
                 world_ms = (time.perf_counter() - w0) * 1e3
-                report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes,
-                                                       injected, dict(memory)),
-                                         meanwhile=partial(_off_the_path, rec, collector,
-                                                           t, snap))
+                state = WorldState(node.envelope(t), snap, outcomes, injected, dict(memory))
+                report = clock.run_cycle(t, state, meanwhile=partial(_off_the_path, rec,
+                                                                      collector, t, snap))
                 changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
                 memory.update(changed)  # an agent given the no-op keeps its last memory
                 w0 = time.perf_counter()

@@ -31,8 +31,15 @@ run, endpoint = sys.argv[1], sys.argv[2]
 with open_node(BusConfig(connect=(endpoint,)), run, keys.RECORDER) as node:
     key = keys.stats(run, keys.RECORDER)
     node.declare([key])
+    states = node.subscribe(keys.world_state(run))
     node.announce()
     print("up", flush=True)
+    import threading
+    def hear():
+        while True:
+            msg = states.get(None)
+            print("state", msg.env.cycle, flush=True)
+    threading.Thread(target=hear, daemon=True).start()
     for line in sys.stdin:            # a cycle to report, or "quit"
         if line.strip() == "quit":
             break
@@ -71,7 +78,7 @@ def recorder(cfg: BusConfig, run_id: str, clock: Clock) -> Iterator[Recorder]:
     rec.quit()
 
 
-def pace_in_thread(clock: Clock, cycle: int, **kw: float) -> tuple[threading.Thread, list]:
+def pace_in_thread(clock: Clock, cycle: int, **kw: object) -> tuple[threading.Thread, list]:
     got: list = []
 
     def run() -> None:
@@ -129,3 +136,20 @@ def test_a_stop_interrupts_the_wait(clock, recorder) -> None:
     clock.stop.set()
     thread.join(30)
     assert isinstance(got[0], CycleInterrupted)
+
+
+def test_a_first_cycle_the_recorder_missed_is_sent_again_until_it_has_it(clock,
+                                                                          recorder) -> None:
+    """A recorder starved of CPU as the run starts can miss the first world state: the world
+    holds the second cycle and sends the first again each second until the recorder has it
+    (it reports -1: it has begun)."""
+    from bus.messages import WorldState
+
+    first = WorldState(clock.node.envelope(0), {"time": 0.0}, {}, [])
+    thread, got = pace_in_thread(clock, -1, resend=first)
+    heard = [recorder.proc.stdout.readline().split() for _ in range(2)]
+    assert heard == [["state", "0"], ["state", "0"]]   # sent again, and again
+    assert thread.is_alive()
+    recorder.has(-1)
+    thread.join(30)
+    assert not thread.is_alive() and got[0] >= clock.resend_s
