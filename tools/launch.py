@@ -22,7 +22,6 @@ import logging
 import os
 import re
 import secrets
-import signal
 import sys
 import time
 from contextlib import nullcontext, redirect_stdout
@@ -31,9 +30,9 @@ from pathlib import Path
 
 import click
 
-from tools import runfile, summary
+from tools import runfile, stop_signals, summary
 from tools.cpus import usable_cores
-from tools.paths import OutputPath, picture_check
+from tools.paths import OutputPath, describe_os_error, picture_check
 from tools.plot import plot_check
 from tools.run_plan import (
     Plan,
@@ -54,17 +53,6 @@ from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
 REMOTE_READY_TIMEOUT = 600.0  # [s] the world waits for stages started on other hosts
-
-
-def _raise_interrupt(signum: int, frame: object) -> None:
-    raise KeyboardInterrupt
-
-
-def _catch_signals() -> None:
-    """SIGINT, SIGTERM and SIGHUP all stop the run in order. SIGINT is set explicitly: a
-    background job of a non-interactive shell starts with it ignored."""
-    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-        signal.signal(sig, _raise_interrupt)
 
 
 class PerProcess(click.ParamType):
@@ -136,8 +124,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     """
     if plot_file and no_record:
         raise click.UsageError("--plot draws the run record: leave out --no-record")
-    _catch_signals()
     try:
+        stop_signals.running()  # SIGINT, SIGTERM, SIGHUP: stop in order (tools/stop_signals.py)
         scenario, _ = load_checked(scenario_file, overrides)
         if learned:
             check_learned(scenario, learned)
@@ -154,6 +142,10 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             _reach_router(plan)
     except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
+    except KeyboardInterrupt:
+        stop_signals.stopping()
+        click.echo("interrupted before the run started: no process was started", err=True)
+        raise SystemExit(summary.EXIT_CODES["interrupted"]) from None
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
             "secured": plan.secrets is not None, "overrides": list(scenario.overrides)}
@@ -166,11 +158,13 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             raise SystemExit(1 if outcome.left_down or outcome.ended else 0)
         result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
                                outcome.left_down, outcome.ended, outcome.requested_stop,
-                               scenario.events)
-        _finish(result, scenario, plan.run_dir, summary_file, render_file, plot_file, as_json)
+                               scenario.events, outcome.recorder)
+        unwritten = _finish(result, scenario, plan.run_dir, summary_file, render_file,
+                            plot_file, as_json)
     if as_json:
         click.echo(json.dumps(result, indent=1))
-    raise SystemExit(summary.exit_code(result))
+    code = summary.exit_code(result)
+    raise SystemExit(code if code or not unwritten else 1)
 
 
 def _per_process(asked: int | str, agents: int) -> tuple[int, int]:
@@ -197,13 +191,19 @@ def _count(n: int, noun: str) -> str:
 
 
 def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
-            render_file: str | None, plot_file: str | None, as_json: bool) -> None:
-    """The summary for a person (unless --json), its file, the picture, the plot."""
+            render_file: str | None, plot_file: str | None, as_json: bool) -> bool:
+    """The summary for a person (unless --json), its file, the picture, the plot; returns
+    whether the summary file could not be written (said on stderr: a full disk)."""
     if not as_json:
         summary.echo(result)
     if summary_file:
-        Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
-        Path(summary_file).write_text(json.dumps(result, indent=1))
+        try:
+            Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
+            Path(summary_file).write_text(json.dumps(result, indent=1))
+        except OSError as exc:
+            click.echo(f"Error: the summary was not written: {describe_os_error(exc)}",
+                       err=True)
+            return True
         click.echo(f"summary written to {summary_file}")
     if render_file:
         frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
@@ -213,6 +213,7 @@ def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str |
         from tools.plot import plot_command_output
 
         click.echo(plot_command_output(run_dir, Path(plot_file)))
+    return False
 
 
 def check_learned(scenario: Scenario, learned: str) -> None:

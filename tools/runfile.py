@@ -113,6 +113,42 @@ def all_runs() -> list[tuple[RunInfo, bool]]:
     return sorted(found, key=lambda pair: pair[0].started)
 
 
+def cmdline(pid: int) -> str:
+    """The command line of process `pid` ("" when it cannot be read: gone, or not Linux)."""
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(
+            errors="replace")
+    except OSError:
+        return ""
+
+
+def belongs(pid: int, run: str) -> bool:
+    """Whether `pid` is a live process of `run` (never a recycled pid of something else:
+    every process of a run names it on its command line)."""
+    return alive(pid) and run in cmdline(pid)
+
+
+def leftovers(info: RunInfo) -> list[int]:
+    """The processes of a registered run that are still there."""
+    return [pid for pid in info.pids.values() if belongs(pid, info.run)]
+
+
+def prune() -> tuple[list[RunInfo], list[RunInfo]]:
+    """Remove the entries whose launcher is gone and of whose processes none is left (a
+    launcher killed by SIGKILL leaves its entry behind); returns (removed, kept): the stale
+    entries kept are those with processes still there, for `teleo stop RUN` to stop."""
+    removed, kept = [], []
+    for info, up in all_runs():
+        if up:
+            continue
+        if leftovers(info):
+            kept.append(info)
+        else:
+            remove(info)
+            removed.append(info)
+    return removed, kept
+
+
 def find(run: str | None = None) -> RunInfo:
     """The running launch named `run`, or the only one; raises NoRunningLaunch saying where
     it looked and what it found (none, several, or a launcher that has exited)."""

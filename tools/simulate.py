@@ -319,6 +319,7 @@ def _write_outputs(run: SimRun, sc: Scenario, out: _Outputs, seed: int | None,
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
     result["record_missing"] = None if record is None else 0  # written in the loop: all of it
+    result["record_gaps"], result["record_failed"] = (None if record is None else []), None
     if out.summary:
         out.summary.parent.mkdir(parents=True, exist_ok=True)
         out.summary.write_text(json.dumps(result, indent=1))
