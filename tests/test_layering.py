@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("agents", "bus", "world", "tools")
+PACKAGES = ("agents", "bus", "schema", "world", "tools")
 STDLIB = set(sys.stdlib_module_names)
 
 
@@ -59,6 +59,12 @@ def _top(name: str) -> str:
 def test_the_language_engine_imports_the_standard_library_only() -> None:
     assert _violations("agents.lang", lambda m, i: _top(i) in STDLIB
                        or i.startswith("agents.lang")) == []
+
+
+def test_the_schema_package_imports_the_standard_library_only() -> None:
+    """schema/ (the field specs every process checks its messages with) sits below the
+    bus, the worlds and the processes: it imports nothing of theirs."""
+    assert _violations("schema", lambda m, i: _top(i) in STDLIB or _top(i) == "schema") == []
 
 
 def test_only_bus_imports_zenoh_and_msgpack() -> None:

@@ -35,10 +35,25 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
+from schema import FieldError, Plain, brief
 from world.errors import ConfigError
 
 Outcome = dict[str, Any]
 """{"action": [...], "status": "done" | "failed", "reason": str} (docs/architecture.md)."""
+
+_EVENT_DATA = Plain(max_depth=16, top=None)
+
+
+def event_outcome(event: Any, reason: str = "") -> dict[str, Any]:
+    """An injected event's outcome, {"event", "status": "done"|"failed", "reason"} (failed
+    when there is a ``reason``). It goes into the world state and the trace, so a refused
+    event that is not plain data (bytes, NaN, nested too deep: docs/faults.md, "Hostile
+    input") is kept as its shortened text."""
+    try:
+        _EVENT_DATA.check(event)
+    except FieldError:
+        event = brief(event, 200)
+    return {"event": event, "status": "failed" if reason else "done", "reason": reason}
 
 
 @runtime_checkable
