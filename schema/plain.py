@@ -1,11 +1,13 @@
 """Plain data: the values that may travel in a field whose inside another package reads (an
 agent's memory, a world snapshot, an intention), checked only for what every reader and
-writer of it relies on: null, booleans, integers, finite floats, strings, arrays and maps with
-string keys, nested at most ``max_depth`` levels. So such a value can always be encoded again
-(msgpack stops at 512 levels), written to JSON (no NaN, no bytes) and shown in a message."""
+writer of it relies on: null, booleans, integers of at most 64 bits, finite floats, strings,
+arrays and maps with string keys, nested at most ``max_depth`` levels. So such a value can
+always be encoded again (msgpack stops at 512 levels), written to JSON (no NaN, no bytes) and
+shown in a message."""
 
 from __future__ import annotations
 
+from collections import deque
 from itertools import chain
 from math import isfinite
 from typing import Any
@@ -75,9 +77,9 @@ def _keys_ok(level: list) -> bool:
 
 def _where(value: Any, max_depth: int) -> FieldError:
     """The error naming the first value that is not plain data (or is nested too deep)."""
-    todo: list[tuple[tuple, Any, int]] = [((), value, 0)]
+    todo: deque[tuple[tuple, Any, int]] = deque([((), value, 0)])
     while todo:
-        path, v, depth = todo.pop(0)
+        path, v, depth = todo.popleft()
         kind = type(v)
         if kind in _CONTAINERS:
             if depth >= max_depth:
@@ -87,7 +89,7 @@ def _where(value: Any, max_depth: int) -> FieldError:
                     if type(k) is not str or not _utf8([k]):
                         return FieldError(f"expected string keys, got {_show(k)}", path)
             pairs = v.items() if kind is dict else enumerate(v)
-            todo += [((*path, k), x, depth + 1) for k, x in pairs]
+            todo.extend(((*path, k), x, depth + 1) for k, x in pairs)
         elif kind not in _ATOMS or (kind is float and not isfinite(v)) or \
                 (kind is int and not _LO <= v <= _HI) or (kind is str and not _utf8([v])):
             return FieldError("expected plain data (null, true/false, a finite number, a "

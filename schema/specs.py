@@ -187,7 +187,13 @@ class ListOf(Spec):
     def __init__(self, item: Spec, max_len: int = 10_000, min_len: int = 0,
                  what: str = "") -> None:
         self.item, self.max_len, self.min_len = item, max_len, min_len
-        self.expected = what or f"an array of at most {max_len} items"
+        self.expected = what or "an array"
+
+    def refuse(self, value: Any) -> FieldError:
+        if type(value) is list:
+            return FieldError(f"expected {self.expected} of {self.min_len} to {self.max_len} "
+                              f"items, got {len(value)}: {brief(value)}")
+        return super().refuse(value)
 
     def check(self, value: Any) -> Any:
         if type(value) is not list or not self.min_len <= len(value) <= self.max_len:
@@ -225,7 +231,13 @@ class MapOf(Spec):
     def __init__(self, value: Spec, key: Spec | None = None, max_len: int = 10_000,
                  what: str = "") -> None:
         self.key, self.value, self.max_len = key or Str(), value, max_len
-        self.expected = what or f"a map of at most {max_len} entries"
+        self.expected = what or "a map"
+
+    def refuse(self, value: Any) -> FieldError:
+        if type(value) is dict:
+            return FieldError(f"expected {self.expected} of at most {self.max_len} entries, "
+                              f"got {len(value)}")
+        return super().refuse(value)
 
     def check(self, value: Any) -> Any:
         if type(value) is not dict or len(value) > self.max_len:

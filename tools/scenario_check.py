@@ -51,6 +51,9 @@ def check_scenario(scenario: Scenario) -> dict[str, Program]:
         if domain.event_kinds and kind not in domain.event_kinds:
             raise ScenarioError(f"{where}: [[events]] #{k + 1}.kind: expected one of "
                                 f"{list(domain.event_kinds)}, got {kind!r}")
+        problem = domain.check_event(event.event) if domain.check_event else ""
+        if problem:   # a field of the wrong type, out of range, or unknown to its kind
+            raise ScenarioError(f"{where}: [[events]] #{k + 1} ({kind}): {problem}")
     return programs
 
 

@@ -57,7 +57,8 @@ MESSAGES = {
         GoalReply, envs, st.booleans(), text, st.lists(maps, max_size=3).map(tuple))),
     "goal_list": (lambda: keys.goal_list("r", "ME"), st.builds(
         GoalList, envs, text, st.lists(st.fixed_dictionaries(
-            {"id": text, "goal": text, "priority": ints, "status": text}), max_size=3)
+            {"id": st.text(min_size=1, max_size=12), "goal": text, "priority": ints,
+             "status": text}), max_size=3)
         .map(tuple))),
     "stats": (lambda: keys.stats("r", "ME.inference"), st.builds(
         ProcessStats, envs, text, st.floats(0, 1e9), st.integers(0, 2**63 - 1))),
@@ -169,3 +170,39 @@ def test_subclasses_are_not_bus_messages():
 
     with pytest.raises(CodecError, match="not a bus message"):
         encode(MyPercepts(ENV, "ME", ()))
+
+
+WHOLE = ("malformed msgpack", "expected a msgpack map", "unknown schema version",
+         "unknown message kind", "wrong message kind", "malformed envelope", "lacks field")
+
+
+@pytest.mark.parametrize("kind", sorted(MESSAGES))
+def test_any_spoilt_field_is_decoded_as_valid_or_refused_naming_kind_and_field(kind):
+    """Issue 24, item 1: a valid message with fields replaced by junk of any type (deep,
+    huge, NaN, bytes, unhashable) is either still valid, and then re-encodes, or refused
+    with a CodecError naming the key and `Kind.field` (or the payload as a whole)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.append(str(Path(__file__).resolve().parents[2] / "bench"))
+    from fuzz_values import mutate, wire
+
+    key_fn, strategy = MESSAGES[kind]
+
+    @settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(strategy, st.randoms(use_true_random=False))
+    def prop(msg, rng):
+        body = mutate(msgpack.unpackb(encode(msg)), rng)
+        data = wire(body)
+        if data is None:
+            return
+        try:
+            got = decode(key_fn(), data)
+        except CodecError as exc:
+            text = str(exc)
+            assert text.startswith(key_fn() + ": ")
+            assert any(w in text for w in WHOLE) or f"{msg.KIND}." in text, text
+        else:
+            assert decode(key_fn(), encode(got)) == got
+
+    prop()

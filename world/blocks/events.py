@@ -117,7 +117,7 @@ def _table_spot(world: World, event: dict, width: float, height: float) -> float
         box = Box(spec.column_x(k), spec.height + height / 2, 0.0, width, height)
         if world.obstacle(box) is None:
             return spec.column_x(k)
-    raise WorldError(f"column: no free column on the table {spec.name}")
+    raise WorldError(f"block: no free column on the table {spec.name} for {event['block']}")
 
 
 def _remove(world: World, event: dict) -> None:
