@@ -4,10 +4,11 @@
 A field whose inside is another package's (a snapshot is its world's, a memory's SCS state
 the engine's, an intention the engine's Decision) is checked here as plain data only (no
 bytes, NaN or infinity, string keys, bounded depth: what every reader and writer of it relies
-on), and by its owner when read: the world's snapshot records (world/<domain>/snapshot.py) in
-perception, the SCS state by the engine (agents/lang/scs/state.py), an intention's goals by
-the goal-entry process (agents/processes/goal_store.py). Rows of neutral lists (percepts,
-beliefs, actions) are checked by bus/rows.py in C-level passes (the hot path).
+on; schema.Plain), and by its owner when read: the world's snapshot
+(world/<domain>/snapshot.py SNAPSHOT) in perception, the SCS state by the engine
+(agents/lang/scs/state.py, fitting.py), an intention's goals by the goal-entry process
+(agents/processes/goal_store.py DECISION). Rows of neutral lists (percepts, beliefs, actions,
+world-model facts) are checked by bus/rows.py in C-level passes (the hot path).
 """
 
 from __future__ import annotations
@@ -36,8 +37,6 @@ from schema import (
 MEMORY_DEPTH = 128
 """[levels] of an agent's memory or an intention: an SCS body nests a frame per construct
 (programs nest at most 64 levels, docs/language.md "Limits")."""
-SNAPSHOT_DEPTH = 32
-"""[levels] of a world snapshot (the worlds' use 5)."""
 UNBOUNDED = sys.maxsize  # a string whose length its reader bounds with its own message
 
 
@@ -81,26 +80,28 @@ OUTCOME = Record({"action": ListOf(Atom(), min_len=1, what="[name, arg, ...]"),
                  open=True, what="an outcome {action, status, reason}")
 """An action's outcome as the world reports it (docs/architecture.md, "Neutral data forms")."""
 OUTCOMES = All(Plain(16, top=list), ListOf(OUTCOME))
-MEMORY = All(Plain(MEMORY_DEPTH),
-             Record({}, {"model": ListOf(ListOf(Atom(), min_len=1, what="a fact [pred, arg, "
-                                                "...]")), "scs": Plain(MEMORY_DEPTH)},
-                    open=True, what="an agent memory {model, scs}"))
-"""An agent's memory (docs/bus.md, "Agent memory"): an open map; its SCS state is the
-engine's to read."""
+_MEMORY_SHAPE = Record({}, {"model": Rows(), "scs": Record({}, open=True)}, open=True,
+                       what="an agent memory {model, scs}")
+MEMORY = All(Plain(MEMORY_DEPTH), _MEMORY_SHAPE)
+"""An agent's memory (docs/bus.md, "Agent memory"): an open map of plain data (the world
+writes each change of it to its trace); its world-model facts are rows [pred, arg, ...], its
+SCS state is the engine's to read (agents/lang/scs/state.py and fitting.py refuse a bad
+index, a fact of the wrong arity)."""
 GOAL_ENTRY = Record({"id": Str(max_len=32, min_len=1, what="a goal id"),
                      "goal": Str(max_len=UNBOUNDED), "priority": Int(),
                      "status": Str()}, open=True, what="a goal {id, goal, priority, status}")
 """One goal of an agent's GoalList (agents/processes/goal_store.py, GoalRecord.brief)."""
 NAME = Str(what="a name")
+MAP = Record({}, open=True)   # a map, its inside checked by its reader
 TEXT = Str(max_len=UNBOUNDED, what="a string")
 
 ENVELOPE = Record({"v": Int(), "run": TEXT, "cycle": Int(-1, INT64[1], what="a cycle"),
                    "sender": TEXT, "sent_ns": Int()}, open=True, what="an envelope")
 
 FIELDS: dict[str, dict[str, Spec]] = {
-    "WorldState": {"snapshot": Plain(SNAPSHOT_DEPTH), "outcomes": All(Plain(16), MapOf(
-        ListOf(OUTCOME))), "events": Plain(16, top=list),
-        "memory": All(Plain(MEMORY_DEPTH + 1), MapOf(MEMORY))},
+    "WorldState": {"snapshot": MAP, "outcomes": All(Plain(16), MapOf(ListOf(OUTCOME))),
+                   "events": Plain(16, top=list), "memory": All(Plain(MEMORY_DEPTH + 1),
+                                                                 MapOf(MAP))},
     "Percepts": {"agent": NAME, "percepts": Rows(), "outcomes": Tuple(OUTCOMES),
                  "memory": MEMORY},
     "Beliefs": {"agent": NAME, "beliefs": Rows()},
@@ -115,4 +116,7 @@ FIELDS: dict[str, dict[str, Spec]] = {
     "EventReply": {"ok": Bool(), "reason": TEXT, "outcome": Plain(16)},
 }
 """Per message kind: field name -> spec (every field but env; bus/messages.py gives the
-defaults of the optional ones)."""
+defaults of the optional ones). A world state's snapshot is its world's to check (the
+domain's SNAPSHOT, in perception: the only process that reads it), and each agent's memory
+in it is checked as a memory by that agent's perception, which forwards it
+(agents/processes/perception.py)."""

@@ -8,7 +8,6 @@ shown in a message."""
 from __future__ import annotations
 
 from collections import deque
-from itertools import chain
 from math import isfinite
 from typing import Any
 
@@ -16,7 +15,8 @@ from schema.specs import FieldError, Spec
 
 _ATOMS = frozenset({str, int, float, bool, type(None)})
 _CONTAINERS = (dict, list)
-_KINDS = _ATOMS | frozenset(_CONTAINERS)
+_CONTAINER_SET = frozenset(_CONTAINERS)
+_STR_ONLY = frozenset({str})
 _LO, _HI = -(2**63), 2**64 - 1   # the integers msgpack carries
 
 
@@ -32,24 +32,11 @@ class Plain(Spec):
     def check(self, value: Any) -> Any:
         if self.top is not None and type(value) is not self.top:
             raise self.refuse(value)
-        level = [value] if type(value) in _CONTAINERS else []
-        if not level:
+        if type(value) not in _CONTAINER_SET:
             return self._atom_ok(value)
-        for _ in range(self.max_depth):
-            items = list(chain.from_iterable(x.values() if type(x) is dict else x
-                                             for x in level))
-            kinds = set(map(type, items))
-            if not _KINDS.issuperset(kinds) or (float in kinds and not all(
-                    isfinite(x) for x in items if type(x) is float)) or \
-                    (int in kinds and not all(_LO <= x <= _HI for x in items
-                                              if type(x) is int)) or \
-                    (str in kinds and not all(x.isascii() for x in items if type(x) is str)
-                     and not _utf8(items)) or not _keys_ok(level):
-                raise _where(value, self.max_depth)
-            level = [x for x in items if type(x) in _CONTAINERS]
-            if not level:
-                return value
-        raise _where(value, self.max_depth)
+        if not _fits(value, self.max_depth):
+            raise _where(value, self.max_depth)
+        return value
 
     def _atom_ok(self, value: Any) -> Any:
         if type(value) not in _ATOMS or (type(value) is float and not isfinite(value)) or \
@@ -70,9 +57,36 @@ def _utf8(items: list) -> bool:
     return True
 
 
-def _keys_ok(level: list) -> bool:
-    keys = [k for x in level if type(x) is dict for k in x]
-    return all(type(k) is str for k in keys) and _utf8(keys)
+def _fits(v: Any, left: int) -> bool:
+    """Whether the map or array ``v`` and everything in it is plain data nested at most
+    ``left`` levels: one pass over each container's items, the common atoms first (the hot
+    path: a memory, an intention, every cycle)."""
+    if left <= 0:
+        return False
+    if type(v) is dict:
+        if not (_STR_ONLY.issuperset(map(type, v)) and (all(map(str.isascii, v))
+                                                         or _utf8(list(v)))):
+            return False
+        items: Any = v.values()
+    else:
+        items = v
+    for x in items:
+        t = type(x)
+        if t is str:
+            if not x.isascii() and not _utf8([x]):
+                return False
+        elif t is float:
+            if not isfinite(x):
+                return False
+        elif t is int:
+            if not _LO <= x <= _HI:
+                return False
+        elif t is dict or t is list:
+            if not _fits(x, left - 1):
+                return False
+        elif t is not bool and x is not None:
+            return False
+    return True
 
 
 def _where(value: Any, max_depth: int) -> FieldError:

@@ -30,6 +30,7 @@ INT64 = (-(2**63), 2**63 - 1)
 WIRE_INT = (-(2**63), 2**64 - 1)
 """The integers msgpack carries (signed and unsigned 64-bit): what Int allows by default."""
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_-]{0,63}")  # a key shown bare in a path
+_STR_ONLY = frozenset({str})
 """Signed 64-bit integers (what the language and the records keep to)."""
 
 
@@ -212,16 +213,21 @@ class TupleOf(Spec):
 
     def __init__(self, *items: Spec, what: str = "") -> None:
         self.items = items
+        self._checks = tuple(spec.check for spec in items)
         self.expected = what or f"an array of {len(items)} items"
 
     def check(self, value: Any) -> Any:
         if type(value) is not list or len(value) != len(self.items):
             raise self.refuse(value)
-        for i, (spec, x) in enumerate(zip(self.items, value, strict=True)):
-            try:
-                spec.check(x)
-            except FieldError as exc:
-                raise exc.within(i) from None
+        try:
+            for check, x in zip(self._checks, value, strict=True):
+                check(x)
+        except FieldError:
+            for i, (check, x) in enumerate(zip(self._checks, value, strict=True)):
+                try:
+                    check(x)
+                except FieldError as exc:
+                    raise exc.within(i) from None
         return value
 
 
@@ -242,12 +248,20 @@ class MapOf(Spec):
     def check(self, value: Any) -> Any:
         if type(value) is not dict or len(value) > self.max_len:
             raise self.refuse(value)
-        check_key, check_value = self.key.check, self.value.check
+        key = self.key
+        if type(key) is Str and key.pattern is None and not key.min_len:   # names: in C
+            if not (_STR_ONLY.issuperset(map(type, value))
+                    and max(map(len, value), default=0) <= key.max_len):
+                bad = next(k for k in value if type(k) is not str or len(k) > key.max_len)
+                raise FieldError(f"key {key.refuse(bad).problem}")
+        else:
+            for k in value:
+                try:
+                    key.check(k)
+                except FieldError as exc:
+                    raise FieldError(f"key {exc.problem}") from None
+        check_value = self.value.check
         for k, v in value.items():
-            try:
-                check_key(k)
-            except FieldError as exc:
-                raise FieldError(f"key {exc.problem}") from None
             try:
                 check_value(v)
             except FieldError as exc:

@@ -14,8 +14,9 @@ from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
+from bus.fields import MEMORY
 from bus.messages import Envelope, Message, Percepts
-from schema import brief
+from schema import FieldError, brief
 
 
 def make_step(run: str, agent: str, process: str):
@@ -37,6 +38,11 @@ def make_step(run: str, agent: str, process: str):
         percepts = tuple(list(p) for p in seen)
         outcomes = tuple(state.outcomes.get(agent, ()))
         memory = state.memory.get(agent) or {}
+        try:
+            MEMORY.check(memory)   # what it forwards (the codec checked only its shape)
+        except FieldError as exc:
+            raise Refused(f"{state_key}: the world state of cycle {cycle}: memory."
+                          f"{exc.within(agent)}") from None
         return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts,
                                    outcomes, memory))]
 

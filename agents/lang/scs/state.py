@@ -7,6 +7,7 @@ of what the bodies did. Plain data in ``to_dict``, read back exactly by ``from_d
 
 from __future__ import annotations
 
+import math
 from bisect import bisect_left
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
@@ -267,8 +268,9 @@ def _int(v: Any) -> int:
 
 
 def _const(v: Any) -> Any:
-    if not is_const(v):
-        raise StateError(f"scs state: {v!r:.40} is not a symbol or number")
+    """A binding's or a pending action's value read back: a symbol or a finite number."""
+    if not is_const(v) or (type(v) is float and not math.isfinite(v)):
+        raise StateError(f"scs state: {v!r:.40} is not a symbol or finite number")
     return v
 
 
