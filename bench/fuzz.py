@@ -23,7 +23,7 @@ JSON argument of `teleo event`), scenario (bytes -> a scenario file, read and ch
 as `teleo launch` does), request (bytes -> bus.codec.decode -> the goal-entry
 process's answer, with the scenarios/driving_demo.toml agents and a real store file). The
 bus readers of every process (bench/fuzz_bus.py): world-events-, actions- and world-state-
-DOMAIN for each world, percepts-msg, executive, memory, intention, codec.
+DOMAIN for each world, percepts-msg, executive (-blocks, -office), memory, intention, codec.
 """
 
 from __future__ import annotations
@@ -120,11 +120,13 @@ def located(source: str) -> Callable[[str, object], bool]:
 
 def names_field(reason: str, fields: set[str]) -> bool:
     """Whether ``reason`` names one of ``fields`` (a key or a short value of the input, as a
-    word) or refuses the payload as a whole."""
+    word, or quoted when it is a single character) or refuses the payload as a whole."""
     from fuzz_bus import WHOLE
 
     return any(w in reason for w in WHOLE) or \
-        not fields.isdisjoint(re.findall(r"[\w*?-]+", reason))
+        not fields.isdisjoint(re.findall(r"[\w*?-]+", reason)) or \
+        any(repr(f) in reason for f in fields if len(f) < 2)   # a value shown: '' or 'x'
+
 
 
 def mutate(base: str, rng: random.Random) -> str:
@@ -397,7 +399,8 @@ def make_readers(tmp: Path) -> dict[str, Callable[[], Reader]]:
 READERS = ("program", "percepts", "goal", "event", "scenario", "request",
            *(f"{what}-{d}" for d in ("driving", "blocks", "office")
              for what in ("world-events", "actions", "world-state")),
-           "percepts-msg", "executive", "memory", "intention", "codec")
+           "percepts-msg", "executive", "executive-blocks", "executive-office", "memory",
+           "intention", "codec")
 
 
 def describe(item: object) -> str:

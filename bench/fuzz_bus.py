@@ -13,6 +13,8 @@ executive and the goal-entry process's store, one cycle after another).
     world-state-DOMAIN   a WorldState payload -> the perception step
     percepts-msg         a Percepts payload -> the inference step
     executive            percepts, beliefs and goal list payloads, one mutated -> executive
+                         (the SCS errands program; executive-blocks: the means-ends solver
+                         and learner; executive-office: ROGUE's planner)
     memory               a Percepts payload whose memory is mutated -> inference, executive
     intention            an Intention payload -> the goal-entry process's status mirror
     codec                any bytes on any key -> bus.codec.decode
@@ -415,6 +417,8 @@ def readers(tmp: Path, cycles: int = 60) -> dict[str, Callable[[], BusReader]]:
     for which in ("percepts", "executive", "memory"):
         name = "percepts-msg" if which == "percepts" else which
         out[name] = lambda which=which: agent_reader(pipe("driving"), which)
+    for d in ("blocks", "office"):   # the solver with learning, and ROGUE's planner
+        out[f"executive-{d}"] = lambda d=d: agent_reader(pipe(d), "executive")
     out["intention"] = lambda: intention_reader(pipe("driving"))
     out["codec"] = lambda: codec_reader([pipe(d) for d in SCENARIOS])
     return out

@@ -174,6 +174,6 @@ def fields_of(value: Any, out: set[str] | None = None, depth: int = 0) -> set[st
     elif isinstance(value, list):
         for v in value[:100]:
             fields_of(v, out, depth + 1)
-    elif isinstance(value, str) and 2 <= len(value) <= 64:
+    elif isinstance(value, str) and len(value) <= 64:
         out.add(value)
     return out

@@ -15,7 +15,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 BUS_READERS = ("actions-driving", "actions-blocks", "actions-office",
                "world-state-driving", "world-state-blocks", "world-state-office",
-               "percepts-msg", "executive", "memory", "intention", "codec")
+               "percepts-msg", "executive", "executive-blocks", "executive-office", "memory",
+               "intention", "codec")
 
 
 def load_fuzz():

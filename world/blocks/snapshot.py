@@ -119,7 +119,7 @@ SNAPSHOT = Record({
                             what="a block")),
     "hands": ListOf(Record({"agent": Str(), "hand": Str(), "x": _POS, "y": _POS},
                            {"holding": Str()}, what="a hand")),
-    "counters": MapOf(MapOf(Int())), "events": Plain(16, top=list),
+    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)),
 }, open=True, what="a blocks snapshot")
 """The fields of `BlocksSnapshot.to_dict` as perception relies on them (positions within
 MAX_COORD, so its arithmetic stays finite); other top-level keys are let through."""

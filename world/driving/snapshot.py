@@ -118,7 +118,7 @@ class WorldSnapshot:
                 events=tuple(dict(e) for e in d["events"]),
                 blocked=tuple(d["blocked"]),
             )
-        except (KeyError, TypeError, AttributeError) as exc:
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
             raise WorldError(f"WorldSnapshot.from_dict: malformed snapshot dict ({exc!r})") from exc
 
 
@@ -147,7 +147,7 @@ SNAPSHOT = Record({
                                   "speed": _RATE, "mode": Str()}, what="a pedestrian")),
     "packages": ListOf(Record({"id": Str(), "address": Int(), "street": Str(),
                                "owner": Str()}, {"delivered": Bool()}, what="a package")),
-    "counters": MapOf(MapOf(Int())), "events": Plain(16, top=list), "blocked": ListOf(Str()),
+    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)), "blocked": ListOf(Str()),
 }, {"domain": OneOf(("driving",))}, open=True, what="a driving snapshot")
 """The fields of `WorldSnapshot.to_dict` as perception relies on them (its config, plain data,
 is read by load_world_config, which names a bad key, once per distinct config); other

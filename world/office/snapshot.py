@@ -190,7 +190,7 @@ SNAPSHOT = Record({
     "doors": MapOf(_ID), "occupants": MapOf(Int()),
     "obstacles": ListOf(Record({"id": _ID, "x": _POS, "y": _POS,
                                 "radius": Num(0.0, MAX_COORD)}, what="an obstacle")),
-    "counters": MapOf(MapOf(Int())), "events": Plain(16, top=list),
+    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)),
 }, {"domain": OneOf(("office",))}, open=True, what="an office snapshot")
 """The fields of `OfficeSnapshot.to_dict` as perception relies on them (its config, plain
 data, is read by load_office_config once per distinct config); other top-level keys are let

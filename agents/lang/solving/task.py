@@ -10,7 +10,7 @@ from functools import lru_cache
 from itertools import islice
 
 from ..arith import evaluate
-from ..errors import EvalError
+from ..errors import EvalError, LangError
 from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
 from ..parser import Parser, Parts
 from ..paths import btuple, show
@@ -47,6 +47,17 @@ def pushable(cond: Literal | Test) -> bool:
     """Only a positive, ground literal can become a subgoal (no skill achieves a negation or
     a test; a variable would leave the subgoal open)."""
     return isinstance(cond, Literal) and not cond.negated and not cond.variables()
+
+
+def _ground(conds: list, b: dict) -> list | None:
+    """``conds`` with ``b``'s values written in, read back (the solver keeps its goals and
+    learns its skills as program text); None when a value cannot be written as program text
+    (an empty or spaced symbol, from a malformed percept or belief): such a binding is no
+    way to chain off."""
+    try:
+        return [condition(show(c, b)) for c in conds]
+    except (ValueError, LangError):
+        return None
 
 
 class Task:
@@ -119,8 +130,8 @@ class Task:
         conds = [*s.start, *s.requires]
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
-            ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground, applicable):
+            ground = _ground(conds, b)
+            if ground is not None and self._chainable(ground, applicable):
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
@@ -134,8 +145,8 @@ class Task:
             if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
                     None) is None:
                 continue
-            ground = [condition(show(c, b)) for c in clause.relations]
-            if self._chainable(ground):
+            ground = _ground(clause.relations, b)
+            if ground is not None and self._chainable(ground):
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         name = f"{clause.head.pred}#{clause.index}"
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
