@@ -120,12 +120,12 @@ def located(source: str) -> Callable[[str, object], bool]:
 
 def names_field(reason: str, fields: set[str]) -> bool:
     """Whether ``reason`` names one of ``fields`` (a key or a short value of the input, as a
-    word, or quoted when it is a single character) or refuses the payload as a whole."""
+    word, or quoted as it is) or refuses the payload as a whole."""
     from fuzz_bus import WHOLE
 
     return any(w in reason for w in WHOLE) or \
         not fields.isdisjoint(re.findall(r"[\w*?-]+", reason)) or \
-        any(repr(f) in reason for f in fields if len(f) < 2)   # a value shown: '' or 'x'
+        any(repr(f) in reason for f in fields)   # a value shown as it is: '', 'x', 'a b'
 
 
 

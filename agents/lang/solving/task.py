@@ -15,7 +15,7 @@ from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_h
 from ..parser import Parser, Parts
 from ..paths import btuple, show
 from ..program import ConceptClause, Program, Skill
-from ..sexpr import read
+from ..sexpr import Atom, read
 from ..store import FactStore, PerceptIndex
 from ..terms import Literal, Test, Var, fmt
 from .state import CONCEPT, SKILL, Alternative
@@ -51,13 +51,25 @@ def pushable(cond: Literal | Test) -> bool:
 
 def _ground(conds: list, b: dict) -> list | None:
     """``conds`` with ``b``'s values written in, read back (the solver keeps its goals and
-    learns its skills as program text); None when a value cannot be written as program text
-    (an empty or spaced symbol, from a malformed percept or belief): such a binding is no
-    way to chain off."""
+    learns its skills as program text); None when a value does not read back as itself (a
+    symbol that is empty, spaced, a number or a variable as text: only a malformed percept or
+    belief holds one): such a binding is no way to chain off."""
+    if not all(map(_writable, b.values())):
+        return None
     try:
         return [condition(show(c, b)) for c in conds]
     except (ValueError, LangError):
         return None
+
+
+@lru_cache(maxsize=4096)
+def _writable(value: object) -> bool:
+    """Whether ``value`` (a binding's constant) reads back from its text as itself."""
+    if not isinstance(value, str):
+        return True   # numbers print as they read
+    forms, diags = read(value, "<solver>")
+    return not diags and len(forms) == 1 and isinstance(forms[0], Atom) and \
+        forms[0].value == value
 
 
 class Task:
