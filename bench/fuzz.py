@@ -404,7 +404,7 @@ READERS = ("program", "percepts", "goal", "event", "scenario", "request",
 
 
 def describe(item: object) -> str:
-    from schema import brief
+    from bus.schema import brief
 
     return brief(item, 100)
 

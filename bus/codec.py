@@ -27,7 +27,7 @@ from bus.errors import CodecError
 from bus.fields import ENVELOPE, FIELDS
 from bus.messages import MESSAGE_TYPES, SCHEMA_VERSION, Envelope, Message
 from bus.rows import PACKED, pack_rows, packer, unpack_rows
-from schema import FieldError, brief
+from bus.schema import FieldError, brief
 
 
 def encode(msg: Message) -> bytes:

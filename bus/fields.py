@@ -1,4 +1,4 @@
-"""The schema of every bus message kind: each field's spec (schema/), checked by
+"""The schema of every bus message kind: each field's spec (bus/schema/), checked by
 `bus.codec.decode` before any process sees the message (docs/bus.md, "What a reader checks").
 
 A field whose inside is another package's (a snapshot is its world's, a memory's SCS state
@@ -18,7 +18,7 @@ from typing import Any
 
 from bus.messages import GOAL_OPS
 from bus.rows import check_rows
-from schema import (
+from bus.schema import (
     INT64,
     Atom,
     Bool,

@@ -19,7 +19,7 @@ from typing import Any
 
 import msgpack
 
-from schema import brief
+from bus.schema import brief
 
 _ATOM_TYPES = frozenset({str, int, float})  # exact types: bool and None are refused
 _LIST_ONLY = frozenset({list})

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
-from schema import FieldError, Plain, brief
+from bus.schema import FieldError, Plain, brief
 from world.errors import ConfigError
 
 Outcome = dict[str, Any]

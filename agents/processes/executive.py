@@ -40,7 +40,7 @@ from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
 from bus.messages import Actions, Envelope, Intention, Message
-from schema import brief
+from bus.schema import brief
 
 
 class Executive:

@@ -16,7 +16,7 @@ from enum import StrEnum
 from typing import Any
 
 from agents.lang.limits import MAX_GOAL_CHARS, shorten
-from schema import FieldError, ListOf, Record, Str
+from bus.schema import FieldError, ListOf, Record, Str
 
 STORE_VERSION = 1
 MAX_PRIORITY = 1_000_000

@@ -20,7 +20,7 @@ from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
 from bus.messages import Beliefs, Envelope, Message
-from schema import brief
+from bus.schema import brief
 
 
 def make_step(run: str, agent: str, process: str, program_path: str,

@@ -16,7 +16,7 @@ from bus.config import BusConfig
 from bus.errors import Refused
 from bus.fields import MEMORY
 from bus.messages import Envelope, Message, Percepts
-from schema import FieldError, brief
+from bus.schema import FieldError, brief
 
 
 def make_step(run: str, agent: str, process: str):

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import Any, Protocol
 
-from schema import FieldError, Int, Num, Record, Str, Tagged, TupleOf
+from bus.schema import FieldError, Int, Num, Record, Str, Tagged, TupleOf
 from world.blocks.block import Block, Box
 from world.blocks.config import NAME, RESERVED, BlocksConfig
 from world.blocks.gripper import Gripper

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
-from schema import FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str, brief
+from bus.schema import FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str, brief
 from world.blocks.config import TableSpec
 from world.errors import WorldError
 

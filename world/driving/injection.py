@@ -25,7 +25,7 @@ import math
 import re
 from typing import Any, Protocol
 
-from schema import FieldError, Int, Num, Record, Str, Tagged, brief
+from bus.schema import FieldError, Int, Num, Record, Str, Tagged, brief
 from world.domain import event_outcome
 from world.driving.actors import Pedestrian
 from world.driving.city import City

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, fields
 from functools import cache
 from typing import Any
 
-from schema import Bool, FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str
+from bus.schema import Bool, FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str
 from world.driving.config import WorldConfig, load_world_config
 from world.errors import WorldError
 from world.parsed import parsed_by_value

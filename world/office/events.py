@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from typing import Any, Protocol
 
-from schema import FieldError, Int, Num, OneOf, Record, Str, Tagged, brief
+from bus.schema import FieldError, Int, Num, OneOf, Record, Str, Tagged, brief
 from world.domain import event_outcome
 from world.errors import WorldError
 from world.office import EVENT_KINDS

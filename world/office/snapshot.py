@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
-from schema import (
+from bus.schema import (
     AnyOf,
     Atom,
     FieldError,

@@ -21,7 +21,7 @@ import sys
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from schema.brief import brief
+from bus.schema.brief import brief
 
 __all__ = ["AnyOf", "Atom", "Bool", "FieldError", "Int", "ListOf", "MapOf", "Num", "OneOf",
            "Record", "Spec", "Str", "Tagged", "TupleOf"]

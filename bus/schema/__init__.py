@@ -11,9 +11,9 @@ Pure standard library: the bus, the worlds and the processes all use it (docs/ar
 "Dependency rule").
 """
 
-from schema.brief import brief
-from schema.plain import Plain
-from schema.specs import (
+from bus.schema.brief import brief
+from bus.schema.plain import Plain
+from bus.schema.specs import (
     INT64,
     AnyOf,
     Atom,

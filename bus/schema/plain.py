@@ -11,7 +11,7 @@ from collections import deque
 from math import isfinite
 from typing import Any
 
-from schema.specs import FieldError, Spec
+from bus.schema.specs import FieldError, Spec
 
 _ATOMS = frozenset({str, int, float, bool, type(None)})
 _CONTAINERS = (dict, list)
@@ -112,6 +112,6 @@ def _where(value: Any, max_depth: int) -> FieldError:
 
 
 def _show(v: Any) -> str:
-    from schema.brief import brief
+    from bus.schema.brief import brief
 
     return brief(v)

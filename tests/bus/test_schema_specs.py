@@ -1,4 +1,4 @@
-"""The field specs (schema/): any value is either accepted as it is or refused with a
+"""The field specs (bus/schema/): any value is either accepted as it is or refused with a
 FieldError naming where in it the problem is; what is accepted is what the readers rely on
 (hypothesis properties against plain oracles), and a refusal's message stays short."""
 
@@ -13,7 +13,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from schema import (
+from bus.schema import (
     Atom,
     FieldError,
     Int,
