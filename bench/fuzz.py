@@ -1,20 +1,29 @@
-"""Fuzz drill of teleo's readers (issue 11; fault drill 4): any input gives teleo's own error.
+"""Fuzz drill of teleo's readers (issues 11 and 24; fault drill 4): any input gives teleo's own
+refusal, naming the field (or file:line:col), and never a crash or a hang.
 
     .venv/bin/python bench/fuzz.py [--n 100000] [--seed 1] [--reader NAME ...] [--out DIR]
+                                   [--limit 5]
 
 For each reader it feeds N inputs: the drill's minimal cases first, then mutations of real
-inputs (the repository's programs and percept files, goals, world events, encoded goal
-requests) and generated extremes (deep nesting, long numbers and tokens, NaN, bytes that are
-not UTF-8). An input is *accepted* or *refused* with the reader's own error (ProgramError,
-GoalError, a click error, CodecError, or a goal reply with ok false); anything else is a
-*crash*. Printed per reader: inputs, crashes (0 expected), accepted, refused, and the slowest
-input's time. With --out, each crashing input is written there to replay.
+inputs (the repository's programs and percept files, goals, world events, every bus message
+of a real in-process pipeline) and generated extremes (wrong types in every field, deep
+nesting, huge numbers, NaN, unhashable lists and maps, bytes that are not UTF-8). An input
+is *accepted*, or *refused* with the reader's own error (ProgramError, GoalError, a click
+error, CodecError, the bus's Refused, a failed outcome, or a goal reply with ok false);
+anything else is a *crash*, and an input that takes longer than --limit seconds a *hang*.
+A refusal must name a field of the input (or the payload as a whole: "malformed msgpack"),
+or file:line:col for texts; one that does not is counted *unnamed*. Printed per reader:
+inputs, accepted, refused, crashes, hangs, unnamed, and the median, p99 and max time of an
+input; the exit status is 1 on any crash, hang or unnamed refusal. With --out, each crashing
+input is written there to replay.
 
-The readers: program (bytes -> decode_text -> load_program_text), percepts (bytes ->
+The readers of texts: program (bytes -> decode_text -> load_program_text), percepts (bytes ->
 decode_text -> parse_percepts), goal (parse_goal against programs/driving.tlp), event (the
 JSON argument of `teleo event`), scenario (bytes -> a scenario file, read and checked fully
 as `teleo launch` does), request (bytes -> bus.codec.decode -> the goal-entry
-process's answer, with the scenarios/driving_demo.toml agents and a real store file).
+process's answer, with the scenarios/driving_demo.toml agents and a real store file). The
+bus readers of every process (bench/fuzz_bus.py): world-events-, actions- and world-state-
+DOMAIN for each world, percepts-msg, executive (-blocks, -office), memory, intention, codec.
 """
 
 from __future__ import annotations
@@ -22,11 +31,15 @@ from __future__ import annotations
 import json
 import logging
 import random
+import re
+import signal
+import statistics
 import sys
 import tempfile
 import time
 import traceback
 from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -34,6 +47,7 @@ import click
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # `bus` is the package, not bench/bus.py
+sys.path.append(str(ROOT / "bench"))  # after ROOT: fuzz_values, fuzz_bus, fuzz_events
 
 SPECIAL = ["(", ")", "((", "))", "?", "?a?b", "??", ":percepts", ":tests", ":subgoals", "NaN",
            "Infinity", "-Infinity", "nan", "inf", "1e999", "-1e999", "1e-999", str(2**63),
@@ -44,26 +58,75 @@ ALPHABET = "()?:;.-+eE0123456789 \n\t\"'`\\[]{},abcXYZ*<>="
 
 @dataclass
 class Tally:
-    """What one reader did with its inputs."""
+    """What one reader did with its inputs (times [s] per input)."""
 
     reader: str
     inputs: int = 0
     accepted: int = 0
     refused: int = 0
     crashes: list[tuple[object, str]] = field(default_factory=list)
+    hangs: list[object] = field(default_factory=list)
+    unnamed: list[tuple[object, str]] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)
     slowest_s: float = 0.0
     slowest: object = None
+
+    def quantile(self, q: float) -> float:
+        """The q-quantile of the times [s] (0 without inputs)."""
+        if not self.times:
+            return 0.0
+        ordered = sorted(self.times)
+        return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
 
 
 @dataclass(frozen=True)
 class Reader:
-    """How to make an input, feed it (True: accepted; a `refusals` error: refused), and the
-    drill's minimal cases."""
+    """How to make an input, feed it (True: accepted; False or a reason string, or a
+    `refusals` error: refused), the drill's minimal cases, and what a refusal of an input
+    must name (`named(reason, item)`; None: not checked)."""
 
     make: Callable[[random.Random], object]
-    feed: Callable[[object], bool]
+    feed: Callable[[object], object]
     refusals: tuple[type[BaseException], ...]
     minimal: tuple = ()
+    named: Callable[[str, object], bool] | None = None
+
+
+class Hang(BaseException):
+    """An input took longer than the drill's per-input limit (not an Exception: the code
+    under test must not catch it)."""
+
+
+@contextmanager
+def time_limit(seconds: float):
+    """Raise Hang in this thread when the block runs longer than ``seconds``."""
+    def alarm(signum: int, frame: object) -> None:
+        raise Hang(f"longer than {seconds:g} s")
+
+    previous = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def located(source: str) -> Callable[[str, object], bool]:
+    """A refusal of a text names ``source``:line:col (or the whole ``source``)."""
+    pattern = re.compile(rf"{re.escape(source)}(:\d+:\d+)?: ")
+    return lambda reason, item: bool(pattern.search(reason))
+
+
+def names_field(reason: str, fields: set[str]) -> bool:
+    """Whether ``reason`` names one of ``fields`` (a key or a short value of the input, as a
+    word, or quoted as it is) or refuses the payload as a whole."""
+    from fuzz_bus import WHOLE
+
+    return any(w in reason for w in WHOLE) or \
+        not fields.isdisjoint(re.findall(r"[\w*?-]+", reason)) or \
+        any(repr(f) in reason for f in fields)   # a value shown as it is: '', 'x', 'a b'
+
 
 
 def mutate(base: str, rng: random.Random) -> str:
@@ -133,8 +196,10 @@ def program_reader() -> Reader:
 
     minimal = (b"(" * 334 + b")" * 334, b"(" * 400 + b")" * 400 + b"\n",
                ("((fast ?x) :percepts ((self ?x speed ?s)) :tests ((> ?s " + "1" * 5000
-                + ")))").encode(), b"((fast ?x)\n :percepts ((self ?x speed \xff\xfe))\n)\n")
-    return Reader(make, feed, (ProgramError,), minimal)
+                + ")))").encode(), b"((fast ?x)\n :percepts ((self ?x speed \xff\xfe))\n)\n",
+               b"(operators ((delivered) :operator (serve-coffee) :effects l))\n",   # N2
+               b"(operators ((delivered) :operator serve :on-failure x))\n")
+    return Reader(make, feed, (ProgramError,), minimal, located("fuzz.tlp"))
 
 
 def percept_reader() -> Reader:
@@ -153,7 +218,7 @@ def percept_reader() -> Reader:
     minimal = (b"[" * 5000 + b"]" * 5000, b'[["self","ME","speed",' + b"9" * 5000 + b"]]",
                b"((self ME speed " + b"1" * 5000 + b"))", b'[["self","ME","speed",NaN]]',
                b'[["self","ME","speed",Infinity]]', b"(" * 334 + b")" * 334)
-    return Reader(make, feed, (ProgramError,), minimal)
+    return Reader(make, feed, (ProgramError,), minimal, located("fuzz.txt"))
 
 
 def goal_reader() -> Reader:
@@ -281,62 +346,98 @@ def inputs(reader: Reader, n: int, seed: int) -> Iterator[object]:
         yield reader.make(rng)
 
 
-def fuzz(name: str, reader: Reader, n: int, seed: int) -> Tally:
-    """Feed `n` inputs to `reader`; count accepted, refused and crashes (any other exception)."""
+def fuzz(name: str, reader: Reader, n: int, seed: int, limit_s: float = 5.0) -> Tally:
+    """Feed `n` inputs to `reader`; count accepted, refused, crashes (any other exception),
+    hangs (longer than `limit_s` [s]) and refusals that name no field."""
     tally = Tally(name)
     for item in inputs(reader, n, seed):
+        reason = None
         t0 = time.perf_counter()
         try:
-            if reader.feed(item):
+            with time_limit(limit_s):
+                got = reader.feed(item)
+            if got is True:
                 tally.accepted += 1
             else:
                 tally.refused += 1
-        except reader.refusals:
+                reason = got if isinstance(got, str) else None
+        except reader.refusals as exc:
             tally.refused += 1
+            reason = str(exc)
+        except Hang:
+            tally.hangs.append(item)
         except Exception:  # a crash: what this drill looks for
-            tally.crashes.append((item, traceback.format_exc(limit=-3)))
+            tally.crashes.append((item, traceback.format_exc(limit=-8)))
         elapsed = time.perf_counter() - t0
+        if reason is not None and reader.named is not None and not reader.named(reason, item):
+            tally.unnamed.append((item, reason))
         tally.inputs += 1
+        tally.times.append(elapsed)
         if elapsed > tally.slowest_s:
             tally.slowest_s, tally.slowest = elapsed, item
     return tally
 
 
+def bus_reader(make_bus) -> Callable[[], Reader]:
+    """A bench/fuzz_bus.py reader as a Reader (its refusals are reason strings)."""
+    def made() -> Reader:
+        r = make_bus()
+        return Reader(r.make, r.feed, (), (), lambda reason, item: names_field(
+            reason, r.fields(item)))
+    return made
+
+
 def make_readers(tmp: Path) -> dict[str, Callable[[], Reader]]:
-    return {"program": program_reader, "percepts": percept_reader, "goal": goal_reader,
-            "event": event_reader, "scenario": lambda: scenario_reader(tmp),
-            "request": lambda: request_reader(tmp)}
+    from fuzz_bus import readers
+
+    texts = {"program": program_reader, "percepts": percept_reader, "goal": goal_reader,
+             "event": event_reader, "scenario": lambda: scenario_reader(tmp),
+             "request": lambda: request_reader(tmp)}
+    return {**texts, **{name: bus_reader(r) for name, r in readers(tmp).items()}}
+
+
+READERS = ("program", "percepts", "goal", "event", "scenario", "request",
+           *(f"{what}-{d}" for d in ("driving", "blocks", "office")
+             for what in ("world-events", "actions", "world-state")),
+           "percepts-msg", "executive", "executive-blocks", "executive-office", "memory",
+           "intention", "codec")
 
 
 def describe(item: object) -> str:
-    text = repr(item)
-    return text if len(text) <= 60 else f"{text[:60]}... ({len(item)} long)"
+    from bus.schema import brief
+
+    return brief(item, 100)
 
 
 @click.command()
 @click.option("--n", default=100_000, type=click.IntRange(min=1), show_default=True,
               help="Inputs per reader.")
 @click.option("--seed", default=1, show_default=True)
-@click.option("--reader", "names", multiple=True,
-              type=click.Choice(["program", "percepts", "goal", "event", "scenario",
-                                 "request"]),
+@click.option("--reader", "names", multiple=True, type=click.Choice(READERS),
               help="Only these readers (repeatable; default: all).")
 @click.option("--out", type=click.Path(file_okay=False), help="Write crashing inputs here.")
-def main(n: int, seed: int, names: tuple[str, ...], out: str | None) -> None:
+@click.option("--limit", "limit_s", default=5.0, show_default=True,
+              help="Seconds an input may take before it counts as a hang.")
+def main(n: int, seed: int, names: tuple[str, ...], out: str | None, limit_s: float) -> None:
     """Fuzz every reader with N inputs and print what happened."""
     crashes = 0
     with tempfile.TemporaryDirectory() as tmp:
         readers = make_readers(Path(tmp))
-        for name in names or tuple(readers):
-            t0 = time.perf_counter()
-            tally = fuzz(name, readers[name](), n, seed)
-            crashes += len(tally.crashes)
-            click.echo(f"{name:<9} inputs {tally.inputs}, crashes {len(tally.crashes)}, accepted "
-                       f"{tally.accepted}, refused {tally.refused}; slowest input "
-                       f"{tally.slowest_s * 1e3:.1f} ms ({describe(tally.slowest)}); "
-                       f"total {time.perf_counter() - t0:.1f} s")
+        click.echo(f"{'reader':<20} {'inputs':>7} {'accepted':>8} {'refused':>8} {'crashes':>7} "
+                   f"{'hangs':>5} {'unnamed':>7} {'median ms':>9} {'p99 ms':>7} {'max ms':>7}")
+        for name in names or READERS:
+            tally = fuzz(name, readers[name](), n, seed, limit_s)
+            crashes += len(tally.crashes) + len(tally.hangs) + len(tally.unnamed)
+            click.echo(f"{name:<20} {tally.inputs:>7} {tally.accepted:>8} {tally.refused:>8} "
+                       f"{len(tally.crashes):>7} {len(tally.hangs):>5} {len(tally.unnamed):>7} "
+                       f"{statistics.median(tally.times) * 1e3:>9.3f} "
+                       f"{tally.quantile(0.99) * 1e3:>7.2f} {tally.slowest_s * 1e3:>7.1f}")
             for k, (item, trace) in enumerate(tally.crashes[:3]):
                 click.echo(f"  crash {k + 1}: {describe(item)}\n{trace}")
+            for k, item in enumerate(tally.hangs[:3]):
+                click.echo(f"  hang {k + 1}: {describe(item)}")
+            for k, (item, reason) in enumerate(tally.unnamed[:3]):
+                click.echo(f"  unnamed {k + 1}: {describe(item)}: {reason[:200]}")
             if out:
                 for k, (item, _trace) in enumerate(tally.crashes):
                     path = Path(out) / f"{name}-{k}.bin"

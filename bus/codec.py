@@ -3,8 +3,10 @@
 Wire form: one msgpack map with string keys only,
 `{"kind": "Percepts", "env": {"v", "run", "cycle", "sender", "sent_ns"}, <fields>...}`.
 A reader ignores fields it does not know (a minor version may only add fields) and
-rejects any other major version (`Envelope.v`). Every failure raises CodecError naming
-the key and what is wrong; receivers log it and drop the payload.
+rejects any other major version (`Envelope.v`). Every field is checked against its kind's
+schema (bus/fields.py) before the message is made. Every failure raises CodecError naming
+the key, the field and what is wrong (`teleo/r/agent/ME/goal-list: GoalList.goals[0].id:
+expected a string, got []`); receivers log it and drop the payload.
 
 Packed rows: the rows of `Percepts.percepts` and `Beliefs.beliefs` travel one msgpack bin a
 row, and a row seen in the last message on a key decodes to the same list (bus/rows.py).
@@ -22,8 +24,10 @@ import msgpack
 
 from bus import keys
 from bus.errors import CodecError
-from bus.messages import GOAL_OPS, MESSAGE_TYPES, SCHEMA_VERSION, Envelope, Message
-from bus.rows import PACKED, as_array, check_rows, pack_rows, packer, unpack_rows
+from bus.fields import ENVELOPE, FIELDS
+from bus.messages import MESSAGE_TYPES, SCHEMA_VERSION, Envelope, Message
+from bus.rows import PACKED, pack_rows, packer, unpack_rows
+from bus.schema import FieldError, brief
 
 
 def encode(msg: Message) -> bytes:
@@ -74,36 +78,35 @@ def _decode(key: str, data: bytes) -> Message:
     kind = body.get("kind")
     cls = MESSAGE_TYPES.get(kind) if isinstance(kind, str) else None
     if cls is None:
-        raise CodecError(key, f"unknown message kind {kind!r}")
+        raise CodecError(key, f"unknown message kind {brief(kind)}")
     allowed = _kinds_of_key(key)
     if allowed and kind not in allowed:
         raise CodecError(key, f"wrong message kind {kind!r} for this key "
                               f"(expected {' or '.join(sorted(allowed))})")
     values = _fields(key, kind, _SPECS[cls], body)
     values["env"] = env
-    if kind == "GoalRequest" and values["op"] not in GOAL_OPS:
-        raise CodecError(key, f"GoalRequest.op {values['op']!r} not one of {GOAL_OPS}")
     return cls(**values)
 
 
 def _fields(key: str, kind: str, spec: _Spec, body: dict) -> dict[str, Any]:
     """The checked field values of a `kind` message (defaults for absent optional fields)."""
     values: dict[str, Any] = {}
-    name = ""
     packed = PACKED.get(kind)
-    try:
-        for name, check, default in spec:
-            if name in body:
+    for name, check, default in spec:
+        if name in body:
+            try:
                 values[name] = unpack_rows(key, body[name]) if name == packed else \
                     check(body[name])
-            elif isinstance(default, _Fresh):
-                values[name] = default.make()   # a new empty map for each message
-            elif default is not MISSING:
-                values[name] = default
-            else:
-                raise CodecError(key, f"{kind} lacks field {name!r}")
-    except TypeError as exc:
-        raise CodecError(key, f"{kind}.{name}: {exc}") from exc
+            except FieldError as exc:
+                raise CodecError(key, f"{kind}.{exc.within(name)}") from None
+            except TypeError as exc:   # a packed row (bus/rows.py)
+                raise CodecError(key, f"{kind}.{name}: {exc}") from None
+        elif isinstance(default, _Fresh):
+            values[name] = default.make()   # a new empty map for each message
+        elif default is not MISSING:
+            values[name] = default
+        else:
+            raise CodecError(key, f"{kind} lacks field {name!r}")
     return values
 
 
@@ -115,70 +118,17 @@ def _kinds_of_key(key: str) -> frozenset[str]:
 
 def _envelope(key: str, env: Any) -> Envelope:
     if not isinstance(env, dict):
-        raise CodecError(key, f"missing or malformed envelope: {env!r:.80}")
+        raise CodecError(key, f"missing or malformed envelope: {brief(env)}")
     v = env.get("v")
-    if v != SCHEMA_VERSION:
-        raise CodecError(key, f"unknown schema version {v!r} (this reader knows {SCHEMA_VERSION})")
+    if v != SCHEMA_VERSION or type(v) is not int:
+        raise CodecError(key, f"unknown schema version {brief(v)} (this reader knows "
+                              f"{SCHEMA_VERSION})")
     try:
-        return Envelope(v=v, run=_str(env["run"]), cycle=_int(env["cycle"]),
-                        sender=_str(env["sender"]), sent_ns=_int(env["sent_ns"]))
-    except (KeyError, TypeError) as exc:
-        raise CodecError(key, f"malformed envelope {env!r:.120}: {exc}") from exc
+        ENVELOPE.check(env)
+    except FieldError as exc:
+        raise CodecError(key, f"malformed envelope: {exc.within('env')}") from None
+    return Envelope(v, env["run"], env["cycle"], env["sender"], env["sent_ns"])
 
-
-def _str(v: Any) -> str:
-    if not isinstance(v, str):
-        raise TypeError(f"expected str, got {type(v).__name__}")
-    return v
-
-
-def _int(v: Any) -> int:
-    if not isinstance(v, int) or isinstance(v, bool):
-        raise TypeError(f"expected int, got {type(v).__name__}")
-    return v
-
-
-def _float(v: Any) -> float:
-    if not isinstance(v, (int, float)) or isinstance(v, bool):
-        raise TypeError(f"expected number, got {type(v).__name__}")
-    return float(v)
-
-
-def _bool(v: Any) -> bool:
-    if not isinstance(v, bool):
-        raise TypeError(f"expected bool, got {type(v).__name__}")
-    return v
-
-
-def _dict(v: Any) -> dict:
-    if not isinstance(v, dict):
-        raise TypeError(f"expected map, got {type(v).__name__}")
-    return v
-
-
-def _dict_rows(v: Any) -> tuple:
-    for row in as_array(v):
-        if not isinstance(row, dict):
-            raise TypeError(f"expected array of maps, found item {row!r:.60}")
-    return tuple(v)
-
-
-def _any(v: Any) -> Any:
-    return v
-
-
-_FIELD_CHECKS: dict[str, Callable[[Any], Any]] = {
-    "snapshot": _dict, "outcomes": _dict, "events": as_array, "agent": _str,
-    "percepts": check_rows, "beliefs": check_rows, "actions": check_rows, "decision": _dict,
-    "op": _str, "goal": _str, "priority": _int, "goal_id": _str, "force": _bool,
-    "ok": _bool, "reason": _str, "goals": _dict_rows,
-    "process": _str, "compute_ms": _float, "late": _int, "event": _dict, "memory": _dict,
-    "outcome": _dict,
-}
-
-_KIND_FIELD_CHECKS: dict[tuple[str, str], Callable[[Any], Any]] = {
-    ("Percepts", "outcomes"): _dict_rows,   # a list of outcome maps (WorldState's is a map)
-}
 
 class _Fresh:
     """The default of a field declared with a default_factory (made anew per message)."""
@@ -190,10 +140,10 @@ class _Fresh:
 _Spec = tuple[tuple[str, Callable[[Any], Any], Any], ...]
 
 _SPECS: dict[type, _Spec] = {
-    cls: tuple((f.name, _KIND_FIELD_CHECKS.get((cls.KIND, f.name),
-                                               _FIELD_CHECKS.get(f.name, _any)),
+    cls: tuple((f.name, FIELDS[cls.KIND][f.name].check,
                 _Fresh(f.default_factory) if f.default_factory is not MISSING else f.default)
                for f in fields(cls) if f.name != "env")
     for cls in MESSAGE_TYPES.values()
 }
-"""Per message class: (field name, checker, default or MISSING) for every field but env."""
+"""Per message class: (field name, its spec's check (bus/fields.py), default or MISSING) for
+every field but env."""

@@ -20,6 +20,14 @@ class CodecError(BusError):
         self.problem = problem
 
 
+class Refused(BusError):
+    """A stage's step refuses the inputs of a cycle: a message its reader finds malformed (a
+    world state whose snapshot is not its world's, percepts the engine cannot read). The
+    stage logs the reason, publishes nothing and leaves the cycle undone, so the next copy
+    of it (the world re-sends a waiting state every second) is handled as new; the process
+    goes on (docs/faults.md, "Hostile input")."""
+
+
 class ConfigError(BusError, ValueError):
     """A bus configuration value (mode, endpoint, env var) is invalid."""
 

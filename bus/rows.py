@@ -14,13 +14,16 @@ from __future__ import annotations
 import threading
 from itertools import chain, compress, repeat
 from math import isfinite
-from operator import is_, ne
+from operator import is_, itemgetter, ne
 from typing import Any
 
 import msgpack
 
+from bus.schema import brief
+
 _ATOM_TYPES = frozenset({str, int, float})  # exact types: bool and None are refused
 _LIST_ONLY = frozenset({list})
+_STR_ONLY = frozenset({str})
 _local = threading.local()  # per thread: a Packer, and the rows sent and seen per slot or key
 
 
@@ -41,26 +44,31 @@ def packer() -> msgpack.Packer:
 
 
 def check_rows(v: Any) -> tuple:
-    """A tuple of neutral-form lists whose items are str, int or float (never bool/None) and
-    whose floats are finite (NaN and infinities would poison every comparison downstream).
+    """A tuple of neutral-form lists, each a name (a str) and then items that are str, int or
+    float (never bool/None), floats finite (NaN and infinities would poison every comparison
+    downstream): ``["self", "ME", "speed", 20.0]``, ``["*gas", 6.25]``.
 
-    Checked in C-level passes over the types and one over the floats; only a bad payload
-    takes the row-by-row loop that names the offending row.
+    Checked in C-level passes over the types, the first items and the floats; only a bad
+    payload takes the row-by-row loop that names the offending row.
     """
     rows = as_array(v)
-    if _LIST_ONLY.issuperset(map(type, rows)):
+    if _LIST_ONLY.issuperset(map(type, rows)) and all(rows):
         atoms = list(chain.from_iterable(rows))
         types = list(map(type, atoms))
         if _ATOM_TYPES.issuperset(types) and \
+                _STR_ONLY.issuperset(map(type, map(itemgetter(0), rows))) and \
                 all(map(isfinite, compress(atoms, map(is_, types, repeat(float))))):
             return tuple(rows)
     atoms_only = _ATOM_TYPES.issuperset
     for row in rows:
         if type(row) is not list or not atoms_only(map(type, row)):
-            raise TypeError(f"expected arrays of str, int or float, found item {row!r:.60}")
+            raise TypeError(f"expected arrays of str, int or float, found item {brief(row)}")
+        if not row or type(row[0]) is not str:
+            raise TypeError(f"expected arrays [name, value, ...] with a name first, found item "
+                            f"{brief(row)}")
         bad = [a for a in row if type(a) is float and not isfinite(a)]
         if bad:
-            raise TypeError(f"expected finite numbers, found {bad[0]} in item {row!r:.60}")
+            raise TypeError(f"expected finite numbers, found {bad[0]} in item {brief(row)}")
     raise TypeError("expected arrays of str, int or float")  # not reached: some row failed
 
 

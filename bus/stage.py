@@ -9,7 +9,8 @@ inputs of exactly that cycle. The stage publishes its ProcessStats, then what `s
 A cycle seen again (the clock re-sent state t for a restarted stage) re-emits the cached
 outputs without calling `step` again; cycles older than the last handled one are dropped;
 when it has fallen behind it skips to the newest complete cycle and counts the skipped
-ones in ProcessStats.late.
+ones in ProcessStats.late. A step that raises bus.errors.Refused (its inputs are malformed)
+publishes nothing and leaves the cycle undone: the next copy of it is handled as new.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from collections.abc import Callable, Sequence
 from bus import keys
 from bus.collector import Collector
 from bus.cycle import Joined, Joiner, pick
+from bus.errors import Refused
 from bus.lifeline import hold_on_to_parent
 from bus.messages import Message, ProcessStats
 from bus.node import Inbox, Node
@@ -75,6 +77,7 @@ class Stage:
         self.joiner = Joiner(inputs)
         self.late = 0
         self.cycles_done = 0
+        self.refused = 0  # cycles whose inputs the step refused (bus.errors.Refused)
         self._stats_key = keys.stats(node.run, self.process)
         self._cache: list[tuple[str, Message]] = []
         self._inbox: Inbox | None = None
@@ -134,7 +137,12 @@ class Stage:
             outs, compute_ms = self._cache, 0.0
         else:
             t0 = time.perf_counter()
-            outs = list(self.step_fn(joined.cycle, joined.inputs))
+            try:
+                outs = list(self.step_fn(joined.cycle, joined.inputs))
+            except Refused as exc:
+                self.refused += 1
+                log.warning("%s: cycle %d refused: %s", self.process, joined.cycle, exc)
+                return
             compute_ms = (time.perf_counter() - t0) * 1e3
             self._cache = outs
             self.cycles_done += 1

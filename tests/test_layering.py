@@ -61,6 +61,14 @@ def test_the_language_engine_imports_the_standard_library_only() -> None:
                        or i.startswith("agents.lang")) == []
 
 
+def test_the_schema_package_imports_the_standard_library_only() -> None:
+    """bus/schema/ (the field specs every process checks its messages with) sits below the
+    rest of the bus, the worlds and the processes: it imports nothing of theirs, so a world
+    may check its events and snapshots with it without touching the bus."""
+    assert _violations("bus.schema", lambda m, i: _top(i) in STDLIB
+                       or i.startswith("bus.schema")) == []
+
+
 def test_only_bus_imports_zenoh_and_msgpack() -> None:
     for mod, imports in SOURCES.items():
         if not mod.startswith("bus"):
@@ -74,7 +82,8 @@ def test_bus_never_imports_agents_world_or_tools() -> None:
 def test_world_never_imports_agents_or_tools_and_touches_the_bus_at_two_places() -> None:
     bus_users = {"world.process", "world.run_scenario", "world.scenario_types"}
     assert _violations("world", lambda m, i: _top(i) not in {"agents", "tools"}
-                       and (_top(i) != "bus" or m in bus_users)) == []
+                       and (_top(i) != "bus" or m in bus_users
+                            or i == "bus.schema" or i.startswith("bus.schema."))) == []
 
 
 def test_processes_never_import_the_command_layer() -> None:

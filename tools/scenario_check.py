@@ -71,6 +71,10 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
         if domain.event_kinds and kind not in domain.event_kinds:
             errors.append(f"{where}: [[events]] #{k + 1}.kind: expected one of "
                           f"{list(domain.event_kinds)}, got {kind!r}")
+            continue
+        problem = domain.check_event(event.event) if domain.check_event else ""
+        if problem:   # a field of the wrong type, out of range, or unknown to its kind
+            errors.append(f"{where}: [[events]] #{k + 1} ({kind}): {problem}")
     return programs, errors
 
 

@@ -35,10 +35,37 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
+from bus.schema import FieldError, Plain, brief
 from world.errors import ConfigError
 
 Outcome = dict[str, Any]
 """{"action": [...], "status": "done" | "failed", "reason": str} (docs/architecture.md)."""
+
+_EVENT_DATA = Plain(max_depth=8, top=None)
+"""An event kept in its outcome: every world's events are flat maps (a size is a list in
+one), and an outcome nested in a world state must stay within the bus's bounds (bus/fields.py:
+16 levels for the state's events)."""
+
+
+def event_problem(schema: Any, event: Any) -> str:
+    """What ``schema`` (a domain's EVENTS) finds wrong with ``event``, or ""."""
+    try:
+        schema.check(event)
+    except FieldError as exc:
+        return str(exc)
+    return ""
+
+
+def event_outcome(event: Any, reason: str = "") -> dict[str, Any]:
+    """An injected event's outcome, {"event", "status": "done"|"failed", "reason"} (failed
+    when there is a ``reason``). It goes into the world state and the trace, so a refused
+    event that is not plain data (bytes, NaN, nested too deep: docs/faults.md, "Hostile
+    input") is kept as its shortened text."""
+    try:
+        _EVENT_DATA.check(event)
+    except FieldError:
+        event = brief(event, 200)
+    return {"event": event, "status": "failed" if reason else "done", "reason": reason}
 
 
 @runtime_checkable
@@ -79,7 +106,10 @@ class Domain:
     """A domain's hooks. ``violations`` names the counters that are breaches of a law or a
     safety rule (a run's summary lists them); ``event_kinds`` the events ``inject`` knows;
     ``actions`` the action names ``apply_actions`` knows (a program sending another is
-    refused by `teleo check` of a scenario: the world would fail it every cycle)."""
+    refused by `teleo check` of a scenario: the world would fail it every cycle);
+    ``check_event`` says what is wrong with an event's fields ("" when nothing: the kind's
+    schema, before the world's own checks), so a scenario's [[events]] are checked before
+    the run."""
 
     name: str
     summary: str
@@ -92,6 +122,7 @@ class Domain:
     achievements: tuple[str, ...] = field(default=())  # counters of work done (deliveries)
     restore: Callable[[bytes], World] | None = None     # the inverse of World.checkpoint
     actions: tuple[str, ...] = ()
+    check_event: Callable[[Any], str] | None = None
 
 
 # name -> module whose DOMAIN attribute is the Domain (imported on first use, so a process

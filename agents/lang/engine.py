@@ -16,6 +16,7 @@ from .intake import PerceptCache
 from .outcomes import as_outcomes
 from .planning.rogue import RoguePlanner
 from .program import Program
+from .scs.fitting import check_model, model_arity
 from .scs.state import model_of
 from .shared_rows import Framer, SharedPercepts, check_new_rows
 from .solving.solver import MeansEndsSolver
@@ -66,6 +67,7 @@ class Engine:
         self._framer = Framer()  # last cycle's grouping, for SharedRows
         self._shared = SharedPercepts()  # and the Percepts of its rows
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
+        self._model_arity = model_arity(program)  # what a world model may hold
 
     # -- goals ---------------------------------------------------------------------------
     def initial_state(self, seed: int = 0, learned: tuple[str, ...] = ()) -> EngineState:
@@ -128,8 +130,10 @@ class Engine:
         come from the bus, Percepts, or a PerceptIndex; LangError names a bad one) and the
         agent's world model (``model``: facts as neutral lists or tuples, asserted by SCS
         bodies; in the processes they come back with the world state, docs/bus.md "Agent
-        memory")."""
-        beliefs = self.inference.beliefs(percepts, model_of(model))
+        memory"; a fact of a predicate the program neither defines nor asserts, or of the
+        wrong arity, is a StateError)."""
+        facts = check_model(model_of(model), self._model_arity) if model else ()
+        beliefs = self.inference.beliefs(percepts, facts)
         self.inference.frame = None  # hold no percept list past the call (fewer GC passes)
         return beliefs
 

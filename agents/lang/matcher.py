@@ -94,7 +94,9 @@ def step(cond: object, b: dict, pidx: PerceptIndex, store: FactStore) -> Iterato
     if isinstance(cond, PerceptPattern):
         yield from match_percept(cond, b, pidx)
     elif isinstance(cond, Test):
-        if test_holds(cond, b):
+        # a test some variable of which nothing bound cannot hold (a solver's candidate
+        # binding whose relation matched no belief leaves it open): no extension
+        if ready(cond, b) and test_holds(cond, b):
             yield b
     elif cond.negated:
         if not holds(cond, b, store):

@@ -11,7 +11,7 @@ from __future__ import annotations
 from .arith import OPS
 from .errors import Diagnostic
 from .limits import MAX_DIAGNOSTICS
-from .pieces import PieceParser, items_of, op_name, suggest
+from .pieces import PieceParser, op_name, suggest
 from .planning.reader import PLANNING_SECTIONS
 from .program import ConceptClause, GoalSpec, Skill
 from .scs.reader import BodyReader
@@ -165,9 +165,10 @@ class Parser(PieceParser):
         start = self.conditions(f.get(":start")) + [Test(t.expr, t.loc)
                                                     for t in self.tests(f.get(":tests"))]
         subgoals = tuple(x for x in (self.literal(s, "subgoal", allow_not=False)
-                                     for s in items_of(f.get(":subgoals"))) if x is not None)
-        actions = tuple(x for x in (self.action(a) for a in items_of(f.get(":actions")))
-                        if x is not None)
+                                     for s in self.items(f.get(":subgoals"), "subgoals (goal ?x)"))
+                         if x is not None)
+        actions = tuple(x for x in (self.action(a) for a in self.items(
+            f.get(":actions"), "actions (*name arg ...)")) if x is not None)
         before = len(self.parts.diags)
         body = BodyReader(self).step(f[":body"]) if ":body" in f else None
         if ":body" in f and body is None and len(self.parts.diags) == before:
@@ -205,7 +206,7 @@ class Parser(PieceParser):
     def conditions(self, node: SList | None, tests: bool = True) -> list:
         """Literals (possibly negated) and, where ``tests``, inline tests such as (< ?x 3)."""
         out: list = []
-        for item in items_of(node):
+        for item in self.items(node, "conditions (concept ?x) or (not (concept ?x))"):
             op = op_name(item)
             inner = item.items[1] if op == "not" and len(item.items) == 2 else None
             if not tests and (op in OPS or op_name(inner) in OPS):

@@ -15,9 +15,19 @@ from .terms import ActionTemplate, Expr, PerceptPattern, Test, Var
 class PieceParser:
     """Percept patterns, tests, expressions and actions."""
 
+    def items(self, node: Atom | SList | None, form: str) -> tuple:
+        """The items of a list a clause key takes (none when absent); an atom where the list
+        should be is an error at its place, saying the ``form`` of an item."""
+        if node is None:
+            return ()
+        if isinstance(node, SList):
+            return node.items
+        self.err(node, f"expected a list of {form} in parentheses, got {to_text(node)}")
+        return ()
+
     def patterns(self, node: SList | None) -> tuple[PerceptPattern, ...]:
         out = []
-        for item in items_of(node):
+        for item in self.items(node, "percept patterns (type ?id attr ?value ...)"):
             if not (isinstance(item, SList) and len(item.items) >= 2
                     and all(isinstance(x, Atom) for x in item.items)):
                 self.err(item, f"expected a percept pattern (type id attr value ...), got "
@@ -40,7 +50,8 @@ class PieceParser:
         return tuple(out)
 
     def tests(self, node: SList | None) -> tuple[Test, ...]:
-        return tuple(t for t in (self.test(i) for i in items_of(node)) if t is not None)
+        return tuple(t for t in (self.test(i) for i in self.items(node, "tests (< ?x 3)"))
+                     if t is not None)
 
     def test(self, node: object) -> Test | None:
         e = self.expr(node)
@@ -86,10 +97,6 @@ class PieceParser:
 
 def _is_bool(e: Expr) -> bool:
     return e.op in BOOL_OPS
-
-
-def items_of(node: SList | None) -> tuple:
-    return () if node is None else node.items
 
 
 def op_name(node: object) -> object:

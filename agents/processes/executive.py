@@ -38,7 +38,9 @@ from agents.processes.per_object import PerObject
 from agents.processes.persist import LearnedFile, Saved, StateFile
 from bus import keys
 from bus.config import BusConfig
+from bus.errors import Refused
 from bus.messages import Actions, Envelope, Intention, Message
+from bus.schema import brief
 
 
 class Executive:
@@ -49,7 +51,7 @@ class Executive:
         self.log = log
         self.state = engine.initial_state() if state is None else state
         self.goals = GoalSync.of(self.state)   # the user goals the state already holds
-        self.beliefs = BeliefReader()
+        self.beliefs = BeliefReader(engine.program.arity)
 
     def sync_goals(self, goal_list: tuple[dict[str, Any], ...]) -> None:
         """Add new goals, drop withdrawn ones, move reprioritised ones (in list order)."""
@@ -59,14 +61,17 @@ class Executive:
         """Take the SCS state from the memory the world handed back (a malformed one is
         logged and ignored: the executive goes on with its own)."""
         from agents.lang import LangError
+        from agents.lang.scs.fitting import check_fits
         from agents.lang.scs.state import from_memory
 
         if not memory:
             return
         try:
-            self.state = replace(self.state, scs=from_memory(memory))
+            scs = check_fits(from_memory(memory), self.engine.program)
         except LangError as exc:
             self.log.warning("agent memory dropped: %s", exc)
+            return
+        self.state = replace(self.state, scs=scs)
 
     def memory(self) -> dict[str, Any]:
         """What goes out with the actions, for the world to hand back next cycle."""
@@ -95,14 +100,24 @@ class Executive:
 class BeliefReader:
     """Belief lists as the bus delivers them (a list seen last cycle is the same object,
     bus/rows.py) to a BeliefSet: a list seen before keeps its Belief, and the
-    same lists as last cycle give last cycle's BeliefSet, its fact store built once."""
+    same lists as last cycle give last cycle's BeliefSet, its fact store built once. A belief
+    of a concept of the program with the wrong number of arguments is refused (LangError
+    naming it): the matcher indexes a fact's arguments by the concept's arity."""
 
-    def __init__(self) -> None:
-        from agents.lang import Belief
-
+    def __init__(self, arity: dict[str, int] | None = None) -> None:
         self.lists: tuple = ()
-        self.beliefs = PerObject(Belief.from_list)
+        self.arity = arity or {}
+        self.beliefs = PerObject(self._belief)
         self.last: Any = None
+
+    def _belief(self, items: list) -> Any:
+        from agents.lang import Belief, LangError
+
+        want = self.arity.get(items[0])
+        if want is not None and want != len(items) - 1:
+            raise LangError(f"belief {brief(items)}: {items[0]} takes {want} argument(s), "
+                            f"got {len(items) - 1}")
+        return Belief.from_list(items)
 
     def read(self, lists: tuple) -> Any:
         from agents.lang.store import BeliefSet
@@ -134,7 +149,10 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
               state_path: str | None = None, learned: str | None = None,
               learned_out: str | None = None, solver: bool = True,
               mechanism: str = "means-ends"):
-    """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)]."""
+    """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)].
+    Percepts or beliefs the engine cannot read are refused (bus Refused)."""
+    from agents.lang import LangError
+
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
     executive = make_executive(program_path, log, saved.state if saved else None, learned,
@@ -153,11 +171,14 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         if saved is not None and cycle <= saved.cycle:
             log.info("cycle %d was decided before the restart: its outputs again", cycle)
             return outputs(cycle, saved.intention, saved.actions)
-        executive.sync_goals(inputs[g_key].goals)
         seen = inputs[p_key]
+        executive.sync_goals(inputs[g_key].goals)
         executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
         executive.remember(seen.memory)                           # after a restart
-        decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
+        try:
+            decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
+        except LangError as exc:   # percepts or beliefs the engine cannot read
+            raise Refused(f"{p_key}, {b_key}: the inputs of cycle {cycle}: {exc}") from None
         intention = with_hints(decision.to_dict(), seen.percepts)
         actions = [a.to_list() for a in decision.actions]
         if saver is not None:

@@ -16,6 +16,7 @@ from enum import StrEnum
 from typing import Any
 
 from agents.lang.limits import MAX_GOAL_CHARS, shorten
+from bus.schema import FieldError, ListOf, Record, Str
 
 STORE_VERSION = 1
 MAX_PRIORITY = 1_000_000
@@ -182,8 +183,14 @@ class GoalStore:
 
     def update_from_intention(self, agent: str, decision: dict[str, Any],
                               cycle: int) -> GoalStore:
-        """Mirror the statuses the executive reported in `decision` (Decision.to_dict())."""
-        reported = {g.get("id"): g for g in decision.get("goals", ())}
+        """Mirror the statuses the executive reported in `decision` (Decision.to_dict());
+        raises GoalStoreError naming the field of a decision that does not fit DECISION."""
+        try:
+            DECISION.check(decision)
+        except FieldError as exc:
+            raise GoalStoreError(f"intention of {shorten(agent)} at cycle {cycle}: decision."
+                                 f"{exc}") from None
+        reported = {g["id"]: g for g in decision.get("goals", ())}
         store = self
         for record in self.for_agent(agent):
             if record.status in _WITHDRAWN or record.id not in reported:
@@ -283,3 +290,11 @@ def _field(d: dict, name: str, kind: type, where: str, default: Any = ...) -> An
         raise GoalStoreError(f"{where}.{name}: expected {kind.__name__}, got "
                              f"{shorten(repr(value))}")
     return value
+
+
+DECISION = Record({}, {"goals": ListOf(Record({"id": Str(), "status": Str()},
+                                              {"note": Str(max_len=4096)}, open=True,
+                                              what="a goal {id, status, note}"))},
+                  open=True, what="a decision")
+"""What the goal-entry process reads of an executive's intention (the engine's
+Decision.to_dict(), checked as plain data by the codec): each goal's id, status and note."""

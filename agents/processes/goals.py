@@ -222,9 +222,15 @@ class GoalEntry:
             self.log.warning("scripted request refused: %s", exc)
 
     def on_intention(self, msg: Intention) -> None:
-        """Mirror the statuses the executive reported; saved later (flush), not every cycle."""
+        """Mirror the statuses the executive reported; saved later (flush), not every cycle.
+        An intention whose decision does not fit (goal_store.DECISION) is logged and left."""
         with self.lock:
-            store = self.store.update_from_intention(msg.agent, msg.decision, msg.env.cycle)
+            try:
+                store = self.store.update_from_intention(msg.agent, msg.decision,
+                                                         msg.env.cycle)
+            except GoalStoreError as exc:
+                self.log.warning("refused: %s", exc)
+                return
             if store is not self.store:
                 self.store, self.unsaved = store, True
 

@@ -18,12 +18,16 @@ from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.per_object import PerObject
 from bus import keys
 from bus.config import BusConfig
+from bus.errors import Refused
 from bus.messages import Beliefs, Envelope, Message
+from bus.schema import brief
 
 
 def make_step(run: str, agent: str, process: str, program_path: str,
               log: logging.Logger | None = None):
-    """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]."""
+    """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]. Percepts the engine
+    cannot read are refused (bus Refused), naming the percept; a malformed world model is
+    logged and left out."""
     from agents.lang import Engine, LangError, SharedRows, load_program
 
     engine = Engine(load_program(program_path))
@@ -38,8 +42,12 @@ def make_step(run: str, agent: str, process: str, program_path: str,
         try:
             beliefs = engine.infer(percepts, seen.memory.get("model") or ())
         except LangError as exc:   # a malformed model: logged, inferred without it
+            try:
+                beliefs = engine.infer(percepts)
+            except LangError as bad:   # the percepts themselves: refused, naming the percept
+                raise Refused(f"{in_key}: the percepts of cycle {cycle} from "
+                              f"{brief(seen.env.sender)}: {bad}") from None
             log.warning("cycle %d: world model dropped: %s", cycle, exc)
-            beliefs = engine.infer(percepts)
         return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent,
                                   rows.of(beliefs)))]
 

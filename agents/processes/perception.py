@@ -13,23 +13,38 @@ from __future__ import annotations
 from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
 from bus.config import BusConfig
+from bus.errors import Refused
+from bus.fields import MEMORY
 from bus.messages import Envelope, Message, Percepts
+from bus.schema import FieldError, brief
 
 
 def make_step(run: str, agent: str, process: str):
-    """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]."""
+    """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]. A snapshot that is
+    not its world's (checked against the world's snapshot schema) is refused (bus Refused:
+    the cycle waits for a good copy), naming the field."""
     from world.domain import domain_of
+    from world.errors import WorldError
 
     state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         state = inputs[state_key]
-        percepts = tuple(list(p) for p in domain_of(state.snapshot).perceive(state.snapshot,
-                                                                             agent))
+        try:
+            seen = domain_of(state.snapshot).perceive(state.snapshot, agent)
+        except WorldError as exc:
+            raise Refused(f"{state_key}: the world state of cycle {cycle} from "
+                          f"{brief(state.env.sender)}: {exc}") from None
+        percepts = tuple(list(p) for p in seen)
         outcomes = tuple(state.outcomes.get(agent, ()))
         memory = state.memory.get(agent) or {}
+        try:
+            MEMORY.check(memory)   # what it forwards (the codec checked only its shape)
+        except FieldError as exc:
+            raise Refused(f"{state_key}: the world state of cycle {cycle}: memory."
+                          f"{exc.within(agent)}") from None
         return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts,
-                                   outcomes, memory if isinstance(memory, dict) else {}))]
+                                   outcomes, memory))]
 
     return step
 

@@ -72,6 +72,24 @@ def test_an_unknown_event_kind_is_an_error_for_each_domain(tmp_path):
         load_checked(path)
 
 
+@pytest.mark.parametrize("event, message", [
+    ('kind = "pedestrian"\nahead_of = "ME"\ndist = 20\ncolour = "red"',
+     r"\[\[events\]\] #1 \(pedestrian\): unknown field 'colour'; known: kind, ahead_of"),
+    ('kind = "package"\nid = "P9"\naddress = 3\nstreet = "B"\nowner = ["ME"]',
+     r"\[\[events\]\] #1 \(package\): owner: expected an agent's name, got \['ME'\]"),
+    ('kind = "block"', r"\[\[events\]\] #1 \(block\): segment: missing; expected a segment"),
+])
+def test_a_scripted_events_fields_are_checked_as_the_world_checks_them(tmp_path, event,
+                                                                      message):
+    """Issue 24, items 1-2: `teleo check` refuses an [[events]] field the world would refuse
+    (an unknown one, as it does for every other table's unknown key), before the run."""
+    path = scenario(tmp_path, DEMO + f"\n[[events]]\nat_cycle = 3\n{event}\n")
+    with pytest.raises(ScenarioError, match=message):
+        load_checked(path)
+    result = invoke("check", path)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+
+
 def test_check_recognises_scenarios_and_checks_every_shipped_one():
     shipped = sorted((ROOT / "scenarios").glob("*.toml"))
     result = CliRunner().invoke(cli, ["check", *map(str, shipped)], catch_exceptions=False)

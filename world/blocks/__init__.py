@@ -59,6 +59,14 @@ def perceive(snapshot: dict[str, Any], agent: str) -> list[list[Any]]:
     return from_snapshot(snapshot, agent)
 
 
+def check_event(event: Any) -> str:
+    """What is wrong with an event's fields ("" when nothing): world/blocks/events.py EVENTS."""
+    from world.blocks.events import EVENTS
+    from world.domain import event_problem
+
+    return event_problem(EVENTS, event)
+
+
 def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = None) -> int:
     """A PNG or JPEG of the last snapshot, or a GIF of them all (by suffix:
     world/pictures.py); returns the frames drawn."""
@@ -75,4 +83,4 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
 
 DOMAIN = Domain("blocks", "the Blocks World (seed 000, Figure 3): a table, blocks, a gripper "
                 "per agent", create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS,
-                ACHIEVEMENTS, actions=ACTIONS)
+                ACHIEVEMENTS, actions=ACTIONS, check_event=check_event)

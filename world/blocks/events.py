@@ -11,21 +11,38 @@ Kinds:
   the block (and what stands on it) sideways: off its tower, perhaps off the table.
 - {"kind": "slip", "agent": AGENT}: the agent's gripper loses its block, which falls from where
   it was held (counted in the agent's blocks_dropped).
+Every field is checked against EVENTS before use (type, range, no unknown field); at most
+MAX_BLOCKS blocks.
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any, Protocol
 
+from bus.schema import FieldError, Int, Num, Record, Str, Tagged, TupleOf
 from world.blocks.block import Block, Box
 from world.blocks.config import NAME, RESERVED, BlocksConfig
 from world.blocks.gripper import Gripper
+from world.domain import event_outcome
 from world.errors import WorldError
 
-KINDS = ("add", "remove", "knock", "slip")
-FIELDS = {"add": {"block", "on", "size", "offset", "column"}, "remove": {"block"},
-          "knock": {"block", "speed"}, "slip": {"agent"}}
+MAX_OFFSET = 20.0   # [m] an added block's offset from its support's centre
+MAX_KNOCK = 30.0    # [m/s] a knock's speed, either way (a hard shove is ~5)
+MAX_BLOCKS = 200    # blocks on the table at most (an added one beyond is refused)
+
+_BLOCK = Str(what="a block name")
+_SIDE = Num(0.25, 20.0)
+EVENTS = Tagged({
+    "add": Record({"block": _BLOCK}, {"on": Str(what="the table or a block name"),
+                                      "size": TupleOf(_SIDE, _SIDE, what="[width, height] [m]"),
+                                      "offset": Num(-MAX_OFFSET, MAX_OFFSET),
+                                      "column": Int(0, 10**6, what="a column")}),
+    "remove": Record({"block": _BLOCK}),
+    "knock": Record({"block": _BLOCK}, {"speed": Num(-MAX_KNOCK, MAX_KNOCK)}),
+    "slip": Record({"agent": Str(what="an agent's name")}),
+})
+"""The Blocks World's events and their fields (the module's docstring): checked before use."""
+KINDS = EVENTS.kinds
 
 
 class World(Protocol):
@@ -47,36 +64,15 @@ class World(Protocol):
 def apply_event(world: World, event: Any) -> dict[str, Any]:
     """Apply one event; return its outcome."""
     try:
-        if not isinstance(event, dict):
-            raise WorldError(f"expected a dict with a 'kind', got {event!r:.80}")
-        kind = event.get("kind")
-        if kind not in KINDS:
-            raise WorldError(f"unknown kind {kind!r}; known: {' '.join(KINDS)}")
-        unknown = sorted(set(event) - FIELDS[kind] - {"kind"})
-        if unknown:
-            raise WorldError(f"{kind}: unknown fields {unknown}; known: {sorted(FIELDS[kind])}")
-        _DO[kind](world, event)
-    except WorldError as exc:
-        return {"event": event, "status": "failed", "reason": f"inject: {exc}"}
-    return {"event": event, "status": "done", "reason": ""}
-
-
-MAX_OFFSET = 20.0   # [m] an added block's offset from its support's centre
-MAX_KNOCK = 30.0    # [m/s] a knock's speed, either way (a hard shove is ~5)
-
-
-def _num(event: dict, key: str, default: float, bound: float) -> float:
-    """event[key] (or `default`), a finite number within [-bound, bound]."""
-    value = event.get(key, default)
-    if isinstance(value, bool) or not isinstance(value, int | float) or \
-            not math.isfinite(value) or not -bound <= value <= bound:
-        raise WorldError(f"{key}: expected a number in [{-bound:g}, {bound:g}], got {value!r}")
-    return float(value)
+        _DO[EVENTS.check(event)["kind"]](world, event)
+    except (WorldError, FieldError) as exc:
+        return event_outcome(event, f"inject: {exc}")
+    return event_outcome(event)
 
 
 def _standing(world: World, event: dict) -> Block:
-    name = event.get("block")
-    block = world.blocks.get(name) if isinstance(name, str) else None
+    name = event["block"]
+    block = world.blocks.get(name)
     if block is None:
         raise WorldError(f"block: expected one of {sorted(world.blocks)}, got {name!r}")
     holder = world.holder(block.name)
@@ -86,17 +82,15 @@ def _standing(world: World, event: dict) -> Block:
 
 
 def _add(world: World, event: dict) -> None:
-    name, spec = event.get("block"), world.config.table
-    if not isinstance(name, str) or not NAME.match(name) or name in RESERVED \
-            or name == spec.name or name in world.blocks:
+    name, spec = event["block"], world.config.table
+    if not NAME.match(name) or name in RESERVED or name == spec.name or name in world.blocks:
         raise WorldError(f"block: expected a new block name, got {name!r} "
                          f"(blocks: {sorted(world.blocks)}, table: {spec.name})")
+    if len(world.blocks) >= MAX_BLOCKS:
+        raise WorldError(f"block: the table has {len(world.blocks)} blocks, the most it takes")
     size = event.get("size", [2.0, 2.0])
-    if not isinstance(size, list) or len(size) != 2 or \
-            not all(isinstance(v, int | float) and 0.25 <= v <= 20 for v in size):
-        raise WorldError(f"size: expected [width, height] in [0.25, 20] [m], got {size!r}")
     width, height = float(size[0]), float(size[1])
-    offset, on = _num(event, "offset", 0.0, MAX_OFFSET), event.get("on", spec.name)
+    offset, on = float(event.get("offset", 0.0)), event.get("on", spec.name)
     if on == spec.name:
         x, bottom, ignore = _table_spot(world, event, width, height) + offset, spec.height, None
     else:
@@ -108,7 +102,7 @@ def _add(world: World, event: dict) -> None:
     box = Box(x, bottom + height / 2, 0.0, width, height)
     hit = world.obstacle(box, ignore=ignore)
     if hit is not None:
-        raise WorldError(f"no room for {name} at x {x:g} m: it would hit {hit}")
+        raise WorldError(f"block: no room for {name} at x {x:g} m: it would hit {hit}")
     world.add_block(name, width, height).place(x, bottom)
 
 
@@ -116,14 +110,14 @@ def _table_spot(world: World, event: dict, width: float, height: float) -> float
     spec = world.config.table
     if "column" in event:
         k = event["column"]
-        if isinstance(k, bool) or not isinstance(k, int) or not 0 <= k < spec.columns:
+        if not k < spec.columns:
             raise WorldError(f"column: expected an integer in [0, {spec.columns - 1}], got {k!r}")
         return spec.column_x(k)
     for k in range(spec.columns):
         box = Box(spec.column_x(k), spec.height + height / 2, 0.0, width, height)
         if world.obstacle(box) is None:
             return spec.column_x(k)
-    raise WorldError(f"no free column on the table {spec.name}")
+    raise WorldError(f"block: no free column on the table {spec.name} for {event['block']}")
 
 
 def _remove(world: World, event: dict) -> None:
@@ -137,14 +131,14 @@ def _remove(world: World, event: dict) -> None:
 
 def _knock(world: World, event: dict) -> None:
     block = _standing(world, event)
-    speed = _num(event, "speed", 3.0, MAX_KNOCK)
+    speed = float(event.get("speed", 3.0))
     block.body.velocity = (speed, 0.0)
     block.cause = ""
 
 
 def _slip(world: World, event: dict) -> None:
-    agent = event.get("agent")
-    gripper = world.grippers.get(agent) if isinstance(agent, str) else None
+    agent = event["agent"]
+    gripper = world.grippers.get(agent)
     if gripper is None:
         raise WorldError(f"agent: expected one of {sorted(world.grippers)}, got {agent!r}")
     if gripper.holding is None:

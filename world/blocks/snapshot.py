@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
+from bus.schema import FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str, brief
 from world.blocks.config import TableSpec
 from world.errors import WorldError
 
@@ -79,7 +80,11 @@ class BlocksSnapshot:
         """Rebuild a snapshot from `to_dict` output; raises WorldError naming what is wrong."""
         if not isinstance(d, dict) or d.get("domain") != DOMAIN_NAME:
             raise WorldError(f"BlocksSnapshot.from_dict: expected a dict with domain "
-                             f"{DOMAIN_NAME!r}, got {str(d)[:80]}")
+                             f"{DOMAIN_NAME!r}, got {brief(d)}")
+        try:
+            SNAPSHOT.check(d)
+        except FieldError as exc:
+            raise WorldError(f"snapshot: {exc}") from None
         try:
             return cls(
                 cycle=int(d["cycle"]), time=float(d["time"]),
@@ -99,3 +104,22 @@ def _record(kind: type, d: dict[str, Any]) -> Any:
     if set(d) - names:
         raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
     return kind(**d)
+
+
+MAX_COORD = 1e4    # [m] a position or size, either way (the table is a few metres wide)
+_POS = Num(-MAX_COORD, MAX_COORD)
+_SIZE = Num(1e-3, MAX_COORD)
+SNAPSHOT = Record({
+    "domain": OneOf((DOMAIN_NAME,)), "cycle": Int(), "time": Num(),
+    "table": Record({}, {"name": Str(), "columns": Int(1, 10**4), "pitch": _SIZE,
+                         "height": _SIZE}, what="a table"),
+    "resolution": Num(1e-3, 10.0),
+    "blocks": ListOf(Record({"name": Str(), "x": _POS, "y": _POS, "angle": Num(-1e6, 1e6),
+                             "width": _SIZE, "height": _SIZE}, {"held_by": Str()},
+                            what="a block")),
+    "hands": ListOf(Record({"agent": Str(), "hand": Str(), "x": _POS, "y": _POS},
+                           {"holding": Str()}, what="a hand")),
+    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)),
+}, open=True, what="a blocks snapshot")
+"""The fields of `BlocksSnapshot.to_dict` as perception relies on them (positions within
+MAX_COORD, so its arithmetic stays finite); other top-level keys are let through."""

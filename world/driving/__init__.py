@@ -79,6 +79,14 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
     return 1
 
 
+def check_event(event: Any) -> str:
+    """What is wrong with an event's fields ("" when nothing): world/driving/injection.py EVENTS."""
+    from world.domain import event_problem
+    from world.driving.injection import EVENTS
+
+    return event_problem(EVENTS, event)
+
+
 def restore(blob: bytes):
     """The Simulation saved by its `checkpoint()` (world/domain.py, restart)."""
     from world.driving.simulation import restore as restore_simulation
@@ -88,4 +96,4 @@ def restore(blob: bytes):
 
 DOMAIN = Domain("driving", "urban driving (seed 000): a city, traffic, pedestrians, packages",
                 create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",),
-                restore=restore, actions=ACTIONS)
+                restore=restore, actions=ACTIONS, check_event=check_event)

@@ -6,12 +6,17 @@ Kinds:
    "speed": m/s (default 0), "heading": deg relative to the car (default 90, walking to its left),
    "id": optional}: a pedestrian steps out in front of a car.
 - {"kind": "pedestrian", "x": m, "y": m, "heading": deg absolute, "speed": m/s, "id": optional}.
-  Bounds: speed 0..10 m/s, dist and lateral within 500 m, x and y within 100 m of the grid.
+  Bounds: speed 0..10 m/s, dist and lateral within 500 m, x and y within 100 m of the grid;
+  at most MAX_INJECTED pedestrians more than the city started with.
 - {"kind": "block", "segment": SEG} / {"kind": "unblock", "segment": SEG}: close / reopen a road
   segment (traffic and package guidance avoid closed segments).
 - {"kind": "package", "id": ID, "address": N, "street": NAME, "owner": AGENT}: a new package;
   the owner must be an agent of the run. Ids are names a program can write: letters, digits,
-  '_' and '-', a letter first, at most 32 characters.
+  '_' and '-', a letter first, at most 32 characters. At most MAX_INJECTED packages more than
+  the scenario's.
+Every field is checked against EVENTS before use: a field of the wrong type or out of range,
+a missing one, or one the kind does not have (`unknown field 'colour'`) fails the event,
+naming the field.
 """
 
 from __future__ import annotations
@@ -20,8 +25,11 @@ import math
 import re
 from typing import Any, Protocol
 
+from bus.schema import FieldError, Int, Num, Record, Str, Tagged, brief
+from world.domain import event_outcome
 from world.driving.actors import Pedestrian
 from world.driving.city import City
+from world.driving.config import WorldConfig
 from world.driving.snapshot import PackageState
 from world.errors import WorldError
 
@@ -29,6 +37,7 @@ from world.errors import WorldError
 class Simulation(Protocol):
     """The part of world.driving.simulation.Simulation that events change."""
 
+    config: WorldConfig
     city: City
     cars: dict[str, Any]
     walkers: list[Pedestrian]
@@ -42,96 +51,109 @@ MAX_WALK_SPEED = 10.0    # [m/s] a pedestrian's speed (a sprinter runs 10)
 MAX_AHEAD = 500.0        # [m] of `dist` and `lateral` from the car
 MARGIN = 100.0           # [m] around the street grid where a pedestrian may be placed
 MAX_HEADING = 3600.0     # [deg] either way
+MAX_ADDRESS = 10**6      # a building's number, either way
+MAX_INJECTED = 200       # pedestrians and packages events may add, each (the city stays cheap)
 ID = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,31}")
 """An id the programs can name: a symbol of at most 32 characters (a letter first)."""
 
-
-def _num(event: dict, key: str, lo: float, hi: float, default: float | None = None) -> float:
-    """event[key] (or `default`): a finite number in [lo, hi]."""
-    value = event.get(key, default)
-    if value is None:
-        raise WorldError(f"missing number {key!r}")
-    if isinstance(value, bool) or not isinstance(value, int | float) or \
-            not math.isfinite(value) or not lo <= value <= hi:
-        raise WorldError(f"{key}: expected a number in [{lo:g}, {hi:g}], got {value!r}")
-    return float(value)
-
-
-def _ident(value: Any, what: str) -> str:
-    if not isinstance(value, str) or not ID.fullmatch(value):
-        raise WorldError(f"{what}: expected a name of letters, digits, '_' or '-' (a letter "
-                         f"first, at most 32), got {value!r:.60}")
-    return value
+_NAME = "a name of letters, digits, '_' or '-' (a letter first, at most 32)"
+_ID = Str(what=_NAME, pattern=ID.pattern)
+_AHEAD = Num(-MAX_AHEAD, MAX_AHEAD)
+_AGENT = Str(what="an agent's name")
+EVENTS = Tagged({
+    "pedestrian": Record({}, {"ahead_of": _AGENT,
+                              "dist": _AHEAD, "lateral": _AHEAD,
+                              "speed": Num(0.0, MAX_WALK_SPEED),
+                              "heading": Num(-MAX_HEADING, MAX_HEADING), "id": _ID,
+                              "x": Num(), "y": Num()}),
+    "block": Record({"segment": Str(what="a segment id", pattern=ID.pattern)}),
+    "unblock": Record({"segment": Str(what="a segment id", pattern=ID.pattern)}),
+    "package": Record({"id": _ID, "address": Int(-MAX_ADDRESS, MAX_ADDRESS),
+                       "street": Str(what="a street name"), "owner": _AGENT}),
+})
+"""The driving world's events and their fields (the module's docstring): checked before use."""
 
 
 def _pedestrian(sim: Simulation, event: dict) -> None:
     taken = {p.id for p in sim.walkers}
+    if len(taken) >= sim.config.pedestrians + MAX_INJECTED:
+        raise WorldError(f"pedestrian: the city has {len(taken)} pedestrians, the most it takes "
+                         f"({MAX_INJECTED} more than its {sim.config.pedestrians})")
     fresh = next(f"M{k}" for k in range(len(taken) + 1, 2 * len(taken) + 2) if f"M{k}" not in taken)
-    ident = _ident(event.get("id", fresh), "id")
+    ident = event.get("id", fresh)
     if ident in taken:
-        raise WorldError(f"pedestrian id {ident!r} is taken")
-    speed = _num(event, "speed", 0.0, MAX_WALK_SPEED, 0.0)
-    heading = _num(event, "heading", -MAX_HEADING, MAX_HEADING,
-                   90.0 if "ahead_of" in event else 0.0)
+        raise WorldError(f"id: pedestrian id {ident!r} is taken")
+    speed = float(event.get("speed", 0.0))
     if "ahead_of" in event:
+        other = sorted({"x", "y"} & set(event))
+        if other:
+            raise WorldError(f"{other[0]}: not with ahead_of (a pedestrian steps out ahead "
+                             "of a car, or at x, y)")
         car = sim.cars.get(event["ahead_of"])
         if car is None:
-            raise WorldError(f"ahead_of: unknown agent {event['ahead_of']!r:.60}; agents: "
+            raise WorldError(f"ahead_of: unknown agent {event['ahead_of']!r}; agents: "
                              f"{sorted(sim.cars)}")
-        dist = _num(event, "dist", -MAX_AHEAD, MAX_AHEAD)
-        lateral = _num(event, "lateral", -MAX_AHEAD, MAX_AHEAD, 0.0)
+        if "dist" not in event:
+            raise WorldError("dist: missing; expected a number in "
+                             f"[{-MAX_AHEAD:g}, {MAX_AHEAD:g}] (ahead of the car [m])")
+        dist, lateral = float(event["dist"]), float(event.get("lateral", 0.0))
+        heading = float(event.get("heading", 90.0))
         h = car.body.angle
         x = car.body.position.x + dist * math.cos(h) - lateral * math.sin(h)
         y = car.body.position.y + dist * math.sin(h) + lateral * math.cos(h)
         heading += math.degrees(h)
     else:
         w, h = sim.city.size
-        x = _num(event, "x", -MARGIN, w + MARGIN)
-        y = _num(event, "y", -MARGIN, h + MARGIN)
+        x, y = _within(event, "x", w), _within(event, "y", h)
+        heading = float(event.get("heading", 0.0))
+        other = sorted({"dist", "lateral"} & set(event))
+        if other:
+            raise WorldError(f"{other[0]}: only with ahead_of (a pedestrian steps out ahead "
+                             "of a car, or at x, y)")
     mode = "stand" if speed == 0.0 else "cross"
     sim.add_pedestrian(Pedestrian(ident, x, y, heading, speed=speed, mode=mode))
 
 
+def _within(event: dict, key: str, size: float) -> float:
+    """event[key], a coordinate [m] within MARGIN of the street grid (0 .. size)."""
+    value = event.get(key)
+    if value is None or not -MARGIN <= value <= size + MARGIN:
+        raise WorldError(f"{key}: expected a number in [{-MARGIN:g}, {size + MARGIN:g}], "
+                         f"got {brief(value)}" if value is not None else
+                         f"{key}: missing; expected a number in [{-MARGIN:g}, "
+                         f"{size + MARGIN:g}] (or ahead_of and dist)")
+    return float(value)
+
+
 def _segment(sim: Simulation, event: dict) -> str:
-    seg = event.get("segment")
-    if not isinstance(seg, str):
-        raise WorldError(f"segment: expected a segment id, got {seg!r}")
-    return sim.city.segment(seg).id
+    return sim.city.segment(event["segment"]).id
 
 
 def _package(sim: Simulation, event: dict) -> None:
-    _ident(event.get("id"), "id")
-    if not isinstance(event.get("street"), str):
-        raise WorldError(f"street: expected a street name, got {event.get('street')!r:.60}")
-    if event.get("owner") not in sim.cars:
+    if event["owner"] not in sim.cars:
         raise WorldError(f"owner: expected one of the agents {sorted(sim.cars)}, got "
-                         f"{event.get('owner')!r:.60}")
-    address = event.get("address")
-    if isinstance(address, bool) or not isinstance(address, int):
-        raise WorldError(f"address: expected an integer, got {address!r}")
+                         f"{event['owner']!r}")
     if event["id"] in sim.packages:
-        raise WorldError(f"package {event['id']} exists already")
-    sim.city.building(event["street"], address)   # raises for an unknown address
-    sim.packages[event["id"]] = PackageState(event["id"], address, event["street"],
+        raise WorldError(f"id: package {event['id']} exists already")
+    if len(sim.packages) >= len(sim.config.packages) + MAX_INJECTED:
+        raise WorldError(f"package: the city has {len(sim.packages)} packages, the most it takes")
+    sim.city.building(event["street"], event["address"])   # raises for an unknown address
+    sim.packages[event["id"]] = PackageState(event["id"], event["address"], event["street"],
                                              event["owner"])
 
 
 def apply_injection(sim: Simulation, event: Any) -> dict[str, Any]:
     """Apply one event to the simulation; return its outcome."""
     try:
-        if not isinstance(event, dict):
-            raise WorldError(f"expected a dict with a 'kind', got {event!r}")
-        kind = event.get("kind")
+        kind = EVENTS.check(event)["kind"]
         if kind == "pedestrian":
             _pedestrian(sim, event)
         elif kind == "block":
             sim.blocked.add(_segment(sim, event))
         elif kind == "unblock":
             sim.blocked.discard(_segment(sim, event))
-        elif kind == "package":
-            _package(sim, event)
         else:
-            raise WorldError(f"unknown kind {kind!r}; known: pedestrian block unblock package")
-    except WorldError as exc:
-        return {"event": event, "status": "failed", "reason": f"inject: {exc}"}
-    return {"event": event, "status": "done", "reason": ""}
+            _package(sim, event)
+    except (WorldError, FieldError) as exc:
+        return event_outcome(event, f"inject: {exc}")
+    return event_outcome(event)

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, fields
 from functools import cache
 from typing import Any
 
+from bus.schema import Bool, FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str
 from world.driving.config import WorldConfig, load_world_config
 from world.errors import WorldError
 from world.parsed import parsed_by_value
@@ -20,7 +21,16 @@ COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossin
             "speeding_cycles", "deliveries")
 
 
-_config = parsed_by_value(load_world_config)  # every snapshot of a run carries the same config
+def _checked_config(d: Any) -> WorldConfig:
+    """The config a snapshot carries: plain data, read by load_world_config (ConfigError)."""
+    try:
+        _CONFIG_DATA.check(d)
+    except FieldError as exc:
+        raise WorldError(f"snapshot: config: {exc}") from None
+    return load_world_config(d)
+
+
+_config = parsed_by_value(_checked_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class CarState:
@@ -92,7 +102,12 @@ class WorldSnapshot:
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> WorldSnapshot:
-        """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong."""
+        """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong
+        (the field, checked against SNAPSHOT, or the config's key)."""
+        try:
+            SNAPSHOT.check(d)
+        except FieldError as exc:
+            raise WorldError(f"snapshot: {exc}") from None
         try:
             return cls(
                 cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
@@ -103,7 +118,7 @@ class WorldSnapshot:
                 events=tuple(dict(e) for e in d["events"]),
                 blocked=tuple(d["blocked"]),
             )
-        except (KeyError, TypeError, AttributeError) as exc:
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
             raise WorldError(f"WorldSnapshot.from_dict: malformed snapshot dict ({exc!r})") from exc
 
 
@@ -117,3 +132,23 @@ def _record(kind: type, d: dict[str, Any]) -> Any:
     if not names.issuperset(d):
         raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
     return kind(**d)
+
+
+MAX_COORD = 1e6    # [m] a position's coordinate, either way (the city is a few km wide)
+MAX_RATE = 1e4     # a speed [m/s], angle [deg] or pedal [%], either way
+_POS, _RATE = Num(-MAX_COORD, MAX_COORD), Num(-MAX_RATE, MAX_RATE)
+_CONFIG_DATA = Plain(16)
+SNAPSHOT = Record({
+    "cycle": Int(), "time": Num(), "config": Record({}, open=True),
+    "cars": ListOf(Record({"id": Str(), "kind": Str(), "x": _POS, "y": _POS,
+                           "heading": _RATE, "speed": _RATE},
+                          {"wheel": _RATE, "throttle": _RATE, "brake": _RATE}, what="a car")),
+    "pedestrians": ListOf(Record({"id": Str(), "x": _POS, "y": _POS, "heading": _RATE,
+                                  "speed": _RATE, "mode": Str()}, what="a pedestrian")),
+    "packages": ListOf(Record({"id": Str(), "address": Int(), "street": Str(),
+                               "owner": Str()}, {"delivered": Bool()}, what="a package")),
+    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)), "blocked": ListOf(Str()),
+}, {"domain": OneOf(("driving",))}, open=True, what="a driving snapshot")
+"""The fields of `WorldSnapshot.to_dict` as perception relies on them (its config, plain data,
+is read by load_world_config, which names a bad key, once per distinct config); other
+top-level keys are let through (a later version may add some)."""

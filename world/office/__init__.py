@@ -68,6 +68,14 @@ def perceive(snapshot: dict[str, Any], agent: str) -> list[list[Any]]:
     return from_snapshot(OfficeSnapshot.from_dict(snapshot), agent)
 
 
+def check_event(event: Any) -> str:
+    """What is wrong with an event's fields ("" when nothing): world/office/events.py EVENTS."""
+    from world.domain import event_problem
+    from world.office.events import EVENTS
+
+    return event_problem(EVENTS, event)
+
+
 def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = None) -> int:
     """A PNG or JPEG of the last snapshot with the robot's path, or a GIF of them all (by
     suffix: world/pictures.py); returns the frames drawn."""
@@ -85,4 +93,4 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
 DOMAIN = Domain("office", "office delivery (seed 003): rooms, corridors, doors, people, mail, "
                 "faxes and coffee, a robot with high-level operations",
                 create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ACHIEVEMENTS,
-                actions=ACTIONS)
+                actions=ACTIONS, check_event=check_event)

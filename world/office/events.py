@@ -17,6 +17,8 @@ Kinds (every other key is the event's own):
 - {"kind": "obstacle", "x": m, "y": m, "radius": m, "id": ID}: something on the floor the
   robot's sensors miss (it bumps into it); {"kind": "clear", "obstacle": ID} removes it.
 - {"kind": "stall", "agent": A, "seconds": s}: A's wheels slip: it cannot move for s seconds.
+Every field is checked against EVENTS before use (type, range, no unknown field); at most
+MAX_ITEMS items and MAX_OBSTACLES obstacles.
 """
 
 from __future__ import annotations
@@ -24,6 +26,8 @@ from __future__ import annotations
 import math
 from typing import Any, Protocol
 
+from bus.schema import FieldError, Int, Num, OneOf, Record, Str, Tagged, brief
+from world.domain import event_outcome
 from world.errors import WorldError
 from world.office import EVENT_KINDS
 from world.office.config import OfficeConfig
@@ -33,6 +37,30 @@ from world.office.physics import Physics
 from world.office.snapshot import ObstacleState
 
 CONFUSIONS = ("wrong-room", "halfway")
+MAX_ITEMS = 500       # items on the floor at most (a new one beyond is refused)
+MAX_OBSTACLES = 100   # obstacles at most
+
+_DOOR = Record({"door": Str(what="a door id")})
+_ROOM, _PLACE = Str(what="a room id"), Str(what="a person or room id")
+_AGENT = Str(what="a robot's agent id")
+_ID = Str(what="a new id", min_len=1)
+EVENTS = Tagged({
+    "open": _DOOR, "close": _DOOR, "block": _DOOR,
+    "move": Record({"person": Str(what="a person"), "room": _ROOM}),
+    "false-success": Record({"agent": _AGENT}, {"mode": OneOf(CONFUSIONS)}),
+    "cool": Record({"item": Str(what="a coffee item")},
+                   {"temperature": Num(-20.0, 100.0)}),
+    "item": Record({"item": _ID, "type": Str(what="the item's kind (mail, fax, coffee, ...)",
+                                             min_len=1),
+                    "holder": _PLACE}, {"to": _PLACE, "temperature": Num(-20.0, 100.0)}),
+    "give": Record({"item": Str(what="an item id"), "to": _PLACE}),
+    "occupants": Record({"room": _ROOM, "count": Int(0, 1000)}),
+    "obstacle": Record({"x": Num(), "y": Num()},
+                       {"radius": Num(0.05, 2.0), "id": _ID}),
+    "clear": Record({"obstacle": Str(what="an obstacle id")}),
+    "stall": Record({"agent": _AGENT}, {"seconds": Num(0.0, 3600.0)}),
+})
+"""The office world's events and their fields (the module's docstring): checked before use."""
 
 
 class Office(Protocol):
@@ -64,7 +92,7 @@ def _num(event: dict, key: str, lo: float, hi: float, default: float | None = No
 
 def _name(event: dict, key: str, known: Any, what: str) -> str:
     value = event.get(key)
-    if not isinstance(value, str) or value not in known:
+    if value not in known:
         raise WorldError(f"{key}: expected {what}, one of {sorted(known)}, got {value!r}")
     return value
 
@@ -75,7 +103,7 @@ def _door(sim: Office, event: dict) -> None:
     if state != "open":
         inside = sim.physics.robots_near(door.x, door.y, door.width / 2 + 0.2)
         if inside:
-            raise WorldError(f"robot {inside[0]} stands in the doorway of {door.id}")
+            raise WorldError(f"door: robot {inside[0]} stands in the doorway of {door.id}")
     sim.doors[door.id] = state
     sim.physics.set_door(door, state)
 
@@ -88,14 +116,14 @@ def _move(sim: Office, event: dict) -> None:
 
 
 def _new_item(sim: Office, event: dict) -> None:
-    ident = event.get("item")
+    ident = event["item"]
     taken = set(sim.items) | set(sim.people) | set(sim.doors) | set(sim.robots) | \
         {r.id for r in sim.floor.rooms}
-    if not isinstance(ident, str) or not ident or ident in taken:
+    if ident in taken:
         raise WorldError(f"item: expected a new id, got {ident!r}")
-    kind = event.get("type")
-    if not isinstance(kind, str) or not kind:
-        raise WorldError(f"type: expected the item's kind (mail, fax, coffee, ...), got {kind!r}")
+    if len(sim.items) >= MAX_ITEMS:
+        raise WorldError(f"item: the floor has {len(sim.items)} items, the most it takes")
+    kind = event["type"]
     places = set(sim.people) | {r.id for r in sim.floor.rooms}
     holder = _name(event, "holder", places, "a person or room")
     to = _name(event, "to", places, "a person or room") if "to" in event else ""
@@ -118,13 +146,15 @@ def _obstacle(sim: Office, event: dict) -> None:
     fresh = next(f"o{k}" for k in range(1, len(sim.obstacles) + 2) if f"o{k}" not in
                  sim.obstacles)
     ident = event.get("id", fresh)
-    if not isinstance(ident, str) or not ident or ident in sim.obstacles:
+    if ident in sim.obstacles:
         raise WorldError(f"id: expected a new obstacle id, got {ident!r}")
+    if len(sim.obstacles) >= MAX_OBSTACLES:
+        raise WorldError(f"id: the floor has {len(sim.obstacles)} obstacles, the most it takes")
     if sim.floor.locate(x, y) == "wall":
-        raise WorldError(f"({x:g}, {y:g}) is inside a wall, not in a room or corridor")
+        raise WorldError(f"x, y: ({x:g}, {y:g}) is inside a wall, not in a room or corridor")
     near = sim.physics.robots_near(x, y, radius)
     if near:
-        raise WorldError(f"({x:g}, {y:g}) is under robot {near[0]}")
+        raise WorldError(f"x, y: ({x:g}, {y:g}) is under robot {near[0]}")
     sim.obstacles[ident] = ObstacleState(ident, x, y, radius)
     sim.physics.add_obstacle(ident, x, y, radius)
 
@@ -140,10 +170,7 @@ def _apply(sim: Office, event: dict) -> None:
     elif kind == "move":
         _move(sim, event)
     elif kind == "false-success":
-        mode = event.get("mode", "wrong-room")
-        if mode not in CONFUSIONS:
-            raise WorldError(f"mode: expected one of {list(CONFUSIONS)}, got {mode!r}")
-        _robot(sim, event).confusion = mode
+        _robot(sim, event).confusion = event.get("mode", "wrong-room")
     elif kind == "cool":
         _cool(sim, event)
     elif kind == "item":
@@ -151,15 +178,12 @@ def _apply(sim: Office, event: dict) -> None:
     elif kind == "give":
         item = sim.items[_name(event, "item", sim.items, "an item id")]
         if item.holder in sim.robots:
-            raise WorldError(f"item {item.id} is carried by robot {item.holder}")
+            raise WorldError(f"item: {item.id} is carried by robot {item.holder}")
         places = set(sim.people) | {r.id for r in sim.floor.rooms}
         item.holder = _name(event, "to", places, "a person or room")
     elif kind == "occupants":
         room = _name(event, "room", {r.id for r in sim.floor.rooms}, "a room")
-        count = event.get("count")
-        if isinstance(count, bool) or not isinstance(count, int) or not 0 <= count <= 1000:
-            raise WorldError(f"count: expected an integer in [0, 1000], got {count!r}")
-        sim.occupants[room] = count
+        sim.occupants[room] = event["count"]
     elif kind == "obstacle":
         _obstacle(sim, event)
     elif kind == "clear":
@@ -175,10 +199,12 @@ def _apply(sim: Office, event: dict) -> None:
 def apply_injection(sim: Office, event: Any) -> dict[str, Any]:
     """Apply one event to the world; return its outcome."""
     try:
-        if not isinstance(event, dict):
-            raise WorldError(f"expected a dict with a 'kind', got {event!r:.80}")
+        EVENTS.check(event)
+    except FieldError as exc:
+        return event_outcome(event, f"inject {brief(event.get('kind'))}: {exc}"
+                             if isinstance(event, dict) else f"inject: {exc}")
+    try:
         _apply(sim, event)
     except WorldError as exc:
-        return {"event": event, "status": "failed", "reason": f"inject {event.get('kind')!r}: "
-                f"{exc}" if isinstance(event, dict) else f"inject: {exc}"}
-    return {"event": event, "status": "done", "reason": ""}
+        return event_outcome(event, f"inject {event['kind']!r}: {exc}")
+    return event_outcome(event)

@@ -60,7 +60,7 @@ def _self(snap: OfficeSnapshot, me: RobotState) -> list[Percept]:
     op = me.operation
     if op:
         names = ARGS.get(op["name"], ())
-        named = [x for n, v in zip(names, op["args"], strict=True) for x in (n, v)]
+        named = [x for n, v in zip(names, op["args"], strict=False) for x in (n, v)]
         out.append(["operation", me.id, "action", op["name"], *named, "status", op["status"],
                     "reason", op["code"] or "NIL", "started", op["started"],
                     "ended", op["ended"]])

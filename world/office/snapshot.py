@@ -12,6 +12,20 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
+from bus.schema import (
+    AnyOf,
+    Atom,
+    FieldError,
+    Int,
+    ListOf,
+    MapOf,
+    Num,
+    OneOf,
+    Plain,
+    Record,
+    Str,
+    TupleOf,
+)
 from world.errors import WorldError
 from world.office.config import OfficeConfig, load_office_config
 from world.parsed import parsed_by_value
@@ -20,7 +34,16 @@ COUNTERS = ("travel_cm", "deliveries", "acquisitions", "observations", "utteranc
             "bumps", "reroutes", "false_successes")
 
 
-_config = parsed_by_value(load_office_config)  # every snapshot of a run carries the same config
+def _checked_config(d: Any) -> OfficeConfig:
+    """The config a snapshot carries: plain data, read by load_office_config (ConfigError)."""
+    try:
+        Plain(16).check(d)
+    except FieldError as exc:
+        raise WorldError(f"snapshot: config: {exc}") from None
+    return load_office_config(d)
+
+
+_config = parsed_by_value(_checked_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class RobotState:
@@ -110,7 +133,12 @@ class OfficeSnapshot:
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> OfficeSnapshot:
-        """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong."""
+        """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong
+        (the field, checked against SNAPSHOT, or the config's key)."""
+        try:
+            SNAPSHOT.check(d)
+        except FieldError as exc:
+            raise WorldError(f"snapshot: {exc}") from None
         try:
             robots = []
             for r in d["robots"]:
@@ -138,3 +166,32 @@ def _record(kind: type, d: dict[str, Any]) -> Any:
     if set(d) - names:
         raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
     return kind(**d)
+
+
+MAX_COORD = 1e4    # [m] a position, either way (the floor is some tens of metres)
+_POS, _ID = Num(-MAX_COORD, MAX_COORD), Str()
+_SEEN = TupleOf(_ID, Int(), what="[state, cycle seen]")
+_OPERATION = Record({"name": _ID, "args": ListOf(Atom(), max_len=8), "status": _ID,
+                     "code": Str(), "reason": Str(max_len=4096), "started": Int(),
+                     "ended": Int()}, what="an operation")
+ROBOT = Record({
+    "id": _ID, "x": _POS, "y": _POS, "heading": Num(-1e6, 1e6), "speed": Num(-1e3, 1e3),
+    "place": _ID, "carrying": ListOf(_ID), "route": ListOf(TupleOf(_POS, _POS)),
+}, {"travelled": Num(), "operation": AnyOf(Record({}), _OPERATION),
+    "known_doors": MapOf(_SEEN), "known_people": MapOf(_SEEN),
+    "known_obstacles": MapOf(TupleOf(_POS, _POS, Num(0.0, MAX_COORD), what="[x, y, radius]")),
+    "observations": MapOf(TupleOf(Atom(), Int(), what="[result, cycle]"))}, what="a robot")
+SNAPSHOT = Record({
+    "cycle": Int(), "time": Num(), "config": Record({}, open=True), "robots": ListOf(ROBOT),
+    "people": ListOf(Record({"id": _ID, "room": _ID, "office": _ID, "x": _POS, "y": _POS},
+                            what="a person")),
+    "items": ListOf(Record({"id": _ID, "kind": _ID, "holder": _ID},
+                           {"to": _ID, "temperature": Num(-1e3, 1e3)}, what="an item")),
+    "doors": MapOf(_ID), "occupants": MapOf(Int()),
+    "obstacles": ListOf(Record({"id": _ID, "x": _POS, "y": _POS,
+                                "radius": Num(0.0, MAX_COORD)}, what="an obstacle")),
+    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)),
+}, {"domain": OneOf(("office",))}, open=True, what="an office snapshot")
+"""The fields of `OfficeSnapshot.to_dict` as perception relies on them (its config, plain
+data, is read by load_office_config once per distinct config); other top-level keys are let
+through."""

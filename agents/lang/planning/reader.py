@@ -23,6 +23,10 @@ from .syntax import (
 )
 
 OPERATOR_KEYS = (":operator", ":effects", ":on-failure")
+OPERATOR_FORMS = {":operator": "(name ?param ...)",
+                  ":effects": "((effect ?x ...) (not (effect ?x ...)) ...)",
+                  ":on-failure": "((*action arg ...) ...)"}
+"""The list each operator key takes, as a message shows it."""
 REQUEST_KEYS = (":percepts", ":start", ":knowledge")
 
 
@@ -65,7 +69,11 @@ def _operator(p: Any, item: SList) -> None:
     for i in range(0, len(pairs), 2):
         key = pairs[i]
         if isinstance(key, Atom) and key.value in OPERATOR_KEYS and i + 1 < len(pairs):
-            extra[key.value] = pairs[i + 1]
+            if isinstance(pairs[i + 1], SList):
+                extra[key.value] = pairs[i + 1]
+            else:
+                p.err(pairs[i + 1], f"{key.value} needs a list after it, such as "
+                      f"{OPERATOR_FORMS[key.value]}, got {to_text(pairs[i + 1])}")
         else:
             rest += pairs[i:i + 2]
     if not any(isinstance(x, Atom) and x.value in (":actions", ":subgoals", ":body")
@@ -86,7 +94,8 @@ def _operator(p: Any, item: SList) -> None:
     effects = [e for e in p.conditions(extra.get(":effects"), tests=False)]
     if not any(e == skill.head for e in effects):
         effects.insert(0, skill.head)
-    fails = tuple(a for a in (p.action(x) for x in _items(extra.get(":on-failure")))
+    fails = tuple(a for a in (p.action(x) for x in p.items(extra.get(":on-failure"),
+                                                          "(*action arg ...)"))
                   if a is not None)
     p.parts.sections.setdefault("operators", []).append(OperatorSpec(
         skill, sig.pred, sig.args, tuple(effects), fails, p.loc(item)))
@@ -103,7 +112,8 @@ def requests_section(p: Any, node: SList) -> None:
             continue
         f = _keyed(p, item, REQUEST_KEYS, "a (requests ...) clause")
         knowledge = tuple(x for x in (p.literal(k, "fact", allow_not=False)
-                                      for k in _items(f.get(":knowledge"))) if x is not None)
+                                      for k in p.items(f.get(":knowledge"), "(fact ...)"))
+                          if x is not None)
         p.parts.sections.setdefault("requests", []).append(RequestSpec(
             head, p.patterns(f.get(":percepts")), tuple(p.conditions(f.get(":start"))),
             knowledge, p.loc(item)))
@@ -236,10 +246,6 @@ def _travel(p: Any, item: SList) -> Travel | None:
 def _head(node: Any) -> Any:
     return node.items[0].value if isinstance(node, SList) and node.items and \
         isinstance(node.items[0], Atom) else None
-
-
-def _items(node: SList | None) -> tuple:
-    return () if node is None else node.items
 
 
 PLANNING_SECTIONS = {"operators": operators_section, "requests": requests_section,

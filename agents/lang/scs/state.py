@@ -7,12 +7,14 @@ of what the bodies did. Plain data in ``to_dict``, read back exactly by ``from_d
 
 from __future__ import annotations
 
+import math
 from bisect import bisect_left
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import Any
 
 from ..errors import StateError
+from ..limits import INT_MAX, INT_MIN
 from ..terms import is_const, sort_key
 
 
@@ -94,16 +96,16 @@ class Frame:
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Frame:
         child = d.get("child")
-        return cls(tuple(int(i) for i in d["at"]),
+        return cls(tuple(_int(i) for i in d["at"]),
                    tuple((str(k), _const(v)) for k, v in d.get("bind", ())),
-                   int(d.get("cur", -1)), tuple(int(i) for i in d.get("done", ())),
-                   tuple(int(i) for i in d.get("failed", ())),
+                   _int(d.get("cur", -1)), tuple(_int(i) for i in d.get("done", ())),
+                   tuple(_int(i) for i in d.get("failed", ())),
                    tuple((str(k), _const(v)) for k, v in d.get("alt", ())),
-                   int(d.get("tries", 0)), int(d.get("rounds", 0)), int(d.get("since", -1)),
-                   int(d.get("began", -1)),
+                   _int(d.get("tries", 0)), _int(d.get("rounds", 0)), _int(d.get("since", -1)),
+                   _int(d.get("began", -1)),
                    None if child is None else cls.from_dict(child),
                    tuple(tuple(_const(x) for x in a) for a in d.get("pending", ())),
-                   int(d.get("issued", -1)), str(d.get("outcome", "")),
+                   _int(d.get("issued", -1)), str(d.get("outcome", "")),
                    str(d.get("reason", "")))
 
 
@@ -141,10 +143,10 @@ class Thread:
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Thread:
         root = d.get("root")
-        return cls(str(d["key"]), str(d["goal_id"]), str(d["goal"]), int(d["skill"]),
+        return cls(str(d["key"]), str(d["goal_id"]), str(d["goal"]), _int(d["skill"]),
                    str(d["skill_name"]), None if root is None else Frame.from_dict(root),
-                   ThreadStatus(d["status"]), str(d.get("note", "")), int(d.get("started", 0)),
-                   int(d.get("last", 0)))
+                   ThreadStatus(d["status"]), str(d.get("note", "")), _int(d.get("started", 0)),
+                   _int(d.get("last", 0)))
 
 
 @dataclass(frozen=True, slots=True)
@@ -169,8 +171,8 @@ class Choice:
         factor = float(d.get("factor", 1.0))
         if not 0.0 <= factor <= 1.0:
             raise StateError(f"scs choice {d.get('key')!r}: factor {factor} is not in [0, 1]")
-        return cls(str(d["key"]), str(d.get("label", "")), factor, int(d.get("chosen", 0)),
-                   int(d.get("succeeded", 0)), int(d.get("failed", 0)))
+        return cls(str(d["key"]), str(d.get("label", "")), factor, _int(d.get("chosen", 0)),
+                   _int(d.get("succeeded", 0)), _int(d.get("failed", 0)))
 
 
 @dataclass(frozen=True, slots=True)
@@ -233,7 +235,7 @@ class ScsState:
             choices = tuple(sorted((Choice.from_dict(c) for c in d.get("choices", ())),
                                    key=lambda c: c.key))
             return cls(threads, choices, model_of(d.get("model", ())),
-                       tuple(sorted((str(k), int(v)) for k, v in d.get("tally", {}).items())))
+                       tuple(sorted((str(k), _int(v)) for k, v in d.get("tally", {}).items())))
         except StateError:
             raise
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
@@ -257,9 +259,18 @@ def fact_key(f: tuple) -> tuple:
     return (f[0], len(f), [sort_key(x) for x in f[1:]])
 
 
+def _int(v: Any) -> int:
+    """A count, cycle or index read back: an integer of at most 64 bits (a larger one could
+    not be sent again; a float or a string is not one)."""
+    if type(v) is not int or not INT_MIN <= v <= INT_MAX:
+        raise StateError(f"scs state: {v!r:.40} is not a 64-bit integer")
+    return v
+
+
 def _const(v: Any) -> Any:
-    if not is_const(v):
-        raise StateError(f"scs state: {v!r:.40} is not a symbol or number")
+    """A binding's or a pending action's value read back: a symbol or a finite number."""
+    if not is_const(v) or (type(v) is float and not math.isfinite(v)):
+        raise StateError(f"scs state: {v!r:.40} is not a symbol or finite number")
     return v
 
 

@@ -10,12 +10,12 @@ from functools import lru_cache
 from itertools import islice
 
 from ..arith import evaluate
-from ..errors import EvalError
+from ..errors import EvalError, LangError
 from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
 from ..parser import Parser, Parts
 from ..paths import btuple, show
 from ..program import ConceptClause, Program, Skill
-from ..sexpr import read
+from ..sexpr import Atom, read
 from ..store import FactStore, PerceptIndex
 from ..terms import Literal, Test, Var, fmt
 from .state import CONCEPT, SKILL, Alternative
@@ -47,6 +47,29 @@ def pushable(cond: Literal | Test) -> bool:
     """Only a positive, ground literal can become a subgoal (no skill achieves a negation or
     a test; a variable would leave the subgoal open)."""
     return isinstance(cond, Literal) and not cond.negated and not cond.variables()
+
+
+def _ground(conds: list, b: dict) -> list | None:
+    """``conds`` with ``b``'s values written in, read back (the solver keeps its goals and
+    learns its skills as program text); None when a value does not read back as itself (a
+    symbol that is empty, spaced, a number or a variable as text: only a malformed percept or
+    belief holds one): such a binding is no way to chain off."""
+    if not all(map(_writable, b.values())):
+        return None
+    try:
+        return [condition(show(c, b)) for c in conds]
+    except (ValueError, LangError):
+        return None
+
+
+@lru_cache(maxsize=4096)
+def _writable(value: object) -> bool:
+    """Whether ``value`` (a binding's constant) reads back from its text as itself."""
+    if not isinstance(value, str):
+        return True   # numbers print as they read
+    forms, diags = read(value, "<solver>")
+    return not diags and len(forms) == 1 and isinstance(forms[0], Atom) and \
+        forms[0].value == value
 
 
 class Task:
@@ -119,8 +142,9 @@ class Task:
         conds = [*s.start, *s.requires]
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
-            ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground, applicable) and self.admits(s, b, goal):
+            ground = _ground(conds, b)
+            if ground is not None and self._chainable(ground, applicable) \
+                    and self.admits(s, b, goal):
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
@@ -140,8 +164,8 @@ class Task:
             if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
                     None) is None:
                 continue
-            ground = [condition(show(c, b)) for c in clause.relations]
-            if self._chainable(ground):
+            ground = _ground(clause.relations, b)
+            if ground is not None and self._chainable(ground):
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         name = f"{clause.head.pred}#{clause.index}"
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),

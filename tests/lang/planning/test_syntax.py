@@ -137,3 +137,29 @@ def test_an_operator_without_commands_is_applied_in_the_planners_model():
     op = program.sections["operators"][-1]
     assert (op.name, op.skill.actions, op.skill.kind) == ("get-ready", (), "primitive")
     assert "ready" in program.arity and "ready" not in program.concepts
+
+
+@pytest.mark.parametrize("key, value, expected", [
+    (":effects", "l", ":effects needs a list after it, such as ((effect ?x ...)"),
+    (":on-failure", "stop", ":on-failure needs a list after it, such as ((*action arg ...)"),
+    (":operator", "serve-coffee", ":operator needs a list after it, such as (name ?param"),
+])
+def test_an_atom_where_an_operator_key_takes_a_list_is_a_located_error(key, value, expected):
+    """Drill N2 (issue 24, item 5): `(operators ((delivered) :operator (serve-coffee) :effects
+    l))` raised AttributeError from pieces.py; now each such key says the form it takes."""
+    keys = {":operator": "(serve-coffee)", ":effects": "((delivered))", ":on-failure": "()"}
+    keys[key] = value
+    text = "(operators ((delivered) " + " ".join(f"{k} {v}" for k, v in keys.items()) + "))\n"
+    with pytest.raises(ProgramError) as info:
+        load_program_text(text, "op.tlp")
+    col = text.index(f"{key} {value}") + len(key) + 2
+    assert f"op.tlp:1:{col}: {expected}" in str(info.value), str(info.value)
+
+
+def test_the_drills_operator_reads_as_one_located_error_from_the_command_line(tmp_path):
+    path = tmp_path / "op.tlp"
+    path.write_text("(operators ((delivered) :operator (serve-coffee) :effects l))\n")
+    out = subprocess.run([str(Path(sys.executable).parent / "teleo"), "check", str(path)], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 1 and "Traceback" not in out.stderr + out.stdout
+    assert f"{path}:1:59: :effects needs a list after it" in out.stdout + out.stderr

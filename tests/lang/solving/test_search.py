@@ -137,3 +137,24 @@ def test_a_failed_goal_no_longer_blocks_the_goals_after_it(blocks):
         "its definition cannot be decomposed here")
     assert decision.status_of("p1") is GoalStatus.IMPASSE
     assert decision.section("solver").stack("p1") == ["(clear A)", "(unstackable B A)"]
+
+
+def test_a_way_whose_test_reads_a_variable_nothing_bound_is_no_way_and_no_crash():
+    """bench/fuzz.py (executive, 2026-12-02): a concept's :tests read ?d, which only its
+    relation (near ?x ?d) binds; with no (near A ...) belief the solver's candidate binding
+    left ?d open and the test raised KeyError in the executive. A test nothing bound cannot
+    hold: the way is passed over and the goal ends failed with its reason."""
+    from agents.lang.matcher import solve
+    from agents.lang.terms import Test, Var
+
+    program = load_program_text("""
+((near ?x ?d) :percepts ((thing ?x dist ?d)) :tests ((< ?d 5)))
+((reached ?x) :percepts ((thing ?x)) :relations ((near ?x ?d)) :tests ((< (* 2 ?d) 8)))
+""", "t.tlp")
+    engine = Engine(program)
+    state = engine.add_goal(engine.initial_state(), "(reached A)", 1)
+    result = engine.cycle(state, [["thing", "A", "dist", 10.0]])
+    report = result.decision.goals[0]
+    assert report.status in (GoalStatus.FAILED, GoalStatus.IMPASSE), report
+    test = next(t for t in program.concepts["reached"][0].tests if isinstance(t, Test))
+    assert list(solve([test], {Var("x"): "A"}, None, None)) == []

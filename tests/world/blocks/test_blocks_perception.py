@@ -114,8 +114,10 @@ def test_perception_is_pure_and_refuses_a_stranger_and_a_bad_snapshot():
     assert perceive(snap, "ME") == perceive(snap, "ME") and snap == before
     with pytest.raises(WorldError, match="no agent 'NOBODY'; agents: \\['ME'\\]"):
         perceive(snap, "NOBODY")
-    with pytest.raises(WorldError, match="malformed"):
+    with pytest.raises(WorldError, match=r"snapshot: blocks\[0\]\.x: missing; expected a number"):
         perceive({**snap, "blocks": [{"name": "A"}]}, "ME")
+    with pytest.raises(WorldError, match=r"snapshot: resolution: expected a number in"):
+        perceive({**snap, "resolution": 0}, "ME")   # would divide by zero
     with pytest.raises(WorldError, match="domain 'blocks'"):
         perceive({**snap, "domain": "driving"}, "ME")
 

@@ -101,7 +101,7 @@ def test_a_robot_forgets_an_obstacle_it_sees_gone():
     ({"kind": "cool", "item": "coffee-1", "temperature": 90}, "temperature: expected a number "
                                                               "in [-20, 75]"),
     ({"kind": "item", "item": "fax-jhm", "type": "fax", "holder": "jhm"}, "expected a new id"),
-    ({"kind": "item", "item": "x", "holder": "jhm"}, "type: expected the item's kind"),
+    ({"kind": "item", "item": "x", "holder": "jhm"}, "type: missing; expected the item's kind"),
     ({"kind": "item", "item": "x", "type": "fax", "holder": "ME"}, "holder: expected a person"),
     ({"kind": "give", "item": "mail-9", "to": "jhm"}, "item: expected an item id"),
     ({"kind": "give", "item": "fax-jhm", "to": "ME"}, "to: expected a person or room"),
@@ -109,7 +109,10 @@ def test_a_robot_forgets_an_obstacle_it_sees_gone():
     ({"kind": "occupants", "room": "r-5309", "count": 2.5}, "count: expected an integer"),
     ({"kind": "obstacle", "x": 20.0, "y": 13.0}, "is inside a wall"),
     ({"kind": "obstacle", "x": 18.0, "y": 19.5}, "is under robot ME"),
-    ({"kind": "obstacle", "y": 9.0}, "missing number 'x'"),
+    ({"kind": "obstacle", "y": 9.0}, "x: missing; expected a finite number"),
+    ({"kind": "move", "person": "jhm", "room": "r-5309", "colour": "red"},
+     "unknown field 'colour'; known: kind, person, room"),
+    ({"kind": "move", "person": [], "room": "r-5309"}, "person: expected a person, got []"),
     ({"kind": "clear", "obstacle": "o7"}, "obstacle: expected an obstacle id"),
     ({"kind": "stall", "agent": "ME", "seconds": "long"}, "seconds: expected a number"),
     ({"kind": "teleport"}, "unknown kind 'teleport'; known: open close block"),
@@ -128,7 +131,7 @@ def test_a_bad_event_is_refused_with_the_reason_and_changes_nothing(event, reaso
 
 
 def test_not_a_dict_is_refused():
-    assert office().inject(["close"])["reason"].startswith("inject: expected a dict")
+    assert office().inject(["close"])["reason"].startswith('inject: expected a map with a "kind"')
 
 
 def test_every_event_kind_is_listed_for_scenario_checks():
