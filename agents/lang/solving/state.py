@@ -12,6 +12,7 @@ from typing import Any
 
 SKILL = "skill"       # skill chaining: achieve the start of a skill whose head is the goal
 CONCEPT = "concept"   # concept chaining: achieve the subconcepts of the goal's definition
+CONJUNCTION = "conjunction"   # concept chaining on a conjunctive goal's conjuncts
 
 
 @dataclass(frozen=True, slots=True)

@@ -125,15 +125,21 @@ def test_an_impossible_problem_ends_failed_with_the_reason(blocks):
     assert state.solver.stacks == () and all(acts == [] for _, acts in trace[first:])
 
 
-def test_a_failed_goal_no_longer_blocks_the_goals_after_it(blocks):
-    """An unknown block: nothing to chain off; the program's goal (clear A) is solved next."""
+def test_a_failed_goal_blocks_the_goals_after_it_until_withdrawn(blocks):
+    """An unknown block: nothing to chain off; the failed goal blocks the program's goal
+    (clear A) (issue 22) until it is withdrawn, as the goal-entry process withdraws a user's
+    failed goal; then (clear A) is solved."""
     state = blocks.add_goal(blocks.initial_state(), "(clear Q)", priority=0, goal_id="g1")
-    trace, *_ = run(blocks, state, {"A": "T", "B": "A", "C": "B"}, cycles=1)
+    trace, *_, state = run(blocks, state, {"A": "T", "B": "A", "C": "B"}, cycles=2)
+    for decision, actions in trace:
+        assert decision.status_of("g1") is GoalStatus.FAILED and actions == []
+        assert decision.goals[0].note == (
+            "(clear Q) cannot be achieved: nothing to chain off: no primitive skill for clear "
+            "applies here (its :percepts do not match, or its start could not become subgoals);"
+            " its definition cannot be decomposed here")
+        assert decision.status_of("p1") is GoalStatus.PENDING
+    trace, *_ = run(blocks, blocks.remove_goal(state, "g1"), {"A": "T", "B": "A", "C": "B"},
+                    cycles=1)
     decision = trace[0][0]
-    assert decision.status_of("g1") is GoalStatus.FAILED
-    assert decision.goals[0].note == (
-        "(clear Q) cannot be achieved: nothing to chain off: no primitive skill for clear "
-        "applies here (its :percepts do not match, or its start could not become subgoals); "
-        "its definition cannot be decomposed here")
     assert decision.status_of("p1") is GoalStatus.IMPASSE
     assert decision.section("solver").stack("p1") == ["(clear A)", "(unstackable B A)"]
