@@ -134,6 +134,30 @@ class Effects:
         return out
 
 
+def undoing(effects: Effects, protected: tuple | list, actions) -> str:
+    """Why ``actions`` may not be taken ("" if they may): the program says they undo a
+    literal by which a protected goal holds (``undone_goal``)."""
+    hit = undone_goal(effects, protected, actions)
+    return "" if hit is None else \
+        f"would undo {hit[2]} of goal {hit[0]} {hit[1]}, which holds and comes first"
+
+
+def undone_goal(effects: Effects, protected: tuple | list, actions
+                ) -> tuple[str, str, Literal] | None:
+    """(goal id, goal text, literal) of the first protected goal ``actions`` would undo, or
+    None. ``protected``: (goal id, text, ground literals) of the goals that hold and come
+    first; a negated literal is undone by achieving its core."""
+    if not protected or not actions:
+        return None
+    achieved, undone = effects.of_actions(actions)
+    for gid, text, lits in protected:
+        for lit in lits:
+            core = Literal(lit.pred, lit.args)
+            if undone_by(core, achieved if lit.negated else undone):
+                return gid, text, lit
+    return None
+
+
 def undone_by(lit: Literal, patterns: tuple[Literal, ...]) -> bool:
     """True when the ground literal ``lit`` (negated: its positive core must not become
     true, judged by ``achieved`` patterns instead) matches one of ``patterns``."""

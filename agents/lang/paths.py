@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from .arith import evaluate
-from .effects import Effects, undone_by
+from .effects import Effects, undoing
 from .errors import EvalError
 from .explanation import PassOver, PathStep
 from .goals import satisfied
@@ -110,16 +110,7 @@ class PathFinder:
     def undoes(self, walk: Walk, actions) -> str:
         """Why ``actions`` may not run for the current goal ("" if they may): the program says
         they undo a literal by which a more important goal holds (agents/lang/effects.py)."""
-        if not walk.protected or not actions:
-            return ""
-        achieved, undone = self.effects.of_actions(actions)
-        for gid, text, lits in walk.protected:
-            for lit in lits:
-                core = Literal(lit.pred, lit.args)
-                hit = undone_by(core, achieved) if lit.negated else undone_by(core, undone)
-                if hit:
-                    return f"would undo {lit} of goal {gid} {text}, which holds and comes first"
-        return ""
+        return undoing(self.effects, walk.protected, actions)
 
     # -- resources -------------------------------------------------------------------------
     def resources(self, actions) -> frozenset[str] | None:

@@ -114,8 +114,9 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
           ) -> tuple[StackEntry | None, str]:
     """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none;
     for a conjunction, the first of its agenda (agents/lang/solving/ordering.py)."""
-    if way.kind == CONJUNCTION:
-        items = [c for c in agenda(task, way.conditions) if c not in on_stack]
+    if way.kind == CONJUNCTION:   # a conjunct given up after a circle is not pushed again
+        items = [c for c in agenda(task, way.conditions) if c not in on_stack
+                 and entry.pushes.count(c) < MAX_PUSHES]
         cond = items[0] if items else next((c for c in way.conditions
                                             if not task.holds(c)), None)
     else:

@@ -27,9 +27,9 @@ from ..paths import NOTHING, PathFinder, Remembered, Walk
 from ..terms import Literal
 from .learner import canonical, learn
 from .ordering import agenda, one_step
-from .search import advance
+from .search import MAX_PUSHES, advance
 from .section import SolverSection
-from .state import GoalStack, SolverState, StackEntry
+from .state import CONJUNCTION, GoalStack, SolverState, StackEntry
 from .task import Task, literal
 
 
@@ -77,6 +77,28 @@ class MeansEndsSolver:
         elif current and mine:
             self._refocus(walk, stack, current)
         return [literal(c) for c in items]
+
+    def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
+        """Back off after a circle (agents/lang/loops.py): the top of the goal's stack fails
+        with ``reason``, its parent's way given up as after any failed subgoal (under a
+        conjunction: that conjunct is not pushed again). False when there is no stack."""
+        state: SolverState = walk.current("solver")
+        stack = state.stack_of(entry.id)
+        if stack is None:
+            return False
+        entries = list(stack.entries)
+        top = entries.pop() if len(entries) > 1 else entries[0]
+        if not entries:
+            entries = [top.give_up(reason)]
+        elif entries[-1].decision is not None and entries[-1].decision.kind == CONJUNCTION:
+            parent = entries[-1]
+            entries[-1] = replace(parent, pushes=parent.pushes + (top.goal,) * MAX_PUSHES)
+        else:
+            entries[-1] = entries[-1].give_up(f"its subgoal {top.goal}: {reason}")
+        stacks = tuple(replace(stack, entries=tuple(entries)) if s.goal_id == entry.id else s
+                       for s in state.stacks)
+        _publish(walk, stacks, (f"{entry.id}: backtracked from {top.goal}: {reason}",), (), ())
+        return True
 
     @staticmethod
     def _refocus(walk: Walk, stack: GoalStack, current: str) -> None:
@@ -131,13 +153,21 @@ class MeansEndsSolver:
 
         step = advance(task, stack, probe)
         events += [f"{entry.id}: {e}" for e in step.events]
+        conflicts = tuple(dict.fromkeys(stack.conflicts + tuple(
+            f"{g} {text}" for g, text in task.conflicts.items())))
         others = tuple(s for s in state.stacks if s.goal_id != entry.id)
-        stacks = tuple(sorted(others + ((step.stack,) if step.stack else ()),
-                              key=lambda s: s.goal_id))
-        if step.failed:
-            events.append(f"{entry.id}: failed: {step.failed}")
+        mine = (replace(step.stack, conflicts=conflicts),) if step.stack else ()
+        stacks = tuple(sorted(others + mine, key=lambda s: s.goal_id))
+        failed = step.failed
+        if failed and conflicts:   # seed 000: a lower goal may not undo a higher one
+            failed = (f"{insts[0]} cannot be achieved without undoing "
+                      f"{' and '.join(conflicts)}, which "
+                      f"{'holds' if len(conflicts) == 1 else 'hold'} and come"
+                      f"{'s' if len(conflicts) == 1 else ''} first; {failed}")
+        if failed:
+            events.append(f"{entry.id}: failed: {failed}")
         _publish(walk, stacks, tuple(events), (entry.id,), ())
-        return Impasse(step.found, step.failed, step.note)
+        return Impasse(step.found, failed, step.note)
 
 
 def _observe(task: Task, e: StackEntry) -> StackEntry:

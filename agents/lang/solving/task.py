@@ -11,7 +11,7 @@ from itertools import islice
 
 from ..arith import evaluate
 from ..conjunction import Conjunction, conjunction_holds
-from ..effects import Effects, undone_by
+from ..effects import Effects, undone_goal
 from ..errors import EvalError, GoalError
 from ..goals import parse_goal
 from ..loops import situation
@@ -79,7 +79,8 @@ class Task:
         self.store = store
         self.protected = tuple(protected)
         self.effects = effects if effects is not None else Effects(program)
-        self.refused: list[str] = []   # ways left out because they undo a protected goal
+        self.refused: list[str] = []   # ways left out because they undo a protected goal,
+        self.conflicts: dict[str, str] = {}   # and those goals (id -> text)
         self.memo: dict = {}           # per-cycle results (agents/lang/solving/ordering.py)
         self.shared = shared if shared is not None else {}  # the same, across cycles, by
         #                                                     situation (``situation``)
@@ -128,19 +129,6 @@ class Task:
         return types[0] if types else None
 
     # -- ways to chain off a goal ----------------------------------------------------------
-    def undoing(self, actions: list[Action]) -> str:
-        """Why ``actions`` may not be taken ("" if they may): the program says they undo a
-        literal by which a protected goal holds."""
-        if not self.protected:
-            return ""
-        achieved, undone = self.effects.of_actions(actions)
-        for gid, text, lits in self.protected:
-            for lit in lits:
-                core = Literal(lit.pred, lit.args)
-                if undone_by(core, achieved if lit.negated else undone):
-                    return f"would undo {lit} of goal {gid} {text}, which holds and comes first"
-        return ""
-
     def nothing_to_chain(self, goal: str) -> str:
         """Why ``goal`` has no way to chain off, for the failure's reason."""
         refused = f"; {'; '.join(dict.fromkeys(self.refused))}" if self.refused else ""
@@ -235,10 +223,13 @@ class Task:
             actions = [Action(a.name, tuple(evaluate(x, b) for x in a.args)) for a in s.actions]
         except EvalError:
             return False
-        why = self.undoing(actions)
-        if why:
-            self.refused.append(f"{self._shows(s, b)} {why}")
-        return bool(why)
+        hit = undone_goal(self.effects, self.protected, actions)
+        if hit is not None:
+            gid, text, lit = hit
+            self.conflicts[gid] = text
+            self.refused.append(f"{self._shows(s, b)} would undo {lit} of goal {gid} {text}, "
+                                "which holds and comes first")
+        return hit is not None
 
     def _chainable(self, ground: list, applicable: bool = False) -> bool:
         """Something is left to achieve (or, ``applicable``, nothing), and all of it can

@@ -102,7 +102,9 @@ def run(engine: Engine, start: Towers, goals: list[tuple[str, int]], cycles: int
         learned: tuple[str, ...] = (), stop: bool = True) -> Run:
     """Run ``engine`` (the program's own goals removed) with user ``goals`` [(text,
     priority)] on the pymunk Blocks World from ``start`` for at most ``cycles`` cycles
-    (``stop``: until every goal is satisfied or failed)."""
+    (``stop``: until every goal is satisfied or failed). A goal that fails is withdrawn the
+    next cycle, as the goal-entry process withdraws a user's failed goal; its status stays
+    failed in ``statuses``."""
     domain = get_domain("blocks")
     n = sum(len(t) for t in start)
     world = domain.create({"towers": [list(t) for t in start],
@@ -120,8 +122,15 @@ def run(engine: Engine, start: Towers, goals: list[tuple[str, int]], cycles: int
         state = result.state
         acts = [a.to_list() for a in result.decision.actions]
         out.actions.append(acts)
-        out.statuses.append({g.id: g.status.value for g in result.decision.goals})
-        out.notes.append({g.id: g.note for g in result.decision.goals})
+        withdrawn = {g: "failed" for g, s in (out.statuses[-1].items() if out.statuses
+                                               else ()) if s == "failed"}
+        out.statuses.append({**withdrawn,
+                             **{g.id: g.status.value for g in result.decision.goals}})
+        out.notes.append({**(out.notes[-1] if out.notes else {}),
+                          **{g.id: g.note for g in result.decision.goals}})
+        for g in result.decision.goals:
+            if g.status.value == "failed":
+                state = engine.remove_goal(state, g.id)
         section = result.decision.section("solver")
         out.solving += bool(section is not None and section.solving)
         outcomes = world.apply_actions("ME", acts)
