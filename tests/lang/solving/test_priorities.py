@@ -8,15 +8,15 @@ from __future__ import annotations
 
 import pytest
 
-from agents.lang import Engine, GoalStatus, load_program, load_program_text
+from agents.lang import Engine, GoalStatus, load_program_text
 
-from ..conftest import ROOT
+from ..conftest import figure3_program
 from ..test_blocks import TOWER, act, percepts
 
 
 @pytest.fixture(scope="module")
 def blocks():
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    return Engine(figure3_program())
 
 
 def _cycles(engine, state, support, n, post=None):

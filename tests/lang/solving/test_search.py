@@ -64,10 +64,9 @@ def test_toy_task_depth_bound():
 
 @pytest.fixture(scope="module")
 def blocks():
-    from agents.lang import load_program
 
-    from ..conftest import ROOT
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    from ..conftest import figure3_program
+    return Engine(figure3_program())
 
 
 def _goal(engine, goal):
