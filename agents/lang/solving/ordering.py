@@ -29,18 +29,16 @@ Pure; regressions are kept for the cycle in ``Task.memo``, agendas across cycles
 
 from __future__ import annotations
 
-from itertools import chain
-
 from ..effects import undone_by
 from ..matcher import solve, unify_head
 from ..terms import Literal, Test, Var
+from .landmarks import key as _key
+from .landmarks import landmarks
 from .task import Task, condition, literal, pushable
 
 MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
 MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]
-MAX_LANDMARK = 6   # levels of landmark regression [levels]
 MAX_SHARED = 64    # agendas kept across cycles [agendas]
-_ANY = Var("_")
 
 
 def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
@@ -58,7 +56,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
                    for need, above in plans[h].items() if _threatens(task, g, need)]
         if not threats:
             free.append(g)
-        elif not any(_key(need) in landmarks(task, h) for h, need, _ in threats):
+        elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
             promote += [above for _, _, above in threats if above]
     if free:
         now = [g for g in free if one_step(task, g)]
@@ -160,71 +158,3 @@ def one_step(task: Task, g: str) -> bool:
     return False
 
 
-def landmarks(task: Task, goal: str) -> frozenset[str]:
-    """Keys (``_key``) of the conditions that every way of achieving ``goal`` from the current
-    situation passes through: the conditions common to all its ways (each way's conditions and
-    what their definitions consist of), and, for those that do not hold, their own landmarks."""
-    key = ("landmarks", goal)
-    if key not in task.memo:
-        task.memo[key] = frozenset(_landmarks(task, literal(goal), 0, frozenset()))
-    return task.memo[key]
-
-
-def _landmarks(task: Task, goal: Literal, depth: int, seen: frozenset) -> set[str]:
-    if depth >= MAX_LANDMARK or goal in seen or task.holds(goal):
-        return set()
-    ways = _ways(task, goal)
-    if not ways:
-        return set()
-    common: dict[str, Literal] = dict(ways[0])
-    for w in ways[1:]:
-        common = {k: v for k, v in common.items() if k in w}
-    out = set(common)
-    for lit in common.values():
-        if not lit.negated and not lit.variables():
-            out |= _landmarks(task, lit, depth + 1, seen | {goal})
-    return out
-
-
-def _ways(task: Task, goal: Literal) -> list[dict[str, Literal]]:
-    """Each way to achieve ``goal`` (primitive skills, concept clauses) as the conditions it
-    passes through, by key, variables the goal does not fix left open."""
-    out = []
-    for s in task.program.skills_for(goal.pred):
-        b = unify_head(s.head, goal, {}) if s.kind == "primitive" else None
-        if b is not None:
-            conds = [c for c in chain(s.start, s.requires) if isinstance(c, Literal)]
-            out.append(_expanded([_open(c, b) for c in conds], 2, task))
-    for clause in task.program.concepts.get(goal.pred, ()):
-        b = unify_head(clause.head, goal, {}) if clause.relations else None
-        if b is not None:
-            out.append(_expanded([_open(r, b) for r in clause.relations], 1, task))
-    return [w for w in out if w]
-
-
-def _expanded(lits: list[Literal], depth: int, task: Task | None = None
-              ) -> dict[str, Literal]:
-    """``lits`` and, ``depth`` levels down, the relations of the single-clause concepts they
-    name (what holds whenever they hold), by key."""
-    out = {_key(x): x for x in lits}
-    if depth <= 0 or task is None:
-        return out
-    for x in lits:
-        clauses = task.program.concepts.get(x.pred, ()) if not x.negated else ()
-        if len(clauses) == 1 and clauses[0].relations:
-            b = unify_head(clauses[0].head, x, {})
-            if b is not None:
-                out.update(_expanded([_open(r, b) for r in clauses[0].relations], depth - 1,
-                                     task))
-    return out
-
-
-def _open(lit: Literal, b: dict) -> Literal:
-    return Literal(lit.pred, tuple(b.get(a, _ANY) if isinstance(a, Var) else a
-                                   for a in lit.args), lit.negated)
-
-
-def _key(lit: Literal) -> str:
-    """The text of ``lit`` with every variable written ``?_``."""
-    return str(Literal(lit.pred, tuple(_ANY if isinstance(a, Var) else a for a in lit.args),
-                       lit.negated))

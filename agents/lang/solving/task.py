@@ -16,12 +16,14 @@ from ..errors import EvalError, GoalError
 from ..goals import parse_goal
 from ..loops import situation
 from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
+from ..matcher import ground as ground_literal
 from ..parser import Parser, Parts
 from ..paths import btuple, show
 from ..program import ConceptClause, Program, Skill
 from ..sexpr import read
 from ..store import FactStore, PerceptIndex
 from ..terms import Action, Literal, Test, Var, fmt
+from .landmarks import key, landmarks
 from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
@@ -183,11 +185,13 @@ class Task:
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
             ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground, applicable) and not self.undoes_skill(s, b):
+            if self._chainable(ground, applicable) and not self.undoes_skill(s, b) and \
+                    (applicable or not self._circular(goal, ground)):
                 ready = applicable and all(self.holds(c) for c in ground)
                 ranked.append(((not ready, *self.rank(ground)), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
-                            self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
+                            self._shows(s, b))
+                for _, _, b, ground in self._best(ranked, not applicable)]
 
     def _by_concept(self, clause: ConceptClause, goal: Literal) -> list[Alternative]:
         b0 = unify_head(clause.head, goal, {})
@@ -231,6 +235,30 @@ class Task:
                                 "which holds and comes first")
         return hit is not None
 
+    def _circular(self, goal: Literal, ground: list) -> bool:
+        """True when a false condition of a way (or a false part of its definition) can only be
+        achieved through ``goal`` itself, a landmark of it (agents/lang/solving/landmarks.py):
+        clearing B3 by lifting B6 off it, when B6 is not on B3, would first need B6 put there,
+        which needs (clear B3). Such a way is not chained off."""
+        goal_key = key(goal)
+        for c in ground:
+            if not isinstance(c, Literal) or c.negated or self.holds(c):
+                continue
+            for r in (c, *self._definition(c)):
+                if not r.variables() and not self.holds(r) and \
+                        goal_key in landmarks(self, r):
+                    return True
+        return False
+
+    def _definition(self, lit: Literal) -> list[Literal]:
+        """The positive relations of ``lit``'s single defining clause, bound by its head."""
+        clauses = self.program.concepts.get(lit.pred, ())
+        if len(clauses) != 1:
+            return []
+        b = unify_head(clauses[0].head, lit, {})
+        return [] if b is None else [ground_literal(r, b) for r in clauses[0].relations
+                                     if not r.negated]
+
     def _chainable(self, ground: list, applicable: bool = False) -> bool:
         """Something is left to achieve (or, ``applicable``, nothing), and all of it can
         become a subgoal."""
@@ -238,9 +266,14 @@ class Task:
         return (applicable or bool(unsat)) and all(pushable(c) for c in unsat)
 
     @staticmethod
-    def _best(ranked: list) -> list:
+    def _best(ranked: list, closest: bool = True) -> list:
+        """The best-ranked bindings of a clause, at most MAX_PER_CLAUSE; with ``closest``
+        (the solver's chaining), none that holds fewer of the conditions than the best one
+        (a block not on B3 is no way to clear B3: it would first have to be put there). The
+        planner, which projects its operators, keeps them all."""
         ranked.sort(key=lambda r: (r[0], r[1]))
-        return ranked[:MAX_PER_CLAUSE]
+        best = ranked[:MAX_PER_CLAUSE]
+        return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
 
     def rank(self, conds: list) -> tuple:
         """Sort key of a way to chain off (smaller first): the most conditions holding,
