@@ -132,8 +132,11 @@ class Executive:
                 remembered.pop(e.id, None)   # a broken path with no alternative is forgotten
                 answer = self._impasse(walk, e, unsat)
                 if answer.failed:
-                    failed[e.id] = answer.failed
-                    reports.append(_report(e, GoalStatus.FAILED, inst, answer.failed))
+                    circle = watcher.circle(e.id)
+                    why = f"{answer.failed}; after going round in a circle ({circle})" \
+                        if circle else answer.failed
+                    failed[e.id] = why
+                    reports.append(_report(e, GoalStatus.FAILED, inst, why))
                     stop = e.id   # a failed goal blocks lower ones as an impasse does
                     continue
                 if answer.found is None:

@@ -18,8 +18,9 @@ circle longer than the window within twice its length. A return counts only wher
 pursued (active, in impasse or given up), only after the situation has changed in between
 (staying put while the solver thinks is not a circle), and only when every step of the circle
 was the agent's own doing: what the program says its actions achieve (agents/lang/effects.py)
-was seen to hold in the next situation. A world that changes back and forth by itself while a
-teleoreactive program follows it is not the agent going round in a circle. Plain data in
+was seen to hold in the next situation, or it did not act and the world stayed as it was. A
+world that changes back and forth by itself while a teleoreactive program follows it is not
+the agent going round in a circle. Plain data in
 EngineState.loops."""
 
 from __future__ import annotations
@@ -38,9 +39,21 @@ def situation(pidx: PerceptIndex, store: FactStore, intention: str = "") -> str:
     """A digest (32 hex digits) of the percepts, the concept beliefs and ``intention`` (text
     of what the agent was doing: see ``intention``); equal situations give equal digests in
     any process (no Python hash)."""
+    return combined(world(pidx, store), intention)
+
+
+def combined(world_digest: str, intention: str) -> str:
+    """The situation digest of a world digest and an intention."""
     h = hashlib.blake2b(digest_size=16)
-    h.update(intention.encode())
+    h.update(world_digest.encode())
     h.update(b"|")
+    h.update(intention.encode())
+    return h.hexdigest()
+
+
+def world(pidx: PerceptIndex, store: FactStore) -> str:
+    """A digest of what the agent perceives and believes (the world part of a situation)."""
+    h = hashlib.blake2b(digest_size=16)
     for row in sorted(repr(tuple(r)) for r in pidx.rows()):
         h.update(row.encode())
         h.update(b"\n")
@@ -56,8 +69,9 @@ class Visit:
     """One situation of an episode: its digest, the cycle it was first seen, the goal whose path
     acted in it (``actor``, "" if none), whether the watched goal was pursued there,
     ``expects``: what the program says the actions taken there achieve (facts as (pred, arg,
-    ...)), and ``caused``: whether they were then seen to hold, i.e. the step to the next
-    situation was the agent's own doing."""
+    ...)), ``caused``: whether the step to the next situation was the agent's own doing (what
+    its actions were to achieve was then seen to hold, or it did not act and the world stayed
+    as it was: only its intention moved on), ``world``: the digest of the world part."""
 
     digest: str
     cycle: int
@@ -65,16 +79,17 @@ class Visit:
     pursued: bool = False
     expects: tuple[tuple, ...] = ()
     caused: bool = False
+    world: str = ""
 
     def to_list(self) -> list:
         return [self.digest, self.cycle, self.actor, self.pursued,
-                [list(x) for x in self.expects], self.caused]
+                [list(x) for x in self.expects], self.caused, self.world]
 
     @classmethod
     def from_list(cls, d: list) -> Visit:
         return cls(str(d[0]), int(d[1]), str(d[2]), bool(d[3]),
                    tuple(tuple(x) for x in d[4]) if len(d) > 4 else (),
-                   bool(d[5]) if len(d) > 5 else False)
+                   bool(d[5]) if len(d) > 5 else False, str(d[6]) if len(d) > 6 else "")
 
 
 @dataclass(frozen=True, slots=True)
@@ -94,6 +109,7 @@ class Watch:
     steps: int = 0
     loops: int = 0
     banned: tuple[tuple[str, int, tuple], ...] = ()
+    circle: str = ""
 
     def returned(self, digest: str) -> Visit | None:
         """The earlier visit this situation comes back to (the goal pursued there, another
@@ -108,25 +124,28 @@ class Watch:
             return Visit(digest, self.mark_cycle, "", True)
         return None
 
-    def observed(self, store: FactStore) -> Watch:
-        """This watch with its last step judged: caused by the agent when what its actions
-        were to achieve holds now."""
-        if not self.visits or not self.visits[-1].expects:
+    def observed(self, store: FactStore, world_digest: str) -> Watch:
+        """This watch with its last step judged (``Visit.caused``) in the world now."""
+        if not self.visits:
             return self
         last = self.visits[-1]
-        caused = all(tuple(x[1:]) in store.get(x[0]) for x in last.expects)
+        if last.expects:
+            caused = all(tuple(x[1:]) in store.get(x[0]) for x in last.expects)
+        else:
+            caused = bool(last.world) and last.world == world_digest and not last.actor
         return replace(self, visits=self.visits[:-1] + (replace(last, caused=caused),))
 
     def seen(self, digest: str, cycle: int, actor: str, pursued: bool,
-             expects: tuple[tuple, ...]) -> Watch:
-        """This watch after the situation ``digest`` of ``cycle``, in which ``actor`` took
-        actions expected to achieve ``expects``."""
+             expects: tuple[tuple, ...], world_digest: str = "") -> Watch:
+        """This watch after the situation ``digest`` (world part ``world_digest``) of
+        ``cycle``, in which ``actor`` took actions expected to achieve ``expects``."""
         if self.visits and self.visits[-1].digest == digest:
             last = self.visits[-1]
             merged = replace(last, actor=last.actor or actor, pursued=last.pursued or pursued,
                              expects=expects or last.expects, caused=False)
             return replace(self, visits=self.visits[:-1] + (merged,))
-        visits = (self.visits + (Visit(digest, cycle, actor, pursued, expects),))[-WINDOW:]
+        visits = (self.visits + (Visit(digest, cycle, actor, pursued, expects, False,
+                                       world_digest),))[-WINDOW:]
         steps = self.steps + 1
         if not self.mark or steps >= self.power:
             return replace(self, visits=visits, mark=digest, mark_cycle=cycle,
@@ -142,7 +161,7 @@ class Watch:
         return {"goal_id": self.goal_id, "since": self.since,
                 "visits": [v.to_list() for v in self.visits], "mark": self.mark,
                 "mark_cycle": self.mark_cycle, "power": self.power, "steps": self.steps,
-                "loops": self.loops,
+                "loops": self.loops, "circle": self.circle,
                 "banned": [[g, n, [[k, v] for k, v in b]] for g, n, b in self.banned]}
 
     @classmethod
@@ -152,7 +171,7 @@ class Watch:
                    str(d.get("mark", "")), int(d.get("mark_cycle", 0)),
                    int(d.get("power", 1)), int(d.get("steps", 0)), int(d.get("loops", 0)),
                    tuple((str(g), int(n), tuple((str(k), v) for k, v in b))
-                         for g, n, b in d.get("banned", ())))
+                         for g, n, b in d.get("banned", ())), str(d.get("circle", "")))
 
 
 @dataclass(frozen=True, slots=True)
@@ -186,17 +205,24 @@ class Watcher:
 
     def __init__(self, state: LoopState, pidx: PerceptIndex, store: FactStore, cycle: int,
                  texts: dict[str, str], intends: str = ""):
-        self.old = {w.goal_id: w.observed(store) for w in state.watches}
-        self.new: dict[str, Watch] = {}
         self.pidx, self.store, self.cycle, self.texts = pidx, store, cycle, texts
         self.intends = intends
+        self._world = ""
         self._digest = ""
+        self.old = {w.goal_id: w.observed(store, self.world) for w in state.watches}
+        self.new: dict[str, Watch] = {}
         self.pursued: set[str] = set()
+
+    @property
+    def world(self) -> str:
+        if not self._world:
+            self._world = world(self.pidx, self.store)
+        return self._world
 
     @property
     def digest(self) -> str:
         if not self._digest:
-            self._digest = situation(self.pidx, self.store, self.intends)
+            self._digest = combined(self.world, self.intends)
         return self._digest
 
     def watch(self, goal_id: str) -> Watch:
@@ -213,14 +239,19 @@ class Watcher:
         back = w.returned(self.digest)
         if back is None:
             return ""
-        self.new[goal_id] = replace(w, loops=w.loops + 1)
         fight = [g for g in w.since_visit(back)] or [goal_id]
         if goal_id not in fight:
             fight.insert(0, goal_id)
         names = " and ".join(f"{g} {self.texts.get(g, '')}".strip() for g in fight)
-        return (f"loop: back in the situation of cycle {back.cycle} while pursuing {goal_id} "
-                f"{self.texts.get(goal_id, '')}, with no progress since; the goals that acted "
-                f"in the circle: {names}")
+        why = (f"loop: back in the situation of cycle {back.cycle} while pursuing {goal_id} "
+               f"{self.texts.get(goal_id, '')}, with no progress since; the goals that acted "
+               f"in the circle: {names}")
+        self.new[goal_id] = replace(w, loops=w.loops + 1, circle=why)
+        return why
+
+    def circle(self, goal_id: str) -> str:
+        """Why the last circle of ``goal_id``'s episode was one ("" if none)."""
+        return self.watch(goal_id).circle
 
     def loops(self, goal_id: str) -> int:
         return self.watch(goal_id).loops
@@ -238,5 +269,5 @@ class Watcher:
         out = []
         for g in unsatisfied:
             out.append(self.watch(g).seen(self.digest, self.cycle, actor, g in self.pursued,
-                                          expects))
+                                          expects, self.world))
         return LoopState(tuple(sorted(out, key=lambda w: w.goal_id)))
