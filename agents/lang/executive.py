@@ -22,10 +22,11 @@ from dataclasses import dataclass, replace
 from typing import Protocol
 
 from .bodies import body_runners, cycle_hooks
+from .circles import Watcher
 from .conjunction import Conjunction, first_binding
 from .explanation import Decision, GoalPath, GoalReport, GoalStatus
 from .goals import GoalEntry, instances, ordered, satisfied
-from .loops import MAX_LOOPS, Watcher, intention
+from .loops import MAX_LOOPS, intention
 from .matcher import ground
 from .outcomes import Outcome
 from .paths import NOTHING, Found, PathFinder, Remembered, Walk
@@ -75,25 +76,26 @@ class Executive:
             hook.begin(self.finder, walk)
         if self.solver is not None:
             self.solver.begin(self.finder, walk)
-        reports, paths, idle, unsatisfied = [], [], [], []
+        reports, paths, idle, seen = [], [], [], []
         remembered = dict(state.paths)
         failed = dict(walk.current("failed"))
+        goals = ordered(state.goals)
         watcher = Watcher(state.loops, pidx, store, state.cycle,
-                          {e.id: e.text for e in state.goals},
+                          {e.id: e.text for e in goals}, {e.id: k for k, e in enumerate(goals)},
                           intention(state.paths, state.active, state.scs.threads,
                                     state.scs.choices, len(state.learned)))
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
-        for e in ordered(state.goals):
+        for e in goals:
             walk.goal_id = e.id
             unsat = [i for i in instances(e.literal, self.program, pidx) if not satisfied(i, store)]
             prev = remembered.get(e.id, ())
+            seen.append((e.id, not unsat))
             if not unsat:
                 reports.append(GoalReport(e.id, e.text, e.priority, GoalStatus.SATISFIED))
                 remembered.pop(e.id, None)
                 failed.pop(e.id, None)
                 walk.protected.append((e.id, e.text, _held(e, self.program, pidx, store)))
                 continue
-            unsatisfied.append(e.id)
             waiting = GoalStatus.SUSPENDED if prev else GoalStatus.PENDING
             blocker = stop or walk.exclusive or (paths[0].goal_id if paths and
                                                  self.program.resources is None else "")
@@ -104,7 +106,8 @@ class Executive:
                 reports.append(_report(e, waiting, unsat[0], f"waits: {blocker} comes first"))
                 continue
             watcher.pursued.add(e.id)
-            circle = watcher.check(e.id)
+            watcher.check(e.id)
+            circle = watcher.take(e.id)
             if circle:
                 why = self._circle(walk, e, prev, circle, watcher)
                 remembered.pop(e.id, None)
@@ -133,8 +136,8 @@ class Executive:
                 answer = self._impasse(walk, e, unsat)
                 if answer.failed:
                     circle = watcher.circle(e.id)
-                    why = f"{answer.failed}; after going round in a circle ({circle})" \
-                        if circle else answer.failed
+                    why = f"{e.text} cannot be achieved without going round in a circle " \
+                          f"({circle}); {answer.failed}" if circle else answer.failed
                     failed[e.id] = why
                     reports.append(_report(e, GoalStatus.FAILED, inst, why))
                     stop = e.id   # a failed goal blocks lower ones as an impasse does
@@ -163,8 +166,8 @@ class Executive:
         live = {e.id for e in state.goals}
         walk.updates["failed"] = tuple(sorted((g, why) for g, why in failed.items() if g in live))
         achieved = self.finder.effects.of_actions([a for p in paths for a in p.actions])[0]
-        loops = watcher.state(unsatisfied, paths[0].goal_id if paths else "",
-                              tuple((x.pred, *x.args) for x in achieved))
+        loops = watcher.state(seen, paths[0].goal_id if paths else "",
+                              tuple((x.pred, *x.args) for x in achieved), dict(remembered))
         new_state = replace(
             state, paths=tuple(sorted((k, v) for k, v in remembered.items() if k in live)),
             cycle=state.cycle + 1, active=tuple(p.goal_id for p in paths) + tuple(idle),
@@ -202,20 +205,20 @@ class Executive:
 
     def _circle(self, walk: Walk, e: GoalEntry, prev: tuple, why: str,
                 watcher: Watcher) -> str:
-        """Back off after a circle (``why``): the skill the remembered path began with is not
-        used for this goal again in the episode, and the impasse handler backtracks; returns
-        the reason to fail the goal ("" to go on)."""
-        if prev:
-            watcher.ban(e.id, (prev[0].goal, prev[0].skill, prev[0].bindings))
+        """Back off after a circle (``why``): the skill the goal's last path began with is not
+        used for it again in the episode, and the impasse handler backtracks; returns the
+        reason to fail the goal ("" to go on): after MAX_LOOPS circles, or when there is
+        nothing to back off from."""
+        step = (prev[0].goal, prev[0].skill, prev[0].bindings) if prev else \
+            watcher.watch(e.id).last
+        if step:
+            watcher.ban(e.id, step)
         if watcher.loops(e.id) > MAX_LOOPS:
             return f"{e.text} cannot be achieved without going round in a circle " \
                    f"({MAX_LOOPS + 1} returns); last: {why}"
         back = getattr(self.solver, "loop", None)
-        if back is not None:
-            back(self.finder, walk, e, why)
-        elif not prev:
-            return f"{e.text}: {why}"
-        return ""
+        backed = back is not None and back(self.finder, walk, e, why)
+        return "" if step or backed else f"{e.text} cannot be achieved: {why}"
 
     def _impasse(self, walk: Walk, e: GoalEntry, unsat: list) -> Impasse:
         if self.solver is None:

@@ -2,7 +2,7 @@
 while pursuing the same goal, without the goal having held in between, is going round in a
 circle (a lower goal undoing a higher one that is then restored, a learned skill moving a block
 to the table and back). The executive notices it within a bounded number of cycles and makes
-the goal try something else (agents/lang/executive.py); after MAX_LOOPS such returns in one
+the goal try something else (agents/lang/circles.py); after MAX_LOOPS such circles in one
 episode the goal fails, naming the goals that acted in the circle.
 
 A situation is what the agent perceives, believes and intends at the start of a cycle: a
@@ -11,17 +11,18 @@ digest of its percepts, its beliefs and the paths and SCS threads it was running
 the same while its position changes, is not taken for a circle; intentions count so that a
 body that began again because the world changed back by itself (seed 002's do-first) is not
 either. The solver's bookkeeping, the cycle and the tallies do not count.
-Each unsatisfied goal has a ``Watch`` for its episode (from the cycle it was found unsatisfied
-to the cycle it holds again or is removed): the last WINDOW distinct situations, in order, and
-a Brent checkpoint (the situation at step 1, 2, 4, 8, ... of the episode) that catches a
-circle longer than the window within twice its length. A return counts only where the goal was
-pursued (active, in impasse or given up), only after the situation has changed in between
-(staying put while the solver thinks is not a circle), and only when every step of the circle
-was the agent's own doing: what the program says its actions achieve (agents/lang/effects.py)
-was seen to hold in the next situation, or it did not act and the world stayed as it was. A
-world that changes back and forth by itself while a teleoreactive program follows it is not
-the agent going round in a circle. Plain data in
-EngineState.loops."""
+
+Each goal has a ``Watch`` for its episode, from the cycle it is found unsatisfied to the second
+cycle in a row it holds (a goal that holds for one cycle only, undone at once by a higher one
+restoring itself, has made no progress) or its removal: the last WINDOW distinct situations,
+in order, and a Brent checkpoint (the situation at step 1, 2, 4, 8, ... of the episode) that
+catches a circle longer than the window within twice its length. A return counts only where
+the goal was pursued (active, in impasse or given up), only after the situation has changed in
+between (staying put while the solver thinks is not a circle), and only when every step of the
+circle was the agent's own doing: what the program says its actions achieve
+(agents/lang/effects.py) was seen to hold in the next situation, or it did not act and the
+world stayed as it was. A world that changes back and forth by itself while a teleoreactive
+program follows it is not the agent going round in a circle. Plain data in EngineState.loops."""
 
 from __future__ import annotations
 
@@ -71,7 +72,8 @@ class Visit:
     ``expects``: what the program says the actions taken there achieve (facts as (pred, arg,
     ...)), ``caused``: whether the step to the next situation was the agent's own doing (what
     its actions were to achieve was then seen to hold, or it did not act and the world stayed
-    as it was: only its intention moved on), ``world``: the digest of the world part."""
+    as it was: only its intention moved on), ``world``: the digest of the world part,
+    ``held``: whether the watched goal held there."""
 
     digest: str
     cycle: int
@@ -80,16 +82,18 @@ class Visit:
     expects: tuple[tuple, ...] = ()
     caused: bool = False
     world: str = ""
+    held: bool = False
 
     def to_list(self) -> list:
         return [self.digest, self.cycle, self.actor, self.pursued,
-                [list(x) for x in self.expects], self.caused, self.world]
+                [list(x) for x in self.expects], self.caused, self.world, self.held]
 
     @classmethod
     def from_list(cls, d: list) -> Visit:
         return cls(str(d[0]), int(d[1]), str(d[2]), bool(d[3]),
                    tuple(tuple(x) for x in d[4]) if len(d) > 4 else (),
-                   bool(d[5]) if len(d) > 5 else False, str(d[6]) if len(d) > 6 else "")
+                   bool(d[5]) if len(d) > 5 else False, str(d[6]) if len(d) > 6 else "",
+                   bool(d[7]) if len(d) > 7 else False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -110,6 +114,8 @@ class Watch:
     loops: int = 0
     banned: tuple[tuple[str, int, tuple], ...] = ()
     circle: str = ""
+    pending: bool = False
+    last: tuple | None = None
 
     def returned(self, digest: str) -> Visit | None:
         """The earlier visit this situation comes back to (the goal pursued there, another
@@ -136,16 +142,17 @@ class Watch:
         return replace(self, visits=self.visits[:-1] + (replace(last, caused=caused),))
 
     def seen(self, digest: str, cycle: int, actor: str, pursued: bool,
-             expects: tuple[tuple, ...], world_digest: str = "") -> Watch:
+             expects: tuple[tuple, ...], world_digest: str = "", held: bool = False) -> Watch:
         """This watch after the situation ``digest`` (world part ``world_digest``) of
-        ``cycle``, in which ``actor`` took actions expected to achieve ``expects``."""
+        ``cycle``, in which ``actor`` took actions expected to achieve ``expects`` and the
+        goal held (``held``) or not."""
         if self.visits and self.visits[-1].digest == digest:
             last = self.visits[-1]
             merged = replace(last, actor=last.actor or actor, pursued=last.pursued or pursued,
-                             expects=expects or last.expects, caused=False)
+                             expects=expects or last.expects, caused=False, held=held)
             return replace(self, visits=self.visits[:-1] + (merged,))
         visits = (self.visits + (Visit(digest, cycle, actor, pursued, expects, False,
-                                       world_digest),))[-WINDOW:]
+                                       world_digest, held),))[-WINDOW:]
         steps = self.steps + 1
         if not self.mark or steps >= self.power:
             return replace(self, visits=visits, mark=digest, mark_cycle=cycle,
@@ -161,7 +168,9 @@ class Watch:
         return {"goal_id": self.goal_id, "since": self.since,
                 "visits": [v.to_list() for v in self.visits], "mark": self.mark,
                 "mark_cycle": self.mark_cycle, "power": self.power, "steps": self.steps,
-                "loops": self.loops, "circle": self.circle,
+                "loops": self.loops, "circle": self.circle, "pending": self.pending,
+                "last": None if self.last is None else
+                [self.last[0], self.last[1], [[k, v] for k, v in self.last[2]]],
                 "banned": [[g, n, [[k, v] for k, v in b]] for g, n, b in self.banned]}
 
     @classmethod
@@ -171,7 +180,8 @@ class Watch:
                    str(d.get("mark", "")), int(d.get("mark_cycle", 0)),
                    int(d.get("power", 1)), int(d.get("steps", 0)), int(d.get("loops", 0)),
                    tuple((str(g), int(n), tuple((str(k), v) for k, v in b))
-                         for g, n, b in d.get("banned", ())), str(d.get("circle", "")))
+                         for g, n, b in d.get("banned", ())), str(d.get("circle", "")),
+                   bool(d.get("pending", False)), _step(d.get("last")))
 
 
 @dataclass(frozen=True, slots=True)
@@ -199,75 +209,5 @@ def intention(paths: tuple, active: tuple, threads: tuple, choices: tuple,
     return repr((paths, active, threads, choices, learned))
 
 
-class Watcher:
-    """One cycle's use of the loop watch by the executive: the situation digest (made when
-    first asked), the returns found, and the watches for the next cycle."""
-
-    def __init__(self, state: LoopState, pidx: PerceptIndex, store: FactStore, cycle: int,
-                 texts: dict[str, str], intends: str = ""):
-        self.pidx, self.store, self.cycle, self.texts = pidx, store, cycle, texts
-        self.intends = intends
-        self._world = ""
-        self._digest = ""
-        self.old = {w.goal_id: w.observed(store, self.world) for w in state.watches}
-        self.new: dict[str, Watch] = {}
-        self.pursued: set[str] = set()
-
-    @property
-    def world(self) -> str:
-        if not self._world:
-            self._world = world(self.pidx, self.store)
-        return self._world
-
-    @property
-    def digest(self) -> str:
-        if not self._digest:
-            self._digest = combined(self.world, self.intends)
-        return self._digest
-
-    def watch(self, goal_id: str) -> Watch:
-        """The watch of ``goal_id`` as it stands now (a new episode if it had none)."""
-        return self.new.get(goal_id) or self.old.get(goal_id) or Watch(goal_id, self.cycle)
-
-    def banned(self, goal_id: str) -> frozenset:
-        return frozenset(self.watch(goal_id).banned)
-
-    def check(self, goal_id: str) -> str:
-        """Why pursuing ``goal_id`` now goes round in a circle ("" if it does not); a return
-        is counted at once."""
-        w = self.watch(goal_id)
-        back = w.returned(self.digest)
-        if back is None:
-            return ""
-        fight = [g for g in w.since_visit(back)] or [goal_id]
-        if goal_id not in fight:
-            fight.insert(0, goal_id)
-        names = " and ".join(f"{g} {self.texts.get(g, '')}".strip() for g in fight)
-        why = (f"loop: back in the situation of cycle {back.cycle} while pursuing {goal_id} "
-               f"{self.texts.get(goal_id, '')}, with no progress since; the goals that acted "
-               f"in the circle: {names}")
-        self.new[goal_id] = replace(w, loops=w.loops + 1, circle=why)
-        return why
-
-    def circle(self, goal_id: str) -> str:
-        """Why the last circle of ``goal_id``'s episode was one ("" if none)."""
-        return self.watch(goal_id).circle
-
-    def loops(self, goal_id: str) -> int:
-        return self.watch(goal_id).loops
-
-    def ban(self, goal_id: str, key: tuple[str, int, tuple]) -> None:
-        w = self.watch(goal_id)
-        if key not in w.banned:
-            self.new[goal_id] = replace(w, banned=w.banned + (key,))
-
-    def state(self, unsatisfied: list[str], actor: str, expects: tuple[tuple, ...]
-              ) -> LoopState:
-        """The watches for the next cycle: one per goal unsatisfied this cycle, having seen
-        this situation, in which ``actor`` acted to achieve ``expects`` (episodes of the other
-        goals end)."""
-        out = []
-        for g in unsatisfied:
-            out.append(self.watch(g).seen(self.digest, self.cycle, actor, g in self.pursued,
-                                          expects, self.world))
-        return LoopState(tuple(sorted(out, key=lambda w: w.goal_id)))
+def _step(d: Any) -> tuple | None:
+    return None if d is None else (str(d[0]), int(d[1]), tuple((str(k), v) for k, v in d[2]))
