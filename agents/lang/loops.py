@@ -109,6 +109,7 @@ class Watch:
     visits: tuple[Visit, ...] = ()
     mark: str = ""
     mark_cycle: int = 0
+    mark_pursued: bool = False
     power: int = 1
     steps: int = 0
     loops: int = 0
@@ -125,7 +126,7 @@ class Watch:
         for k, v in enumerate(self.visits[:-1]):
             if v.digest == digest and v.pursued and all(x.caused for x in self.visits[k:]):
                 return v
-        if self.mark == digest and self.visits[-1].caused and \
+        if self.mark == digest and self.mark_pursued and self.visits[-1].caused and \
                 all(x.caused for x in self.visits if x.cycle >= self.mark_cycle):
             return Visit(digest, self.mark_cycle, "", True)
         return None
@@ -156,7 +157,8 @@ class Watch:
         steps = self.steps + 1
         if not self.mark or steps >= self.power:
             return replace(self, visits=visits, mark=digest, mark_cycle=cycle,
-                           power=self.power * 2 if self.mark else 1, steps=0)
+                           mark_pursued=pursued, power=self.power * 2 if self.mark else 1,
+                           steps=0)
         return replace(self, visits=visits, steps=steps)
 
     def since_visit(self, v: Visit) -> tuple[str, ...]:
@@ -167,7 +169,7 @@ class Watch:
     def to_dict(self) -> dict[str, Any]:
         return {"goal_id": self.goal_id, "since": self.since,
                 "visits": [v.to_list() for v in self.visits], "mark": self.mark,
-                "mark_cycle": self.mark_cycle, "power": self.power, "steps": self.steps,
+                "mark_cycle": self.mark_cycle, "mark_pursued": self.mark_pursued, "power": self.power, "steps": self.steps,
                 "loops": self.loops, "circle": self.circle, "pending": self.pending,
                 "last": None if self.last is None else
                 [self.last[0], self.last[1], [[k, v] for k, v in self.last[2]]],
@@ -176,12 +178,15 @@ class Watch:
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Watch:
         return cls(str(d["goal_id"]), int(d.get("since", 0)),
-                   tuple(Visit.from_list(v) for v in d.get("visits", ())),
-                   str(d.get("mark", "")), int(d.get("mark_cycle", 0)),
-                   int(d.get("power", 1)), int(d.get("steps", 0)), int(d.get("loops", 0)),
-                   tuple((str(g), int(n), tuple((str(k), v) for k, v in b))
-                         for g, n, b in d.get("banned", ())), str(d.get("circle", "")),
-                   bool(d.get("pending", False)), _step(d.get("last")))
+                   visits=tuple(Visit.from_list(v) for v in d.get("visits", ())),
+                   mark=str(d.get("mark", "")), mark_cycle=int(d.get("mark_cycle", 0)),
+                   mark_pursued=bool(d.get("mark_pursued", False)),
+                   power=int(d.get("power", 1)), steps=int(d.get("steps", 0)),
+                   loops=int(d.get("loops", 0)),
+                   banned=tuple((str(g), int(n), tuple((str(k), v) for k, v in b))
+                                for g, n, b in d.get("banned", ())),
+                   circle=str(d.get("circle", "")), pending=bool(d.get("pending", False)),
+                   last=_step(d.get("last")))
 
 
 @dataclass(frozen=True, slots=True)
