@@ -87,14 +87,15 @@ class Executive:
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
         for e in goals:
             walk.goal_id = e.id
-            unsat = [i for i in instances(e.literal, self.program, pidx) if not satisfied(i, store)]
+            insts = instances(e.literal, self.program, pidx)
+            unsat = [i for i in insts if not satisfied(i, store)]
             prev = remembered.get(e.id, ())
             seen.append((e.id, not unsat))
             if not unsat:
                 reports.append(GoalReport(e.id, e.text, e.priority, GoalStatus.SATISFIED))
                 remembered.pop(e.id, None)
                 failed.pop(e.id, None)
-                walk.protected.append((e.id, e.text, _held(e, self.program, pidx, store)))
+                walk.protected.append((e.id, e.text, _held(e, insts, pidx, store)))
                 continue
             waiting = GoalStatus.SUSPENDED if prev else GoalStatus.PENDING
             blocker = stop or walk.exclusive or (paths[0].goal_id if paths and
@@ -226,15 +227,14 @@ class Executive:
         return self.solver.solve(self.finder, walk, e, unsat)
 
 
-def _held(e: GoalEntry, program: Program, pidx: PerceptIndex, store: FactStore) -> tuple:
+def _held(e: GoalEntry, insts: list, pidx: PerceptIndex, store: FactStore) -> tuple:
     """The ground literals by which the satisfied goal ``e`` holds (protected from lower goals'
-    actions): its ground instances, or a conjunction's conjuncts under its first binding."""
+    actions): its ground instances ``insts``, or a conjunction's conjuncts under its first
+    binding."""
     if isinstance(e.literal, Conjunction):
         b = first_binding(e.literal, store, pidx) or {}
-        lits = [ground(c, b) for c in e.literal.literals]
-    else:
-        lits = instances(e.literal, program, pidx)
-    return tuple(x for x in lits if not x.variables())
+        insts = [ground(c, b) for c in e.literal.literals]
+    return tuple(x for x in insts if not x.variables())
 
 
 def _report(e: GoalEntry, status: GoalStatus, inst, note: str = "") -> GoalReport:

@@ -169,7 +169,8 @@ class Watch:
     def to_dict(self) -> dict[str, Any]:
         return {"goal_id": self.goal_id, "since": self.since,
                 "visits": [v.to_list() for v in self.visits], "mark": self.mark,
-                "mark_cycle": self.mark_cycle, "mark_pursued": self.mark_pursued, "power": self.power, "steps": self.steps,
+                "mark_cycle": self.mark_cycle, "mark_pursued": self.mark_pursued,
+                "power": self.power, "steps": self.steps,
                 "loops": self.loops, "circle": self.circle, "pending": self.pending,
                 "last": None if self.last is None else
                 [self.last[0], self.last[1], [[k, v] for k, v in self.last[2]]],
