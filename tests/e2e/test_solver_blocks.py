@@ -147,11 +147,11 @@ def test_an_impossible_goal_is_failed_with_its_reason_in_teleo_goal_list(teleo):
             rows = teleo("goal", "list").stdout.splitlines()
             return next((r for r in rows if "(on A A)" in r and " failed " in r), "")
         assert wait_for(lambda: bool(failed()), 90), teleo.launch_output()
-        # g1, Figure 3's (clear A), holds and comes first: stacking anything on A would undo
-        # it (issue 22), and the reason says so before the chain of subgoals tried
-        assert "-- (on A A) cannot be achieved without undoing g1 (clear A)" in failed()
-        assert failed().endswith("(stack A A) would undo (clear A) of goal g1 (clear A), which "
-                                 "holds and comes first")
+        # g1, Figure 3's (clear A), holds and comes first: lifting A, which every way to (on A
+        # A) needs, would undo it (issue 22), and the goal fails at once saying so
+        assert failed().endswith("-- (on A A) cannot be achieved without undoing g1 (clear A), "
+                                 "which holds and comes first: every way to it needs (holding "
+                                 "A), which would undo (clear A)")
     finally:
         # a goal that could not be kept fails the run (docs/faults.md): exit 1, and says why
         assert interrupt(launcher) == 1, teleo.launch_output()

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from itertools import chain
 
+from ..effects import undone_by
 from ..matcher import unify_head
 from ..terms import Literal, Var
 
@@ -28,6 +29,47 @@ def landmarks(task, goal: Literal) -> frozenset[str]:
     if memo not in task.memo:
         task.memo[memo] = frozenset(_landmarks(task, goal, 0, frozenset()))
     return task.memo[memo]
+
+
+def protected_landmark(task, goal) -> str:
+    """Why ``goal`` cannot be achieved without undoing a protected goal (``task.protected``:
+    the goals that hold and come first), or "": a landmark of it that does not hold and whose
+    truth makes a literal of one false (``(on B28 B19)`` needs ``(clear B28)``, which undoes
+    ``(on B4 B28)``). Every way passes through it, so no search can get round it."""
+    if not task.protected or not isinstance(goal, Literal):
+        return ""
+    task.holds(goal)   # (a cheap way to have the task's caches warm; goal is false)
+    for lm in _landmark_literals(task, goal):
+        if lm.negated or lm.variables() or task.holds(lm):
+            continue
+        undone = task.effects.undoes(lm)
+        for gid, text, lits in task.protected:
+            hit = next((x for x in lits if not x.negated and undone_by(x, undone)), None)
+            if hit is not None:
+                return (f"{gid} {text}, which holds and comes first: every way to it needs "
+                        f"{lm}, which would undo {hit}")
+    return ""
+
+
+def _landmark_literals(task, goal: Literal) -> list[Literal]:
+    out: dict[str, Literal] = {}
+    _collect(task, goal, 0, frozenset(), out)
+    return list(out.values())
+
+
+def _collect(task, goal: Literal, depth: int, seen: frozenset, out: dict) -> None:
+    if depth >= MAX_LANDMARK or goal in seen or task.holds(goal):
+        return
+    ways = _ways(task, goal)
+    if not ways:
+        return
+    common: dict[str, Literal] = dict(ways[0])
+    for w in ways[1:]:
+        common = {k: v for k, v in common.items() if k in w}
+    out.update(common)
+    for lit in common.values():
+        if not lit.negated and not lit.variables():
+            _collect(task, lit, depth + 1, seen | {goal}, out)
 
 
 def _landmarks(task, goal: Literal, depth: int, seen: frozenset) -> set[str]:

@@ -25,6 +25,7 @@ from ..executive import Impasse
 from ..goals import GoalEntry
 from ..paths import NOTHING, PathFinder, Remembered, Walk
 from ..terms import Literal
+from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, one_step
 from .search import MAX_PUSHES, advance
@@ -57,12 +58,12 @@ class MeansEndsSolver:
 
     def agenda(self, finder: PathFinder, walk: Walk, entry: GoalEntry, conj: Conjunction,
                current: str) -> list[Literal]:
-        """The conjuncts of ``conj`` the executive may pursue now, best first: those one
-        action achieves now, then the one this goal's stack works on (or, without a stack,
-        the one its path was for: ``current``) while the agenda still has it; otherwise the
-        whole agenda (agents/lang/solving/ordering.py). A conjunct the stack works on that
-        the agenda no longer has (another conjunct's plan needs what it would undo) is
-        dropped from the stack, to be chosen afresh."""
+        """The conjuncts of ``conj`` the executive may pursue now, best first: while the
+        agenda still has the one this goal's stack works on (or, without a stack, the one its
+        path was for: ``current``), the conjuncts one action achieves now, then that one;
+        otherwise the whole agenda (agents/lang/solving/ordering.py). A conjunct the stack
+        works on that the agenda no longer has (another conjunct's plan needs what it would
+        undo) is dropped from the stack, to be chosen afresh."""
         task = self.task(finder, walk, entry.id)
         ways = task.alternatives(conj)
         if not ways:
@@ -71,9 +72,13 @@ class MeansEndsSolver:
         mine = stack is not None and stack.entries[0].goal == str(conj)
         if mine:
             current = stack.entries[1].goal if len(stack.entries) > 1 else ""
-        items = agenda(task, ways[0].conditions, current)
-        if current and current in items:
-            items = list(dict.fromkeys([c for c in items if one_step(task, c)] + [current]))
+        conds = ways[0].conditions
+        items = agenda(task, conds, current)
+        if current and current in items:   # in passing: a conjunct one action achieves (a
+            # block in the hand to its place); not a part of another's plan, which would
+            # take the hand from the work under way
+            items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)]
+                                       + [current]))
         elif current and mine:
             self._refocus(walk, stack, current)
         return [literal(c) for c in items]
@@ -139,11 +144,17 @@ class MeansEndsSolver:
         stack = state.stack_of(entry.id)
         insts = [str(u) for u in unsatisfied]
         events: list[str] = []
+        task = self.task(finder, walk, entry.id)
         if stack is None or stack.entries[0].goal not in insts:
+            clash = protected_landmark(task, unsatisfied[0])
+            if clash:   # seed 000: a lower goal may not undo a higher one; no way round it
+                why = f"{insts[0]} cannot be achieved without undoing {clash}"
+                _publish(walk, tuple(s for s in state.stacks if s.goal_id != entry.id),
+                         (f"{entry.id}: failed: {why}",), (entry.id,), ())
+                return Impasse(failed=why)
             stack = GoalStack(entry.id, (StackEntry(insts[0], f"goal {entry.id} in impasse"),),
                               walk.state.cycle)
             events.append(f"{entry.id}: impasse on {insts[0]}: problem solving begins")
-        task = self.task(finder, walk, entry.id)
         prev = walk.state.path_of(entry.id)
 
         def probe(goal: Literal):
