@@ -11,19 +11,18 @@ from itertools import islice
 
 from ..arith import evaluate
 from ..conjunction import Conjunction, conjunction_holds
-from ..effects import Effects, undone_goal
+from ..effects import Effects
 from ..errors import EvalError, GoalError
 from ..goals import parse_goal
 from ..loops import situation
 from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
-from ..matcher import ground as ground_literal
 from ..parser import Parser, Parts
 from ..paths import btuple, show
 from ..program import ConceptClause, Program, Skill
 from ..sexpr import read
 from ..store import FactStore, PerceptIndex
-from ..terms import Action, Literal, Test, Var, fmt
-from .landmarks import key, landmarks
+from ..terms import Literal, Test, Var, fmt
+from .filters import WayFilters
 from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
@@ -67,7 +66,7 @@ def pushable(cond: Literal | Test) -> bool:
     return isinstance(cond, Literal) and not cond.negated and not cond.variables()
 
 
-class Task:
+class Task(WayFilters):
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
     percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
     that hold and come before the one solved for, which no way chained off may undo (seed 000,
@@ -217,47 +216,6 @@ class Task:
                 ranked.append((self.rank(ground), binding_key(b), b, ground))
         return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
                             "the conjunction") for _, _, b, ground in self._best(ranked)]
-
-    def undoes_skill(self, s: Skill, b: dict) -> bool:
-        """True when skill ``s`` under ``b`` would act to undo a protected goal (recorded in
-        ``refused``, for the failure's reason)."""
-        if not self.protected or s.kind != "primitive":
-            return False
-        try:
-            actions = [Action(a.name, tuple(evaluate(x, b) for x in a.args)) for a in s.actions]
-        except EvalError:
-            return False
-        hit = undone_goal(self.effects, self.protected, actions)
-        if hit is not None:
-            gid, text, lit = hit
-            self.conflicts[gid] = text
-            self.refused.append(f"{self._shows(s, b)} would undo {lit} of goal {gid} {text}, "
-                                "which holds and comes first")
-        return hit is not None
-
-    def _circular(self, goal: Literal, ground: list) -> bool:
-        """True when a false condition of a way (or a false part of its definition) can only be
-        achieved through ``goal`` itself, a landmark of it (agents/lang/solving/landmarks.py):
-        clearing B3 by lifting B6 off it, when B6 is not on B3, would first need B6 put there,
-        which needs (clear B3). Such a way is not chained off."""
-        goal_key = key(goal)
-        for c in ground:
-            if not isinstance(c, Literal) or c.negated or self.holds(c):
-                continue
-            for r in (c, *self._definition(c)):
-                if not r.variables() and not self.holds(r) and \
-                        goal_key in landmarks(self, r):
-                    return True
-        return False
-
-    def _definition(self, lit: Literal) -> list[Literal]:
-        """The positive relations of ``lit``'s single defining clause, bound by its head."""
-        clauses = self.program.concepts.get(lit.pred, ())
-        if len(clauses) != 1:
-            return []
-        b = unify_head(clauses[0].head, lit, {})
-        return [] if b is None else [ground_literal(r, b) for r in clauses[0].relations
-                                     if not r.negated]
 
     def _chainable(self, ground: list, applicable: bool = False) -> bool:
         """Something is left to achieve (or, ``applicable``, nothing), and all of it can

@@ -125,3 +125,16 @@ def test_a_conjunction_that_cannot_hold_fails_after_its_first_circle_naming_it()
                            "a circle (loop: back in the situation of cycle 8 while pursuing g1 "
                            "(and (on A B) (on B A)), with no progress since")
     assert all(acts == [] for _, acts in trace[first:])
+
+
+def test_the_rogue_planner_refuses_a_conjunctive_request_saying_what_it_takes():
+    from ..conftest import ROOT
+
+    engine = Engine(load_program_text((ROOT / "programs" / "office_rogue.tlp").read_text(),
+                                      "office_rogue.tlp"), solver="rogue")
+    goal = "(and (delivered mail-mitchell r-5313) (delivered coffee-1 reid))"
+    state = engine.add_goal(engine.initial_state(), goal, 5, "g1")
+    report = engine.cycle(state, []).decision.goals[0]
+    assert (report.status, report.note) == (GoalStatus.FAILED, f"{goal}: the planner takes a "
+                                            "request for one literal; post each conjunct as a "
+                                            "request of its own")
