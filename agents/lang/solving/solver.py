@@ -63,7 +63,8 @@ class MeansEndsSolver:
         path was for: ``current``), the conjuncts one action achieves now, then that one;
         otherwise the whole agenda (agents/lang/solving/ordering.py). A conjunct the stack
         works on that the agenda no longer has (another conjunct's plan needs what it would
-        undo) is dropped from the stack, to be chosen afresh."""
+        undo) is dropped from the stack, to be chosen afresh; a part of a plan it works on
+        first (a promoted need) is kept while unsatisfied: the plan still needs it."""
         task = self.task(finder, walk, entry.id)
         ways = task.alternatives(conj)
         if not ways:
@@ -79,8 +80,9 @@ class MeansEndsSolver:
             # take the hand from the work under way
             items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)]
                                        + [current]))
-        elif current and mine:
-            self._refocus(walk, stack, current)
+        elif current and mine and (current in conds or not items):
+            self._refocus(walk, stack, current)   # (a part of a plan done first stays: the
+            #                                        plan still needs it)
         return [literal(c) for c in items]
 
     def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
