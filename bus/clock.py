@@ -35,7 +35,7 @@ from collections.abc import Callable, Mapping, Sequence
 from bus import keys
 from bus.cycle import CycleBook, CycleMode, CycleReport, DeadPolicy, culprit
 from bus.errors import BusError, ClockStopped, NotReady
-from bus.messages import WorldState
+from bus.messages import ProcessStats, WorldState
 from bus.node import Node
 
 log = logging.getLogger(__name__)
@@ -85,6 +85,7 @@ class Clock:
         node.declare([self._state_key])
         self._incarnations = dict(node.presence.incarnations())
         self._next_start: float | None = None
+        self._stuck: dict[str, int] = {}  # keep_pace: process -> the cycle it was given up at
 
     def wait_ready(self, expected: set[str], timeout: float) -> None:
         """Start-up barrier: wait until every process in `expected` holds its token and
@@ -123,6 +124,50 @@ class Clock:
         if run.stopped:
             raise ClockStopped(cycle, report.dead, report)
         return report
+
+    def keep_pace(self, process: str, cycle: int, stuck_s: float = 10.0,
+                  resend: WorldState | None = None) -> float:
+        """Wait until `process` (not a stage: the launch's recorder) has reported, in its
+        ProcessStats, cycle `cycle` or a later one (-1: it has begun); returns the seconds
+        waited [s]. No wait while its token is absent (no recorder, or it died), nor once it
+        has made no progress for `stuck_s` [s]; a stop interrupts it (CycleInterrupted).
+        `resend`: the state to publish again every `resend_s` while it waits (a state it
+        may have missed: the stages answer it from their caches). Lockstep only: what a run
+        sends while a subscriber lags waits in the senders' queues, and a process that stops
+        drops what its queue still holds (tests/e2e/test_record_drain.py)."""
+        self._note_stats()
+        seen = self.last_seen.get(process, -2)
+        if seen >= cycle or self._stuck.get(process) == seen \
+                or process not in self.node.presence.snapshot():
+            return 0.0  # there, stuck at the cycle it was given up at (until it moves), gone
+        start = moved = sent = time.monotonic()
+        while self.last_seen.get(process, -2) < cycle:
+            if self.stop.is_set():
+                raise CycleInterrupted(cycle, {process})
+            if process not in self.node.presence.snapshot():
+                break
+            now = time.monotonic()
+            if now - moved > stuck_s:
+                log.warning("%s has not moved from cycle %d for %.0f s: not waited for",
+                            process, seen, stuck_s)
+                self._stuck[process] = seen
+                break
+            if resend is not None and now - sent >= self.resend_s:
+                self.node.publish(self._state_key, resend)
+                sent = now
+            time.sleep(_POLL_S)
+            self._note_stats()
+            if self.last_seen.get(process, -2) > seen:
+                seen, moved = self.last_seen[process], time.monotonic()
+        return time.monotonic() - start
+
+    def _note_stats(self) -> None:
+        """Take the stats waiting in the ring into `last_seen` (the stages' figures of the
+        cycle in progress are taken again from the same ring by its _CycleRun)."""
+        for item in self.stats.drain():
+            if isinstance(item.msg, ProcessStats):
+                prev = self.last_seen.get(item.msg.process, -1)
+                self.last_seen[item.msg.process] = max(prev, item.msg.env.cycle)
 
     def _pace(self) -> None:
         now = time.monotonic()

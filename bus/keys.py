@@ -140,6 +140,12 @@ def all_stats(run: str) -> str:
     return f"{run_root(run)}/stats/*"
 
 
+RECORDER = "launch.record"
+"""The process name of a launch's recorder (tools/recorder.py): its liveliness token says it
+is there, its ProcessStats carry the last cycle it has recorded whole (the world keeps pace
+with it: bus/clock.py Clock.keep_pace)."""
+
+
 def proc(run: str, process: str) -> str:
     """Liveliness token key of one process."""
     return f"{run_root(run)}/proc/{check_chunk(process, 'process')}"

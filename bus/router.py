@@ -155,7 +155,12 @@ def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0, securit
     finally:
         if err is not None:
             err.close()
-    line = _read_line(proc, timeout)
+    try:
+        line = _read_line(proc, timeout)
+    except BaseException:  # KeyboardInterrupt: a Ctrl-C while it starts leaves nothing behind
+        proc.kill()
+        proc.wait()
+        raise
     if not line.startswith(READY_PREFIX):
         proc.kill()
         proc.wait()

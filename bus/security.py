@@ -131,11 +131,11 @@ def _grants(run: str, user: str) -> dict[str, list[str]]:
         own["put"] += [f"{root}/agent/*/goal-list"]
         own["sub"] += [keys.world_state(run), f"{root}/agent/*/intention"]
         own["serve"] += [f"{root}/agent/*/goals"]
-    elif user == OPERATOR:
-        own["put"] = [keys.world_events(run)]
+    elif user == OPERATOR:  # the person's tools, and the launch's recorder (its progress)
+        own["put"] = [keys.world_events(run), keys.stats(run, keys.RECORDER)]
         own["sub"] += [keys.run_all(run)]
         own["ask"] += [f"{root}/agent/*/goals", keys.world_events(run)]
-        own["token"] = [keys.proc(run, "record")]
+        own["token"] = [keys.proc(run, "record"), keys.proc(run, keys.RECORDER)]
     elif user == LAUNCH:
         own["put"] = []
     else:

@@ -1,8 +1,11 @@
 """`teleo router | echo | record | replay`: the bus subcommands (thin wrappers over bus/).
 
 echo, record and replay reach the running launch as every tool does (tools/target.py over
-tools/runfile.py: the only running launch, or `--run RUN`) and say on stderr which run and
-router they reach; an explicit `--connect` (or TELEO_ZENOH_CONNECT) names a router instead.
+tools/runfile.py: the only running launch, or `--run RUN`) and say so in one short line on
+stderr, `run R (router EP): ...` (none with --quiet); an explicit `--connect` (or
+TELEO_ZENOH_CONNECT) names a router instead. `teleo replay` with no launch running plays on a
+router of its own (tools/replayer.py); `echo --list` and `teleo hz` are in
+tools/rate_commands.py.
 """
 
 from __future__ import annotations
@@ -20,11 +23,10 @@ from bus.codec import decode
 from bus.config import BusConfig, bus_options
 from bus.errors import BusError, CodecError
 from bus.node import open_node
-from bus.record import from_record
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
 from tools import runfile
-from tools.paths import OutputPath
+from tools.paths import OutputPath, suffix_check
 
 _SECONDS = click.FloatRange(min=0, min_open=True)
 """A watch of S > 0 seconds (--seconds of echo and record)."""
@@ -46,23 +48,6 @@ def router(listen: str, connect: str) -> None:
         raise click.ClickException(str(exc)) from exc
 
 
-def _run_of(keyexpr: str) -> str:
-    parts = keyexpr.split("/")
-    if len(parts) > 1 and parts[0] == keys.ROOT:
-        try:
-            return keys.check_chunk(parts[1])
-        except BusError:
-            pass
-    return "any"
-
-
-def _full_key(keyexpr: str, run: str | None) -> str:
-    """A key expression as given when it starts with teleo/, else under teleo/<run>/."""
-    if keyexpr.startswith(f"{keys.ROOT}/") or run is None:
-        return keyexpr
-    return f"{keys.run_root(run)}/{keyexpr.lstrip('/') or '**'}"
-
-
 def _json_line(key: str, t_ns: int, payload: bytes) -> str:
     try:
         msg = decode(key, payload)
@@ -77,50 +62,41 @@ def _json_line(key: str, t_ns: int, payload: bytes) -> str:
 @click.option("--filter", "text", default=None, help="Only lines containing TEXT.")
 @click.option("--count", type=click.IntRange(min=1), default=None,
               help="Exit after N printed messages.")
-@click.option("--seconds", type=_SECONDS, default=None, help="Exit after S seconds.")
+@click.option("--seconds", type=_SECONDS, default=None,
+              help="Exit after S seconds (with --list: watch S seconds; default 2).")
+@click.option("--list", "as_list", is_flag=True,
+              help="List the keys instead, with kind, rate, mean size and publishers "
+                   "(as ros2 topic list -v).")
+@click.option("--json", "as_json", is_flag=True, help="With --list: a JSON list.")
 @runfile.run_option
+@runfile.quiet_option
 @bus_options
 def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | None,
-         run_id: str | None, bus_config: BusConfig) -> None:
+         as_list: bool, as_json: bool, run_id: str | None, bus_config: BusConfig) -> None:
     """Print messages on KEYEXPR decoded, as JSON lines: a key of the run such as
-    'world/state' or 'agent/ME/**' (default: everything), or a full 'teleo/RUN/...'."""
-    from tools.target import find_target
+    'world/state' or 'agent/ME/**' (default: everything), or a full 'teleo/RUN/...'.
 
-    problem = _keyexpr_problem(keyexpr)
-    if problem is not None:
-        raise click.BadParameter(problem, param_hint="KEYEXPR")
-    target = find_target(bus_config, run=run_id)
-    keyexpr = _full_key(keyexpr, target.run)
-    click.echo(f"listening on {keyexpr} of {target.who}", err=True)
+    --list prints every key seen on KEYEXPR instead, with its message kind, rate, mean
+    size and publishers (teleo hz KEYEXPR follows one key's rate)."""
+    from tools.rate_commands import list_keys
+    from tools.target import reach_keys, run_of
+
+    if as_list:
+        for given, name in ((text, "--filter"), (count, "--count")):
+            if given is not None:
+                raise click.UsageError(f"{name} goes with printing messages, not with --list")
+        return list_keys(keyexpr, seconds, as_json, run_id, bus_config)
+    if as_json:
+        raise click.UsageError("--json goes with --list (messages are printed as JSON lines "
+                               "already)")
+    target, keyexpr = reach_keys(keyexpr, run_id, bus_config, "listening on")
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
     try:
-        with open_node(target.cfg, _run_of(keyexpr), f"echo-{os.getpid()}") as node:
+        with open_node(target.cfg, run_of(keyexpr), f"echo-{os.getpid()}") as node:
             _print_messages(node.subscribe(keyexpr, raw=True), text, count, end, stop)
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
-
-
-def _keyexpr_problem(keyexpr: str) -> str | None:
-    """What is wrong with a key expression (bus.keys.check_keyexpr's words), or None. The
-    repair it suggests for empty chunks ('a//b' -> 'a/b') is kept only when that repair is
-    itself a valid key expression; otherwise the rest of what is wrong is said instead."""
-    try:
-        keys.check_keyexpr(keyexpr)
-        return None
-    except BusError as exc:
-        problem = str(exc)
-    repaired = "/".join(c for c in keyexpr.split("/") if c)
-    suggestion = f"; e.g. {repaired!r}"
-    if not problem.endswith(suggestion):
-        return problem
-    if not repaired:
-        return problem.removesuffix(suggestion)
-    try:
-        keys.check_keyexpr(repaired)
-        return problem
-    except BusError as rest:
-        return f"{problem.removesuffix(suggestion)}; without the empty chunk: {rest}"
 
 
 def _print_messages(inbox, text: str | None, count: int | None, end: float | None,
@@ -141,19 +117,21 @@ def _print_messages(inbox, text: str | None, count: int | None, end: float | Non
 
 
 @click.command()
-@click.argument("file", type=OutputPath(path_type=Path))
+@click.argument("file", type=OutputPath(suffix_check((".mcap",), "a run record"),
+                                        path_type=Path, create_folders=False))
 @click.option("--run", "run_id", default=None,
               help="Run id: records teleo/<run>/** (default: the running launch's run).")
 @click.option("--seconds", type=_SECONDS, default=None, help="Stop after S seconds.")
 @click.option("--count", type=click.IntRange(min=1), default=None,
               help="Stop after N messages.")
+@runfile.quiet_option
 @bus_options
 def record(file: Path, run_id: str | None, seconds: float | None, count: int | None,
            bus_config: BusConfig) -> None:
     """Record a run's messages to FILE (MCAP, as launches record themselves) until Ctrl-C.
 
-    Without --connect it records the running launch; with --connect, the run given by --run
-    on that router."""
+    FILE ends in .mcap, in a folder that exists. Without --connect it records the running
+    launch; with --connect, the run given by --run on that router."""
     from tools.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
     from tools.target import find_target
 
@@ -173,7 +151,7 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
             announce=True)
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
-    click.echo(f"recording run {run_id} from {target.who} to {file}", err=True)
+    runfile.say_reached(f"{target.who}: recording run {run_id} to {file}")
     stop = stop_on_signals()
     end = None if seconds is None else time.monotonic() + seconds
     while not stop.wait(0.05):
@@ -191,58 +169,33 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
 
 @click.command()
 @click.argument("file", metavar="RECORD", type=click.Path())
-@click.option("--speed", type=click.FloatRange(min=0), default=1.0, show_default=True,
+@click.option("--rate", "--speed", "rate", type=click.FloatRange(min=0), default=1.0,
+              show_default=True,
               help="Time scale on world time (2: twice as fast; 0: as fast as possible).")
+@click.option("--start", "start", type=click.IntRange(min=0), default=None, metavar="CYCLE",
+              help="Start at this cycle of the record.")
+@click.option("--loop", is_flag=True, help="Play the record again and again, until Ctrl-C.")
+@click.option("--paused", is_flag=True,
+              help="Start paused (on a terminal: space plays and pauses, s or the right "
+                   "arrow plays one cycle).")
 @click.option("--wait", "wait_s", type=click.FloatRange(min=0), default=2.0,
               show_default=True,
               help="Wait up to S seconds for subscribers on the recorded keys first.")
 @click.option("--onto", "onto", default=None, metavar="RUN",
-              help="The running launch to replay onto (default: the only one).")
+              help="The running launch to replay onto (default: the only one; with none "
+                   "running, a router of its own).")
+@runfile.quiet_option
 @bus_options
-def replay(file: str, speed: float, wait_s: float, onto: str | None,
-           bus_config: BusConfig) -> None:
+def replay(file: str, rate: float, start: int | None, loop: bool, paused: bool, wait_s: float,
+           onto: str | None, bus_config: BusConfig) -> None:
     """Play a run record (RECORD: an .mcap file, a run folder or run id) back on the bus of
-    the running launch, or of the router named by --connect, with its world-time pacing."""
-    from tools.records import RecordError, RunRecord, locate
-    from tools.target import find_target
+    the running launch, of the router named by --connect, or, with no launch running, of a
+    router of its own on loopback, with its world-time pacing (as ros2 bag play).
 
-    try:
-        rec = RunRecord(locate(file))
-        items = [(key, from_record(key, r), r["env"]["cycle"]) for key, r in rec.records()]
-        times = _log_times(rec)
-    except (RecordError, BusError) as exc:
-        raise click.ClickException(str(exc)) from exc
-    target = find_target(bus_config, run=onto)
-    if target.run == rec.run:
-        raise click.ClickException(
-            f"run {rec.run} is the running launch itself: its own record would be played into "
-            f"it, every cycle twice; stop it first, or replay onto another run's router "
-            f"(--onto RUN, --connect)")
-    hub = target.cfg.connect[0] if target.cfg.connect else ""
-    click.echo(f"replaying run {rec.run} ({len(items)} messages) to {target.who}; watch it "
-               f"with `teleo view --run {rec.run} --connect {hub}`", err=True)
-    stop = stop_on_signals()
-    with open_node(target.cfg, rec.run, f"replay-{os.getpid()}") as node:
-        node.declare({key for key, _, _ in items})
-        if node.wait_matching({key for key, _, _ in items}, wait_s):
-            click.echo(f"nobody subscribed to some keys of run {rec.run} within {wait_s:g} s; "
-                       "replaying anyway", err=True)
-        start, sent = time.monotonic(), 0
-        t0 = times.get(items[0][2], 0) if items else 0
-        for key, payload, cycle in items:
-            if speed > 0:
-                due = start + (times.get(cycle, t0) - t0) / 1e9 / speed
-                if stop.wait(max(0.0, due - time.monotonic())):
-                    break
-            node.put_raw(key, payload)
-            sent += 1
-    click.echo(f"replayed {sent} messages of run {rec.run} to {target.who}", err=True)
+    On a terminal, space pauses and resumes and s (or the right arrow) plays one cycle."""
+    from tools.replayer import replay_record
 
-
-def _log_times(rec) -> dict[int, int]:
-    """cycle -> world time [ns] of a record (from its world states)."""
-    return {r["env"]["cycle"]: round(float(r["snapshot"].get("time", 0.0)) * 1e9)
-            for _, r in rec.kinds("state")}
+    replay_record(file, rate, start, loop, paused, wait_s, onto, bus_config)
 
 
 commands = [router, echo, record, replay]

@@ -22,6 +22,7 @@ from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
 from agents.lang.solving.learned import is_learned_text, program_named, read_learned
 from tools.lang_commands import include_option
+from tools.scenario_check import override_option
 from tools.tree import shown_path
 
 # The first line that is not blank nor a comment, as TOML starts: [table], [[array]], key =
@@ -92,15 +93,17 @@ def _its_program(path: str, text: str, includes: tuple[str, ...]) -> Any:
             from None
 
 
-def _scenario(path: str) -> dict[str, Any]:
+def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     from tools.scenario_check import load_checked
     from world.run_scenario import ScenarioError
 
-    result = {"file": path, "kind": "scenario", "ok": False, "warnings": []}
+    result = {"file": path, "kind": "scenario", "ok": False, "warnings": [],
+              "overrides": list(overrides)}
     try:
-        scenario, programs = load_checked(path)
+        scenario, programs = load_checked(path, overrides)
     except ScenarioError as exc:
-        return {**result, "errors": [{"file": path, "line": 0, "col": 0, "message": str(exc)}]}
+        return {**result, "errors": [{"file": path, "line": 0, "col": 0, "message": e}
+                                     for e in exc.errors]}
     return {**result, "ok": True, "errors": [], "domain": scenario.domain,
             "agents": {a.id: str(a.program) for a in scenario.agents},
             "goals": len(scenario.goals), "events": len(scenario.events),
@@ -124,8 +127,8 @@ def _echo(result: dict[str, Any]) -> None:
         tag = "warning: " if item in result["warnings"] else ""
         click.echo(f"{where}{tag}{item['message']}", err=True)
     if not result["ok"]:
-        if result["kind"] == "program":
-            n = len(result["errors"])
+        n = len(result["errors"])
+        if result["kind"] == "program" or n > 1:
             click.echo(f"{path}: {n} error{'s' if n != 1 else ''}", err=True)
         return
     if result["kind"] == "program":
@@ -135,28 +138,36 @@ def _echo(result: dict[str, Any]) -> None:
         click.echo(f"{path}: ok ({result['skills']} learned skills for {result['program']})")
     else:
         agents = ", ".join(f"{a} ({shown_path(p)})" for a, p in result["agents"].items())
+        changed = f"; --set {', '.join(result['overrides'])}" if result["overrides"] else ""
         click.echo(f"{path}: ok (scenario, {result['domain']} world; agents {agents}; "
-                   f"{result['goals']} scripted goals, {result['events']} events)")
+                   f"{result['goals']} scripted goals, {result['events']} events{changed})")
 
 
 @click.command()
 @click.argument("files", metavar="FILE...", nargs=-1, required=True, type=click.Path())
 @include_option
+@override_option
 @click.option("--json", "as_json", is_flag=True,
               help="Print one JSON object (ok, and each file's errors and warnings).")
-def check(files: tuple[str, ...], includes: tuple[str, ...], as_json: bool) -> None:
+def check(files: tuple[str, ...], includes: tuple[str, ...], overrides: tuple[str, ...],
+          as_json: bool) -> None:
     """Check programs, learned skills and scenarios without running them.
 
     Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
     fully: world table, programs, scripted goals and events. A file of learned skills is
     checked against the program named before it (PROGRAM LEARNED), else against the one its
-    first line names."""
+    first line names. `--set KEY=VALUE` changes a field of every scenario checked, as
+    `teleo launch --set` does."""
     results, program = [], None
-    for path in files:
-        if _is_learned(path):
+    kinds = ["learned" if _is_learned(p) else "scenario" if is_scenario(p) else "program"
+             for p in files]
+    if overrides and "scenario" not in kinds:
+        raise click.UsageError("--set changes a scenario's fields: name a scenario (.toml)")
+    for path, kind in zip(files, kinds, strict=True):
+        if kind == "learned":
             results.append(_learned(path, program, includes))
-        elif is_scenario(path):
-            results.append(_scenario(path))
+        elif kind == "scenario":
+            results.append(_scenario(path, overrides))
         else:
             result, program = _program(path, includes)
             results.append(result)

@@ -26,6 +26,7 @@ VERDICT_TIMEOUT = 10.0  # [s] for the world to apply the event at a cycle bounda
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=VERDICT_TIMEOUT,
               show_default=True, help="Seconds to wait for the world's verdict.")
 @runfile.run_option
+@runfile.quiet_option
 def event(event_json: str, timeout: float, run_id: str | None) -> None:
     """Inject a world event into the running launch; print its verdict.
 

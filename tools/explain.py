@@ -59,10 +59,11 @@ def _of_cycle(rec: RunRecord, kind: str, agent: str, cycle: int | None) -> tuple
 
 def goal_history(rec: RunRecord, agent: str, goal_id: str) -> list[dict[str, Any]]:
     """Every status change of one goal, from the intentions (with the engine's notes) and the
-    goal lists (a cancellation)."""
-    history = GoalHistory()
+    goal lists (a cancellation); a change seen only after a gap in the record has "after"
+    (tools/records.py GoalHistory)."""
+    history, states = GoalHistory(), rec.state_cycles()
     for _, record in rec.kinds_of(("intention", "goal-list"), agent):
-        history.feed(record)
+        history.feed(record, states.__contains__)
     return history.changes[agent].get(goal_id, [])
 
 
@@ -90,14 +91,19 @@ def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None)
 
 
 def _program(rec: RunRecord, agent: str) -> str:
-    """The agent's program file, from the run's scenario when it can still be read."""
+    """The agent's program file, from the run's scenario (with the `--set` the run was given)
+    when it can still be read."""
     from world.errors import WorldError
     from world.run_scenario import load_scenario
 
+    meta = rec.meta.get("teleo.run", {})
     try:
-        scenario = load_scenario(rec.meta.get("teleo.run", {}).get("scenario", ""))
+        overrides = json.loads(meta.get("overrides", "[]"))
+        scenario = load_scenario(meta.get("scenario", ""),
+                                 [str(o) for o in overrides] if isinstance(overrides, list)
+                                 else ())
         return str(next(a.program for a in scenario.agents if a.id == agent))
-    except (WorldError, OSError, StopIteration):
+    except (WorldError, OSError, StopIteration, ValueError):
         return "PROGRAM"
 
 
@@ -111,6 +117,8 @@ def _history_text(rec: RunRecord, agent: str, goal_id: str, changes: list[dict])
              f"(run {rec.run})"]
     for c in changes:
         note = f"  -- {c['note']}" if c["note"] else ""
+        if "after" in c:  # seen after a gap in the record: at one of these cycles
+            note += f"  (at a cycle from {c['after'] + 1} on: the record lacks some before)"
         lines.append(f"  cycle {c['cycle']:>6}  {c['status']:<9}{note}")
     return "\n".join(lines)
 

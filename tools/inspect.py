@@ -162,6 +162,7 @@ def render(model: Model, alive: set[str], incarnations: dict[str, int],
 @click.option("--seconds", type=click.FloatRange(min=0, min_open=True),
               help="Watch this long [s], print once, exit.")
 @runfile.run_option
+@runfile.quiet_option
 def inspect(key: str | None, once: bool, seconds: float | None, run_id: str | None) -> None:
     """Live view of the running launch: processes, keys, rates, latency.
 

@@ -22,7 +22,6 @@ import logging
 import os
 import re
 import secrets
-import signal
 import sys
 import time
 from contextlib import nullcontext, redirect_stdout
@@ -31,9 +30,9 @@ from pathlib import Path
 
 import click
 
-from tools import runfile, summary
+from tools import runfile, stop_signals, summary
 from tools.cpus import usable_cores
-from tools.paths import OutputPath, picture_check
+from tools.paths import OutputPath, describe_os_error, picture_check
 from tools.plot import plot_check
 from tools.run_plan import (
     Plan,
@@ -47,24 +46,13 @@ from tools.run_plan import (
     with_bus_mode,
 )
 from tools.run_secrets import RunSecrets, host_of, make_secrets
-from tools.scenario_check import load_checked
+from tools.scenario_check import load_checked, override_option
 from tools.supervision import Outcome, supervise
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
 REMOTE_READY_TIMEOUT = 600.0  # [s] the world waits for stages started on other hosts
-
-
-def _raise_interrupt(signum: int, frame: object) -> None:
-    raise KeyboardInterrupt
-
-
-def _catch_signals() -> None:
-    """SIGINT, SIGTERM and SIGHUP all stop the run in order. SIGINT is set explicitly: a
-    background job of a non-interactive shell starts with it ignored."""
-    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-        signal.signal(sig, _raise_interrupt)
 
 
 class PerProcess(click.ParamType):
@@ -117,6 +105,7 @@ class PerProcess(click.ParamType):
                    "(0: a process per stage; auto: the agents spread over this machine's "
                    "CPUs, the fastest from 2 agents on). Not with --secure, --only, --join "
                    "or --listen beyond this host.")
+@override_option
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object on stdout (everything else on stderr).")
 def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str | None,
@@ -124,18 +113,20 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
            listen: str | None, hosts: tuple[str, ...], only: str | None, join: str | None,
            run_id: str | None, secrets_dir: str | None, learned: str | None,
            plot_file: str | None, no_record: bool, agents_per_process: int | str,
-           as_json: bool) -> None:
+           overrides: tuple[str, ...], as_json: bool) -> None:
     """Start every process of SCENARIO, supervise them, and summarise the run.
 
     The processes are zenoh peers of each other, or clients of the router when there are
-    more than 30 (docs/bus.md). Environment: TELEO_RUN_DIR, where runs are kept (else
-    ./out); TELEO_PROFILE=DIR, every process writes a cProfile of its run to DIR.
+    more than 30 (docs/bus.md). `--set KEY=VALUE` changes a field of the scenario for this
+    run (`--cycles`, `--seed` and `--mode` win over it). Environment: TELEO_RUN_DIR, where
+    runs are kept (else ./out); TELEO_PROFILE=DIR, every process writes a cProfile of its
+    run to DIR.
     """
     if plot_file and no_record:
         raise click.UsageError("--plot draws the run record: leave out --no-record")
-    _catch_signals()
     try:
-        scenario, _ = load_checked(scenario_file)
+        stop_signals.running()  # SIGINT, SIGTERM, SIGHUP: stop in order (tools/stop_signals.py)
+        scenario, _ = load_checked(scenario_file, overrides)
         if learned:
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
@@ -151,9 +142,13 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             _reach_router(plan)
     except (ScenarioError, PlanError, WorldError) as exc:
         raise click.ClickException(str(exc)) from exc
+    except KeyboardInterrupt:
+        stop_signals.stopping()
+        click.echo("interrupted before the run started: no process was started", err=True)
+        raise SystemExit(summary.EXIT_CODES["interrupted"]) from None
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
-            "secured": plan.secrets is not None}
+            "secured": plan.secrets is not None, "overrides": list(scenario.overrides)}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
         if per_process:
             click.echo(_layout(len(scenario.agents), per_process, cpus))
@@ -163,11 +158,13 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             raise SystemExit(1 if outcome.left_down or outcome.ended else 0)
         result = summary.build(plan.run_dir, base, outcome.restarts, scenario.domain,
                                outcome.left_down, outcome.ended, outcome.requested_stop,
-                               scenario.events)
-        _finish(result, scenario, plan.run_dir, summary_file, render_file, plot_file, as_json)
+                               scenario.events, outcome.recorder)
+        unwritten = _finish(result, scenario, plan.run_dir, summary_file, render_file,
+                            plot_file, as_json)
     if as_json:
         click.echo(json.dumps(result, indent=1))
-    raise SystemExit(summary.exit_code(result))
+    code = summary.exit_code(result)
+    raise SystemExit(code if code or not unwritten else 1)
 
 
 def _per_process(asked: int | str, agents: int) -> tuple[int, int]:
@@ -194,13 +191,19 @@ def _count(n: int, noun: str) -> str:
 
 
 def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
-            render_file: str | None, plot_file: str | None, as_json: bool) -> None:
-    """The summary for a person (unless --json), its file, the picture, the plot."""
+            render_file: str | None, plot_file: str | None, as_json: bool) -> bool:
+    """The summary for a person (unless --json), its file, the picture, the plot; returns
+    whether the summary file could not be written (said on stderr: a full disk)."""
     if not as_json:
         summary.echo(result)
     if summary_file:
-        Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
-        Path(summary_file).write_text(json.dumps(result, indent=1))
+        try:
+            Path(summary_file).parent.mkdir(parents=True, exist_ok=True)
+            Path(summary_file).write_text(json.dumps(result, indent=1))
+        except OSError as exc:
+            click.echo(f"Error: the summary was not written: {describe_os_error(exc)}",
+                       err=True)
+            return True
         click.echo(f"summary written to {summary_file}")
     if render_file:
         frames = summary.render(run_dir, Path(render_file), scenario.agent_ids[0])
@@ -210,6 +213,7 @@ def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str |
         from tools.plot import plot_command_output
 
         click.echo(plot_command_output(run_dir, Path(plot_file)))
+    return False
 
 
 def check_learned(scenario: Scenario, learned: str) -> None:
@@ -239,7 +243,7 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
         raise PlanError(f"a secured run listens and connects on tls/ endpoints, got "
                         f"{join or listen!r}")
     run = run_id or f"{scenario.run.name}-{secrets.token_hex(3)}"
-    _check_run_id(run)
+    _check_run_id(run, "--run" if run_id else "[run].name")
     local = select(scenario, only)
     run_dir = runfile.base_dir() / "runs" / run
     if join:
@@ -282,14 +286,16 @@ _RUST_PLACE = re.compile(r"\s+at \S+\.rs:\d+\.?$")
 """Where in zenoh's Rust source an error was raised, at the end of its message."""
 
 
-def _check_run_id(run: str) -> None:
+def _check_run_id(run: str, given_by: str) -> None:
+    """Refuse a run id that cannot be a bus key's chunk, naming where it came from (`--run`,
+    or the scenario's `[run].name`, which the scenario check refuses first)."""
     from bus.errors import KeyFormatError
     from bus.keys import check_chunk
 
     try:
         check_chunk(run, "run id")
     except KeyFormatError as exc:
-        raise PlanError(f"--run: {exc}") from exc
+        raise PlanError(f"{given_by}: {exc}") from exc
 
 
 def _echo_joined(plan: Plan, outcome: Outcome) -> None:

@@ -4,7 +4,9 @@ Every option that names a file to write (`--summary`, `--trace`, `--render`, `--
 `--save-state`, ...) has the type OutputPath: before any work (a long launch or simulation is
 not wasted on a file it cannot write) it checks that the file's folder exists or can be
 created and is writable, that an existing file can be written, and, where the option has one,
-that the suffix names a format the command can write (`--render x.bmp`, `--plot x.txt`). A
+that the suffix names a format the command can write (`--render x.bmp`, `--plot x.txt`;
+`teleo record FILE` makes no folder and takes only .mcap, as `cp` or a shell redirection
+would refuse a missing folder: a typo must not leave a tree of folders behind). A
 failure is one `Error:` line naming the option, the path and the reason, exit 1 (a runtime
 failure, as when the file itself cannot be written later), never a traceback.
 
@@ -59,11 +61,13 @@ def picture_check(path: Path) -> str | None:
     return None
 
 
-def output_problem(path: Path) -> str | None:
-    """Why ``path`` cannot be written (its folder missing and not creatable, not a folder, not
-    writable; the file itself a folder or not writable), or None when it can. The folder is
-    probed with a temporary file (or folder) that is removed at once: permission bits alone
-    do not say it (root ignores them; /proc refuses new files whatever they say)."""
+def output_problem(path: Path, create_folders: bool = True) -> str | None:
+    """Why ``path`` cannot be written (its folder missing and not creatable, or missing at all
+    when not ``create_folders``; not a folder, not writable; the file itself a folder or not
+    writable), or None when it can. The folder is probed with a temporary file (or folder)
+    that is removed at once: permission bits alone do not say it (root ignores them; /proc
+    refuses new files whatever they say), and the reason given is the system's answer to
+    that probe, so the words and the reason in brackets never disagree."""
     try:
         if path.is_dir():
             return f"{path} is a folder"
@@ -76,6 +80,9 @@ def output_problem(path: Path) -> str | None:
             folder, missing = folder.parent, folder
         if not folder.is_dir():
             return f"{folder} is not a folder"
+        if missing is not None and not create_folders:
+            return (f"its folder {path.parent} does not exist (create it first: "
+                    f"mkdir -p {path.parent})")
     except OSError as exc:
         return describe_os_error(exc)
     try:
@@ -89,23 +96,27 @@ def output_problem(path: Path) -> str | None:
         reason = exc.strerror or str(exc)
         if missing is not None:
             return f"its folder {missing} cannot be created ({reason})"
-        return f"its folder {folder} is not writable ({reason})"
+        return f"no file can be created in its folder {folder} ({reason})"
     return None
 
 
 class OutputPath(click.Path):
     """A file the command will write (see the module doc); ``check``: a NameCheck of the
-    formats the option writes (suffix_check, picture_check), if it has any."""
+    formats the option writes (suffix_check, picture_check), if it has any;
+    ``create_folders``: whether a folder that is not there yet is made (else refused)."""
 
-    def __init__(self, check: NameCheck | None = None, path_type: type | None = None) -> None:
+    def __init__(self, check: NameCheck | None = None, path_type: type | None = None,
+                 create_folders: bool = True) -> None:
         super().__init__(dir_okay=False, path_type=path_type)
         self.check = check
+        self.create_folders = create_folders
 
     def convert(self, value: Any, param: click.Parameter | None,
                 ctx: click.Context | None) -> Any:
         converted = super().convert(value, param, ctx)
         path = Path(os.fsdecode(converted))
-        problem = (self.check(path) if self.check else None) or output_problem(path)
+        problem = (self.check(path) if self.check else None) or \
+            output_problem(path, self.create_folders)
         if problem is not None:
             raise click.ClickException(f"{_option_name(param)}: cannot write {path}: {problem}"
                                        if not problem.startswith(f"{path}:")

@@ -5,10 +5,12 @@ and `SimRecorder` writes the same channels from `teleo simulate`'s in-process lo
 
 from __future__ import annotations
 
+import json
 import logging
 import secrets
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -36,6 +38,8 @@ RECORDER_META = "teleo.recorder"
 LOOK_S = 0.02  # [s] between looks at the subscription when nothing waits
 FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken after the stop
 FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
+PROGRESS_S = 0.05  # [s] a launch's recorder says the cycle it has reached at most this often
+AGAIN_S = 0.5      # [s] and says it again this often when it has not moved
 
 
 class BusRecorder:
@@ -61,8 +65,14 @@ class BusRecorder:
         self._cycles: set[int] = set()  # the distinct cycles of the messages recorded
         self.cpu_s = 0.0
         self._announce, self._quiet_s, self._settle_s = False, 0.3, None
+        self._until: int | None = None  # stop(): the cycles the record must reach
         self._stop_ns: int | None = None  # wall clock of the stop [ns]: later sends left out
         self.error: BaseException | None = None
+        self.failed: dict[str, Any] = {}  # the write that failed: {"cycle", "reason"}
+        self._own = keys.stats(run, process)  # a launch's recorder says its progress there
+        self._node = None  # the session it says it on (a launch's recorder only)
+        self._told, self._told_at = -2, 0.0  # the cycle last said (-1: it has begun), when
+        self.cut = False  # stop() left out what was still queued (its time was up, or asked)
         self._ready = threading.Event()
         self._stop = threading.Event()
         self._abandon = threading.Event()  # stop() waited long enough: write nothing more
@@ -82,7 +92,9 @@ class BusRecorder:
         return self
 
     def stop(self, quiet_s: float = 0.3, timeout: float = 30.0,
-             settle_s: float | None = None) -> RecordWriter:
+             settle_s: float | None = None,
+             progress: Callable[[BusRecorder, float], None] | None = None,
+             until: int | None = None) -> RecordWriter:
         """Finish: record every message sent before this call and none sent after it, close
         the record (with this recorder's own costs in its metadata `teleo.recorder`); returns
         the writer.
@@ -95,30 +107,69 @@ class BusRecorder:
         quiet bus once made `teleo record --seconds 2` record 32 s. "Before" is by the
         sender's wall clock (env.sent_ns), which a message from another host with a clock
         behind ours, or a replayed record, can fool: `settle_s` bounds how long messages
-        in flight are still taken once the queue is caught up (None: no bound; `timeout`
-        bounds the whole stop, after which nothing more is written)."""
-        self._quiet_s, self._settle_s = quiet_s, settle_s
+        in flight are still taken once the queue is caught up (None: no bound). `timeout`
+        bounds the whole stop, and `cut_short()` (a second Ctrl-C) ends it at once: what is
+        still queued then is left out (`cut`), and the record's metadata says which cycles
+        it holds. `progress(self, seconds)` is called about once a second while it drains.
+        `until`: the cycles the run ran (a launch: its trace's lines); the drain does not end
+        on a quiet bus before the world state of the last of them is written (a recorder
+        starved of CPU reads in bursts, and a quiet spell is not the end: drill
+        slow-record), unless the record cannot be written."""
+        self._quiet_s, self._settle_s, self._until = quiet_s, settle_s, until
         if self._stop_ns is None:
             self._stop_ns = time.time_ns()
         self._stop.set()
-        self._thread.join(timeout)
-        if self._thread.is_alive():  # left behind: the summary says what the record lacks
-            log.warning("recorder of run %s still draining after %.0f s: the rest is not "
-                        "recorded", self.run, timeout)
-            self._abandon.set()
-            self._thread.join(max(timeout, 5.0))  # it ends after the record it is writing
+        start = time.monotonic()
+        while self._thread.is_alive() and not self._abandon.is_set():
+            waited = time.monotonic() - start
+            if waited >= timeout:
+                log.warning("recorder of run %s still draining after %.0f s: the rest is not "
+                            "recorded", self.run, timeout)
+                self.cut_short()
+                break
+            self._thread.join(min(1.0, timeout - waited))
+            if progress is not None and self._thread.is_alive():
+                progress(self, time.monotonic() - start)
+        if self._thread.is_alive():   # it ends after the message it is writing
+            self._thread.join(5.0)
         self.writer.meta(RECORDER_META, {"received": str(self.received),
                                          "dropped": str(self.dropped),
                                          "after_stop": str(self.after_stop),
+                                         "cut_short": str(self.cut).lower(),
+                                         "drain_ms": f"{(time.monotonic() - start) * 1e3:.0f}",
                                          "cpu_ms": f"{self.cpu_s * 1e3:.1f}"})
-        self.writer.close()
+        try:
+            self.writer.close()
+        except OSError as exc:  # a full disk: the file holds what was written before
+            self._fail(self.last_cycle, exc)
         return self.writer
+
+    def cut_short(self) -> None:
+        """Stop draining now (safe from a signal handler: it only sets an Event)."""
+        self.cut = self.cut or self._thread.is_alive()
+        self._abandon.set()
+
+    def report(self) -> dict[str, Any]:
+        """What the launch's summary says of its record: the write that failed
+        ({"cycle", "reason"}: nothing was written from about that cycle on), whether the stop
+        left out what was still queued, the distinct cycles recorded."""
+        return {"failed": dict(self.failed), "cut_short": self.cut, "cycles": self.cycles,
+                "last_cycle": self.last_cycle}
+
+    def _fail(self, cycle: int | None, exc: OSError) -> None:
+        if not self.failed:
+            self.failed = {"cycle": cycle, "reason": exc.strerror or str(exc)}
+            log.error("record %s: cannot be written from about cycle %s on (%s); the run goes "
+                      "on unrecorded", self.writer.path, cycle, exc.strerror or exc)
 
     def _main(self) -> None:
         try:
             with open_node(self.cfg, self.run, self.process) as node:
                 inbox = node.subscribe_fifo(keys.run_all(self.run))
-                if self._announce:
+                if self.process == keys.RECORDER:
+                    node.declare([self._own])
+                    self._node = node
+                if self._announce or self._node is not None:
                     node.announce()
                 self._ready.set()
                 self._pump(inbox)
@@ -144,13 +195,30 @@ class BusRecorder:
                 now = time.monotonic()
                 if caught_up is None and len(batch) < most:
                     caught_up = now  # all that had arrived by the stop is written
-                if quiet_since is not None and now - quiet_since >= self._quiet_s:
+                if quiet_since is not None and now - quiet_since >= self._quiet_s \
+                        and (self.failed or self._until is None
+                             or self.writer.cycles >= self._until):
                     return
                 if caught_up is not None and self._settle_s is not None \
                         and now - caught_up >= self._settle_s:
                     return
+            self._tell_progress()
             if len(batch) < most:
                 time.sleep(LOOK_S)
+
+    def _tell_progress(self) -> None:
+        """A launch's recorder: publish, every PROGRESS_S at most (every AGAIN_S when it has
+        not moved), the last cycle it holds whole (every message of a cycle is sent before
+        the next world state, so it is the one before the latest world state written; -1:
+        it has the first), for the world to keep pace with."""
+        whole = self.writer.cycles - 2
+        now = time.monotonic()
+        if self._node is None or now - self._told_at < (
+                PROGRESS_S if whole > self._told else AGAIN_S):  # said again now and then:
+            return                                             # a restarted world learns it
+        self._told, self._told_at = whole, now
+        self._node.publish(self._own, ProcessStats(self._node.envelope(whole), self.process,
+                                                   0.0, 0))
 
     def _write_all(self, batch: list[tuple[str, bytes]]) -> int:
         """Write the messages of `batch` sent before the stop; how many were."""
@@ -158,6 +226,8 @@ class BusRecorder:
         for key, payload in batch:
             if self._abandon.is_set():
                 break
+            if key == self._own:  # its own progress: not a message of the run
+                continue
             try:
                 record = to_record(key, payload)
             except CodecError as exc:
@@ -171,11 +241,18 @@ class BusRecorder:
                 continue
             self.received += 1
             taken += 1
+            if self.failed:  # the file cannot be written: taken off the bus all the same,
+                self.dropped += 1  # so no sender waits for this subscription
+                continue
             try:
                 self.writer.add(key, record)
             except (CodecError, KeyError, TypeError, ValueError) as exc:
                 self.dropped += 1
                 log.warning("not recorded: %s", exc)
+                continue
+            except OSError as exc:
+                self.dropped += 1
+                self._fail(record["env"].get("cycle"), exc)
                 continue
             self._count_cycle(record)
         return taken
@@ -195,21 +272,17 @@ def _sent_ns(record: dict[str, Any]) -> int:
     return sent if isinstance(sent, int) else 0
 
 
-def start_run_recorder(cfg: BusConfig, run: str, run_dir: Path,
-                       scenario: Any) -> BusRecorder | None:
-    """The launcher's recorder of `run`, subscribed before any process starts (so the
-    record holds cycle 0), writing run_dir/record.mcap; None (said on the log) when it
-    cannot subscribe: the run goes on unrecorded."""
-    meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain}
-    client = BusConfig(mode="client", connect=cfg.connect, listen=(),
-                       credentials=cfg.credentials)  # a secured run: the operator's
-    recorder = BusRecorder(client, run, run_dir / RECORD_FILE, meta, process="launch.record")
-    try:
-        return recorder.start()
-    except BusError as exc:
-        log.error("run %s is not recorded: %s", run, exc)
-        recorder.writer.close()
-        return None
+def run_recorder(cfg: BusConfig, run: str, run_dir: Path, scenario: Any) -> BusRecorder:
+    """The launcher's recorder of `run` (not started), writing run_dir/record.mcap. It joins
+    the bus as the run's processes do (`cfg`: theirs, with the operator's credentials on a
+    secured run): a peer among peers keeps its own links to each of them, so a router that
+    dies costs it nothing, as it costs them nothing (a client of the router lost every
+    message sent while it was reconnecting: half of the demo's cycles in the drills of
+    2026-12-02); a client among clients waits for the router with them, and the lockstep
+    world re-sends the cycle it waits on, which every stage answers again."""
+    meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain,
+            "overrides": json.dumps(list(scenario.overrides))}  # the --set applied
+    return BusRecorder(cfg, run, run_dir / RECORD_FILE, meta, process=keys.RECORDER)
 
 
 class SimRecorder:
@@ -224,7 +297,8 @@ class SimRecorder:
         """A recorder writing runs/<name>-sim-<hex>/record.mcap under the runs folder."""
         run = f"{scenario.run.name}-sim-{secrets.token_hex(3)}"
         path = runfile.base_dir() / "runs" / run / RECORD_FILE
-        meta = {"source": "simulate", "scenario": str(scenario.path), "domain": scenario.domain}
+        meta = {"source": "simulate", "scenario": str(scenario.path), "domain": scenario.domain,
+                "overrides": json.dumps(list(scenario.overrides))}  # the --set applied
         return cls(RecordWriter(path, run, meta), run)
 
     def _add(self, key: str, msg: Message) -> None:

@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import json
 import logging
+import struct
 from collections import defaultdict
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -37,6 +38,7 @@ RECORD_FILE = "record.mcap"
 MCAP_MAGIC = b"\x89MCAP0\r\n"
 RUN_META = "teleo.run"
 GOALS_META = "teleo.goals"
+STATE_RANGES = "world_state_cycles"  # in RUN_META: [[first, last], ...] of the states held
 _KEEP_TIMES = 4096  # cycles whose world time is remembered (a forever run must not grow)
 
 
@@ -48,7 +50,12 @@ class GoalHistory:
     """Each agent's goals' status changes, fed with intention and goal-list records: agent ->
     goal id -> [{"cycle", "status", "goal", "priority", "note"}] (one entry per change, first
     sighting included). A user goal that leaves the agent's goal list without having failed
-    was cancelled: the executive never reports that, as it no longer has the goal."""
+    was cancelled: the executive never reports that, as it no longer has the goal.
+
+    A change seen after a gap in the record (cycles whose world state it lacks, between the
+    agent's previous intention and this one) happened at some cycle of the gap or at the one
+    seen: its entry has "after", the last cycle known before it, so that nobody takes the
+    cycle after a gap for the cycle of the change (drill N1: "achieved 486" for 216)."""
 
     FINAL = frozenset({"failed", "cancelled"})
 
@@ -56,16 +63,34 @@ class GoalHistory:
         self.changes: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
         self._last: dict[tuple[str, str], str] = {}
         self._listed: dict[str, dict[str, dict[str, Any]]] = {}  # agent -> id -> entry
+        self._seen: dict[str, int] = {}  # agent -> cycle of its latest intention fed
 
-    def feed(self, record: dict[str, Any]) -> None:
+    def feed(self, record: dict[str, Any], has_state: Callable[[int], bool] | None = None
+             ) -> None:
+        """Take one intention or goal-list record; `has_state(cycle)`: whether the record
+        holds that cycle's world state (None: no gaps are looked for)."""
         agent, cycle = record.get("agent", ""), record["env"]["cycle"]
         if record.get("kind") == "GoalList":
             self._goal_list(agent, cycle, record.get("goals", ()))
             return
+        after = self._gap_before(agent, cycle, has_state)
         for goal in record.get("decision", {}).get("goals", ()):
             gid = goal.get("id")
             if self._last.get((agent, gid)) not in (goal.get("status"), "cancelled"):
-                self._add(agent, gid, cycle, goal.get("status"), goal, goal.get("note", ""))
+                self._add(agent, gid, cycle, goal.get("status"), goal, goal.get("note", ""),
+                          after)
+
+    def _gap_before(self, agent: str, cycle: int, has_state: Callable[[int], bool] | None
+                    ) -> int | None:
+        """The last cycle known before `cycle` when the record lacks some cycle between it
+        and this agent's previous intention (or the run's start); else None."""
+        seen = self._seen.get(agent, -1)
+        if cycle <= seen:
+            return None  # a re-sent cycle
+        self._seen[agent] = cycle
+        if has_state is None or all(has_state(c) for c in range(seen + 1, cycle)):
+            return None
+        return seen
 
     def _goal_list(self, agent: str, cycle: int, goals: Any) -> None:
         now = {g.get("id"): g for g in goals if isinstance(g, dict)}
@@ -75,16 +100,30 @@ class GoalHistory:
         self._listed[agent] = now
 
     def _add(self, agent: str, gid: str, cycle: int, status: str, goal: dict[str, Any],
-             note: str) -> None:
+             note: str, after: int | None = None) -> None:
         self._last[(agent, gid)] = status
         changes = self.changes[agent].setdefault(gid, [])
-        changes.append({"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
-                        "priority": goal.get("priority"), "note": note})
+        change = {"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
+                  "priority": goal.get("priority"), "note": note}
+        if after is not None:
+            change["after"] = after
+        changes.append(change)
         if len(changes) > 1 and changes[-2]["cycle"] > cycle:  # records of two keys crossed
             changes.sort(key=lambda c: c["cycle"])
 
     def to_meta(self) -> dict[str, str]:
         return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
+
+
+def cycle_ranges(cycles: Iterable[int]) -> list[list[int]]:
+    """[[first, last], ...] (inclusive) of a set of cycles, in order."""
+    out: list[list[int]] = []
+    for c in sorted(set(cycles)):
+        if out and c == out[-1][1] + 1:
+            out[-1][1] = c
+        else:
+            out.append([c, c])
+    return out
 
 
 class RecordWriter:
@@ -158,7 +197,7 @@ class RecordWriter:
                 topic=key, message_encoding=MessageEncoding.JSON,
                 schema_id=self._schema(record["kind"]))
         if record["kind"] in ("Intention", "GoalList"):
-            self.history.feed(record)
+            self.history.feed(record, self._states.__contains__)
         self._mcap.add_message(channel_id=channel, log_time=max(0, log_ns),
                                data=orjson.dumps(record),
                                publish_time=max(0, sent_ns))
@@ -181,7 +220,8 @@ class RecordWriter:
                 self._write(k, r, self._estimate(cycle), s)
         self._pending.clear()
         self._mcap.add_metadata(RUN_META, {**self._meta, "cycles": str(self.cycles),
-                                           "world_states": str(len(self._states))})
+                                           "world_states": str(len(self._states)),
+                                           STATE_RANGES: json.dumps(cycle_ranges(self._states))})
         self._mcap.add_metadata(GOALS_META, self.history.to_meta())
         for name, data in self._extra_meta.items():
             self._mcap.add_metadata(name, data)
@@ -223,11 +263,13 @@ class RunRecord:
                 if f.read(len(MCAP_MAGIC)) != MCAP_MAGIC:
                     raise RecordError(f"{self.path}: not a readable run record (not MCAP)")
                 f.seek(0)
-                self.meta = {m.name: dict(m.metadata) for m in make_reader(f).iter_metadata()}
-        except (McapError, ValueError) as exc:
-            self.truncated = True
-            log.warning("%s: no summary section (%s); reading it as far as it goes",
-                        self.path, exc)
+                try:
+                    self.meta = {m.name: dict(m.metadata)
+                                 for m in make_reader(f).iter_metadata()}
+                except (McapError, ValueError, OSError, struct.error) as exc:  # too short
+                    self.truncated = True
+                    log.warning("%s: no summary section (%s); reading it as far as it goes",
+                                self.path, exc)
         except OSError as exc:
             raise RecordError(f"{self.path}: not a readable run record ({exc})") from exc
 
@@ -244,8 +286,8 @@ class RunRecord:
                     reader = NonSeekingReader(f) if self.truncated else make_reader(f)
                     for _, ch, msg in reader.iter_messages(log_time_order=not self.truncated):
                         self._records.append((ch.topic, orjson.loads(msg.data)))
-            except (McapError, ValueError, orjson.JSONDecodeError) as exc:
-                if not self.truncated:
+            except (McapError, ValueError, struct.error, orjson.JSONDecodeError) as exc:
+                if not self.truncated:  # struct.error: a record cut inside a header
                     raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
             except OSError as exc:
                 raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
@@ -273,14 +315,29 @@ class RunRecord:
         return {rec["env"]["cycle"]: rec for key, rec in self.kinds(kind)
                 if agent is None or keys.agent_of_key(key) == agent}
 
+    def state_cycles(self) -> set[int]:
+        """The cycles whose world state the record holds (from its metadata when it says)."""
+        ranges = self.meta.get(RUN_META, {}).get(STATE_RANGES)
+        if ranges is not None:
+            return {c for first, last in json.loads(ranges) for c in range(first, last + 1)}
+        return {rec["env"]["cycle"] for _, rec in self.kinds("state")
+                if rec.get("kind") == "WorldState"}
+
+    def held_ranges(self) -> list[list[int]]:
+        """cycle_ranges of the world states held: from the metadata, else (a record never
+        closed, or written before it said) from the records themselves."""
+        ranges = self.meta.get(RUN_META, {}).get(STATE_RANGES)
+        return json.loads(ranges) if ranges is not None else cycle_ranges(self.state_cycles())
+
     def goal_history(self) -> dict[str, dict[str, list[dict[str, Any]]]]:
-        """agent -> goal id -> status changes (from the metadata, else from the intentions)."""
+        """agent -> goal id -> status changes (from the metadata, else from the intentions;
+        a change seen after a gap says so: GoalHistory)."""
         meta = self.meta.get(GOALS_META)
         if meta is not None:
             return {agent: json.loads(text) for agent, text in meta.items()}
-        history = GoalHistory()
+        history, states = GoalHistory(), self.state_cycles()
         for _, rec in self.kinds_of(("intention", "goal-list")):
-            history.feed(rec)
+            history.feed(rec, states.__contains__)
         return dict(history.changes)
 
 
@@ -293,43 +350,70 @@ USER_STATUS = {"satisfied": "achieved"}
 """The engine's status words as the goal-entry process reports user goals (goal_store.py)."""
 
 
-def with_history(goals: list[dict[str, Any]], run_dir: Path) -> list[dict[str, Any]]:
-    """The summary's goals, each with "history": [{"cycle", "status"}] of its status changes
-    in the run record (statuses as users see them: satisfied -> achieved); [] without one."""
-    path = Path(run_dir) / RECORD_FILE
+def with_history(goals: list[dict[str, Any]], run_dir: Path,
+                 record: RunRecord | None = None) -> list[dict[str, Any]]:
+    """The summary's goals (the goal store's records), each with "history": [{"cycle",
+    "status"}] of its status changes in the run record (statuses as users see them:
+    satisfied -> achieved); [] without one. Only what is known is told (`reconcile`)."""
+    if record is None:
+        path = Path(run_dir) / RECORD_FILE
+        try:
+            record = RunRecord(path) if path.is_file() else None
+        except RecordError as exc:
+            log.warning("no goal history: %s", exc)
     try:
-        history = RunRecord(path).goal_history() if path.is_file() else {}
+        history = record.goal_history() if record is not None else {}
     except RecordError as exc:
         log.warning("no goal history: %s", exc)
         history = {}
-    return [{**g, "history": [{"cycle": c["cycle"], "status": USER_STATUS.get(c["status"],
-                                                                               c["status"])}
-                              for c in history.get(g.get("agent"), {}).get(g.get("id"), [])]}
+    return goals_with_history(goals, history)
+
+
+def goals_with_history(goals: list[dict[str, Any]],
+                       history: dict[str, dict[str, list[dict[str, Any]]]]
+                       ) -> list[dict[str, Any]]:
+    """``goals`` each with "history" from GoalHistory.changes (``with_history``); only what
+    is known is told (`reconcile`)."""
+    return [reconcile(g, history.get(g.get("agent"), {}).get(g.get("id"), []))
             for g in goals]
 
 
-def coverage(run_dir: Path, cycles: int) -> dict[str, Any] | None:
-    """How much of a run of `cycles` cycles its record holds: {"file", "world_states",
-    "missing"} (cycles whose world state is not in it; None when the record does not say:
-    never closed, or written before the count); None when there is no record."""
-    path = Path(run_dir) / RECORD_FILE
-    if not path.is_file():
-        return None
-    try:
-        count = RunRecord(path).meta.get(RUN_META, {}).get("world_states")
-    except RecordError as exc:
-        log.warning("record not read: %s", exc)
-        count = None
-    states = int(count) if count is not None and count.isdigit() else None
-    return {"file": str(path), "world_states": states,
-            "missing": None if states is None else max(0, cycles - states)}
+def reconcile(goal: dict[str, Any], changes: list[dict[str, Any]]) -> dict[str, Any]:
+    """One goal of the goal store with its history from the record's `changes`:
+    - a change the record saw only after a gap keeps "after" (it came at a cycle after that
+      one, up to "cycle"), unless the goal store, which saw every cycle, dates that status
+      within the gap ("source": "goal store");
+    - a final status the record never saw (its end was lost) is added from the store;
+    - a status the record saw after the store's last change (a store that could not be
+      saved since: a full disk) is the goal's status, with a note saying so."""
+    out = []
+    for c in changes:
+        entry = {"cycle": c["cycle"], "status": USER_STATUS.get(c["status"], c["status"])}
+        if "after" in c:
+            entry["after"] = c["after"]
+        out.append(entry)
+    status, when = goal.get("status"), goal.get("updated_cycle")
+    if not out or not isinstance(when, int):
+        return {**goal, "history": out}
+    last = out[-1]
+    if last["status"] == status and "after" in last and last["after"] < when <= last["cycle"]:
+        out[-1] = {"cycle": when, "status": status, "source": "goal store"}
+    elif last["status"] != status and last["cycle"] > when:
+        return {**goal, "status": last["status"], "updated_cycle": last["cycle"],
+                "note": f"from the run record: the goal store was last saved with {status} "
+                        f"(cycle {when})", "history": out}
+    elif last["status"] != status and when >= last["cycle"]:
+        out.append({"cycle": when, "status": status, "source": "goal store"})
+    return {**goal, "history": out}
 
 
 def history_text(history: list[dict[str, Any]], most: int = 8) -> str:
-    """" (active 0, achieved 213)": a goal's status changes for a one-line summary."""
+    """" (active 0, achieved 213)": a goal's status changes for a one-line summary; a change
+    seen after a gap in the record reads "achieved 201..486" (at one of those cycles)."""
     if not history:
         return ""
-    parts = [f"{h['status']} {h['cycle']}" for h in history]
+    parts = [f"{h['status']} {h['after'] + 1}..{h['cycle']}" if "after" in h
+             else f"{h['status']} {h['cycle']}" for h in history]
     if len(parts) > most:
         parts = parts[:most - 1] + [f"... {len(parts) - most} more", parts[-1]]
     return " (" + ", ".join(parts) + ")"

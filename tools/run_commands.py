@@ -5,7 +5,10 @@ Both read the run registry (tools/runfile.py). `ps` lists every registered run: 
 with its pid and whether it is still there. `stop` asks a run's launcher to stop it (SIGTERM:
 the same orderly stop as Ctrl-C) and waits for it; if the launcher is already gone it stops
 what is left of the run itself, SIGTERM then SIGKILL, touching only processes whose command
-line names the run, and removes the stale entry.
+line names the run, and removes the stale entry; `stop --all` does so for every registered
+run. A launcher stopped by Ctrl-C, SIGTERM or `teleo stop` removes its own entry; only one
+killed outright (SIGKILL) leaves it, shown STALE: `ps --prune`, and the next launch, remove
+such entries once nothing of their run is left.
 """
 
 from __future__ import annotations
@@ -14,7 +17,6 @@ import json
 import os
 import signal
 import time
-from pathlib import Path
 
 import click
 
@@ -24,31 +26,22 @@ STOP_TIMEOUT = 60.0  # [s] for a launcher to stop its run (2 s) and write its su
 KILL_AFTER = 2.0     # [s] between SIGTERM and SIGKILL for orphans
 
 
-def _cmdline(pid: int) -> str:
-    try:
-        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(
-            errors="replace")
-    except OSError:
-        return ""
-
-
-def _belongs(pid: int, run: str) -> bool:
-    """Whether `pid` is a live process of `run` (never a recycled pid of something else)."""
-    return runfile.alive(pid) and run in _cmdline(pid)
-
-
 @click.command("ps")
 @click.option("--json", "as_json", is_flag=True,
               help="JSON lines: one object per run (no line when none is registered).")
-def ps(as_json: bool) -> None:
+@click.option("--prune", is_flag=True,
+              help="First remove the entries whose launcher is gone (saying which).")
+def ps(as_json: bool, prune: bool) -> None:
     """List the runs on this host with their processes."""
+    if prune:
+        echo_pruned(*runfile.prune(), err=as_json)
     runs = runfile.all_runs()
     if as_json:
         for info, up in runs:
             doc = {"run": info.run, "launcher": info.pid, "running": up,
                    "endpoint": info.endpoint, "secured": info.secured, "joined": info.joined,
                    "run_dir": info.run_dir,
-                   "processes": {n: {"pid": p, "alive": _belongs(p, info.run)}
+                   "processes": {n: {"pid": p, "alive": runfile.belongs(p, info.run)}
                                  for n, p in info.pids.items()}}
             click.echo(json.dumps(doc))
         return
@@ -62,8 +55,22 @@ def ps(as_json: bool) -> None:
         click.echo(f"{info.run}  launcher {info.pid} {state}  router {info.endpoint}"
                    f"{', secured' if info.secured else ''}{kind}  {info.run_dir}")
         for name, pid in info.pids.items():
-            alive = "up" if _belongs(pid, info.run) else "gone"
+            alive = "up" if runfile.belongs(pid, info.run) else "gone"
             click.echo(f"  {name:<24} pid {pid:<8} {alive}")
+
+
+def echo_pruned(removed: list[runfile.RunInfo], kept: list[runfile.RunInfo],
+                err: bool = False) -> None:
+    """Say which stale entries `runfile.prune` removed, and which it kept and why."""
+    for info in removed:
+        click.echo(f"removed the stale entry of run {info.key} (its launcher {info.pid} is "
+                   f"gone, and nothing of the run is left)", err=err)
+    for info in kept:
+        left = runfile.leftovers(info)
+        click.echo(f"kept the stale entry of run {info.key}: its launcher {info.pid} is gone "
+                   f"but {len(left)} of its processes are still there (pids "
+                   f"{', '.join(map(str, left))}); `teleo stop {info.key}` stops them",
+                   err=err)
 
 
 def _target(run: str | None) -> runfile.RunInfo:
@@ -84,10 +91,10 @@ def _target(run: str | None) -> runfile.RunInfo:
 
 def _wait_gone(pids: list[int], run: str, timeout: float) -> list[int]:
     end = time.monotonic() + timeout
-    left = [p for p in pids if _belongs(p, run)]
+    left = [p for p in pids if runfile.belongs(p, run)]
     while left and time.monotonic() < end:
         time.sleep(0.05)
-        left = [p for p in left if _belongs(p, run)]
+        left = [p for p in left if runfile.belongs(p, run)]
     return left
 
 
@@ -101,19 +108,34 @@ def _kill(pids: list[int], sig: signal.Signals) -> None:
 
 @click.command("stop")
 @click.argument("run", required=False)
+@click.option("--all", "every", is_flag=True,
+              help="Stop every registered run (and clean up after launchers that are gone).")
 @click.option("--timeout", type=float, default=STOP_TIMEOUT, show_default=True,
               help="Seconds to wait for the launcher to stop the run.")
-def stop(run: str | None, timeout: float) -> None:
+def stop(run: str | None, every: bool, timeout: float) -> None:
     """Stop RUN (default: the only registered run) and every process of it."""
-    info = _target(run)
-    launcher = runfile.alive(info.pid) and "launch" in _cmdline(info.pid)
+    if every:
+        if run is not None:
+            raise click.UsageError("give RUN or --all, not both")
+        runs = [i for i, _ in runfile.all_runs()]
+        if not runs:
+            click.echo(f"no runs registered in {runfile.registry()}")
+        for info in runs:
+            _stop(info, timeout)
+        return
+    _stop(_target(run), timeout)
+
+
+def _stop(info: runfile.RunInfo, timeout: float) -> None:
+    """Stop one registered run (see the module doc) and remove its entry."""
+    launcher = runfile.alive(info.pid) and "launch" in runfile.cmdline(info.pid)
     if launcher:
         os.kill(info.pid, signal.SIGTERM)
         if _wait_gone([info.pid], "launch", timeout):
             click.echo(f"launcher {info.pid} did not stop within {timeout:g} s: killed",
                        err=True)
             _kill([info.pid], signal.SIGKILL)
-    left = [p for p in info.pids.values() if _belongs(p, info.run)]
+    left = [p for p in info.pids.values() if runfile.belongs(p, info.run)]
     if left:  # the launcher was gone, or its processes outlived it
         _kill(left, signal.SIGCONT)
         _kill(left, signal.SIGTERM)

@@ -162,13 +162,15 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
                 specs.append(shared[agent])
             continue
         common = ["--run", plan.run, *bus_config(plan, name).to_args()]
+        changed = [arg for text in sc.overrides for arg in ("--set", text)]
         if name == "goals":
             specs.append(ProcSpec(name, module_argv(
-                "agents.processes.goals", *common, "--scenario", path,
+                "agents.processes.goals", *common, "--scenario", path, *changed,
                 "--store", str(plan.run_dir / "goals.json")), sc.run.goals_respawn))
         elif name == "world":
             specs.append(ProcSpec(name, module_argv(
-                "world.process", *common, "--scenario", path, "--cycles", str(plan.cycles),
+                "world.process", *common, "--scenario", path, *changed,
+                "--cycles", str(plan.cycles),
                 "--seed", str(plan.seed), "--run-mode", plan.mode, "--out", str(plan.run_dir),
                 "--ready-timeout", str(plan.ready_timeout)), 3, restart_args=RESUME_ARGS))
         else:

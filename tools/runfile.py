@@ -113,6 +113,42 @@ def all_runs() -> list[tuple[RunInfo, bool]]:
     return sorted(found, key=lambda pair: pair[0].started)
 
 
+def cmdline(pid: int) -> str:
+    """The command line of process `pid` ("" when it cannot be read: gone, or not Linux)."""
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(
+            errors="replace")
+    except OSError:
+        return ""
+
+
+def belongs(pid: int, run: str) -> bool:
+    """Whether `pid` is a live process of `run` (never a recycled pid of something else:
+    every process of a run names it on its command line)."""
+    return alive(pid) and run in cmdline(pid)
+
+
+def leftovers(info: RunInfo) -> list[int]:
+    """The processes of a registered run that are still there."""
+    return [pid for pid in info.pids.values() if belongs(pid, info.run)]
+
+
+def prune() -> tuple[list[RunInfo], list[RunInfo]]:
+    """Remove the entries whose launcher is gone and of whose processes none is left (a
+    launcher killed by SIGKILL leaves its entry behind); returns (removed, kept): the stale
+    entries kept are those with processes still there, for `teleo stop RUN` to stop."""
+    removed, kept = [], []
+    for info, up in all_runs():
+        if up:
+            continue
+        if leftovers(info):
+            kept.append(info)
+        else:
+            remove(info)
+            removed.append(info)
+    return removed, kept
+
+
 def find(run: str | None = None) -> RunInfo:
     """The running launch named `run`, or the only one; raises NoRunningLaunch saying where
     it looked and what it found (none, several, or a launcher that has exited)."""
@@ -158,17 +194,15 @@ def alive(pid: int) -> bool:
 
 
 def locate(run: str | None = None) -> RunInfo:
-    """`find` for a command: a ClickException instead of NoRunningLaunch, and one line on
-    stderr saying which run it reaches and where it found it."""
+    """`find` for a command: a ClickException instead of NoRunningLaunch, and one short line
+    on stderr saying which run it reaches, `run R (router EP)` (none with --quiet)."""
     import click
 
     try:
         info = find(run)
     except NoRunningLaunch as exc:
         raise click.ClickException(str(exc)) from exc
-    secured = ", secured" if info.secured else ""
-    click.echo(f"run {info.run}: router {info.endpoint}{secured} (from {path_of(info)})",
-               err=True)
+    say_reached(who_of(info))
     return info
 
 
@@ -188,3 +222,37 @@ def run_option(f):
     return click.option("--run", "run_id", default=None, metavar="RUN",
                         help="The run to reach (default: the only running one; see "
                              "`teleo ps`).")(f)
+
+
+QUIET = "teleo.quiet"
+"""The click context's meta key set by --quiet."""
+
+
+def quiet_option(f):
+    """Click option `--quiet`/`-q`: no line on stderr saying which run the command reached."""
+    import click
+
+    def remember(ctx, _param, value: bool) -> None:
+        ctx.meta[QUIET] = ctx.meta.get(QUIET, False) or value
+
+    return click.option("--quiet", "-q", is_flag=True, expose_value=False, is_eager=True,
+                        callback=remember,
+                        help="Say nothing on stderr about which run (and router) the command "
+                             "reached.")(f)
+
+
+def say_reached(text: str) -> None:
+    """Print `text` (the run or router reached, and what the command does there) on stderr,
+    unless the command was given --quiet: every tool that reaches a run says so this way."""
+    import click
+
+    ctx = click.get_current_context(silent=True)
+    if ctx is None or not ctx.meta.get(QUIET, False):
+        click.echo(text, err=True)
+
+
+def who_of(info: RunInfo) -> str:
+    """`run R (router EP)`, `, secured` added for a secured run: how a tool names a launch
+    (where its registry file is, `teleo ps` says)."""
+    secured = ", secured" if info.secured else ""
+    return f"run {info.run} (router {info.endpoint}{secured})"

@@ -6,7 +6,11 @@ the field, never a crash 10 s into a run."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
+
+import click
 
 from agents.lang import Engine, GoalError, ProgramError, load_program
 from agents.lang.engine import SOLVERS
@@ -14,62 +18,93 @@ from agents.lang.program import Program
 from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
 from world.domain import get_domain
 from world.errors import WorldError
-from world.run_scenario import Scenario, ScenarioError, ScriptedGoal, load_scenario
+from world.overrides import Override
+from world.run_scenario import (
+    AgentSpec,
+    Draft,
+    Scenario,
+    ScenarioError,
+    ScriptedGoal,
+    apply_to,
+    parse_all,
+    read_document,
+    read_draft,
+)
 
 
 def check_scenario(scenario: Scenario) -> dict[str, Program]:
     """Check ``scenario`` fully; return each agent's loaded program. Raises ScenarioError
-    (the message names the file and what is wrong; a program's diagnostics in full)."""
-    where = scenario.path
-    domain = get_domain(scenario.domain)
-    try:
-        domain.check_config(scenario.world_table, scenario.agent_ids)
-    except WorldError as exc:
-        raise ScenarioError(f"{where}: {exc}") from None
-    programs: dict[str, Program] = {}
-    for agent in scenario.agents:
-        if agent.mechanism not in SOLVERS:
-            raise ScenarioError(f"{where}: agent {agent.id}: mechanism: expected one of "
-                                f"{list(SOLVERS)}, got {agent.mechanism!r}")
-        if not _is_file(Path(agent.program)):
-            raise ScenarioError(f"{where}: agent {agent.id}: program {agent.program} not found")
-        try:
-            programs[agent.id] = load_program(str(agent.program))
-        except ProgramError as exc:
-            raise ScenarioError(f"{where}: agent {agent.id}: program {agent.program}:\n{exc}") \
-                from None
-        problem = _unknown_action(programs[agent.id], domain.name, domain.actions)
-        if problem:
-            raise ScenarioError(f"{where}: agent {agent.id}: {problem}")
-    for k, goal in enumerate(scenario.goals):
-        problem = _goal_problem(goal, programs[goal.agent])
-        if problem:
-            raise ScenarioError(f"{where}: [[goals]] #{k + 1}: {problem}")
-    _check_goal_ids(scenario)
-    for k, event in enumerate(scenario.events):
-        kind = event.event.get("kind")
-        if domain.event_kinds and kind not in domain.event_kinds:
-            raise ScenarioError(f"{where}: [[events]] #{k + 1}.kind: expected one of "
-                                f"{list(domain.event_kinds)}, got {kind!r}")
+    with every error found (each names the file and what is wrong; a program's diagnostics
+    in full)."""
+    programs, errors = _checks(scenario, frozenset())
+    if errors:
+        raise ScenarioError(*errors)
     return programs
 
 
-def _check_goal_ids(scenario: Scenario) -> None:
+def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Program], list[str]]:
+    """Each agent's program and every error of the checks, leaving out what ``spoilt``
+    names (run_scenario.Draft: an entry whose own fields are in error)."""
+    where, errors = scenario.path, []
+    domain = get_domain(scenario.domain)
+    if "world" not in spoilt:
+        try:
+            domain.check_config(scenario.world_table, scenario.agent_ids)
+        except WorldError as exc:
+            errors.append(f"{where}: {exc}")
+    programs: dict[str, Program] = {}
+    for agent in scenario.agents:
+        if f"agent {agent.id}" not in spoilt:
+            problem = _agent_problem(agent, domain, programs)
+            if problem:
+                errors.append(f"{where}: agent {agent.id}: {problem}")
+    checked = [(k, g) for k, g in enumerate(scenario.goals) if f"goal {k + 1}" not in spoilt]
+    for k, goal in checked:
+        if goal.agent in programs:
+            problem = _goal_problem(goal, programs[goal.agent])
+            if problem:
+                errors.append(f"{where}: [[goals]] #{k + 1}: {problem}")
+    if len(checked) == len(scenario.goals):  # the ids g1, g2, ... count every post
+        errors += _goal_id_problems(scenario)
+    for k, event in enumerate(scenario.events):
+        kind = event.event.get("kind")
+        if domain.event_kinds and kind not in domain.event_kinds:
+            errors.append(f"{where}: [[events]] #{k + 1}.kind: expected one of "
+                          f"{list(domain.event_kinds)}, got {kind!r}")
+    return programs, errors
+
+
+def _agent_problem(agent: AgentSpec, domain: Any, programs: dict[str, Program]) -> str:
+    """What is wrong with one agent's mechanism and program ("" if nothing); its program,
+    loaded, is added to ``programs``."""
+    if agent.mechanism not in SOLVERS:
+        return f"mechanism: expected one of {list(SOLVERS)}, got {agent.mechanism!r}"
+    if not _is_file(Path(agent.program)):
+        return f"program {agent.program} not found"
+    try:
+        programs[agent.id] = load_program(str(agent.program))
+    except ProgramError as exc:
+        return f"program {agent.program}:\n{exc}"
+    return _unknown_action(programs[agent.id], domain.name, domain.actions)
+
+
+def _goal_id_problems(scenario: Scenario) -> list[str]:
     """A scripted cancel or priority change must name a goal the scenario has posted by then:
     the goal-entry process gives posts the ids g1, g2, ... in the order it runs them (by cycle,
     then file order); a request naming no such goal would be refused at run time, a line in
     a log."""
     posted: list[str] = []
+    problems = []
     order = sorted(enumerate(scenario.goals), key=lambda kg: (kg[1].at_cycle, kg[0]))
     for k, goal in order:
         if goal.op == "post":
             posted.append(f"g{len(posted) + 1}")
         elif goal.goal_id not in posted:
             known = ", ".join(posted) if posted else "none"
-            raise ScenarioError(f"{scenario.path}: [[goals]] #{k + 1}: goal_id {goal.goal_id!r}:"
-                                f" the scenario has posted no such goal by cycle "
-                                f"{goal.at_cycle} (its posts get g1, g2, ... in order; by "
-                                f"then: {known})")
+            problems.append(f"{scenario.path}: [[goals]] #{k + 1}: goal_id {goal.goal_id!r}: "
+                            f"the scenario has posted no such goal by cycle {goal.at_cycle} "
+                            f"(its posts get g1, g2, ... in order; by then: {known})")
+    return problems
 
 
 def _unknown_action(program: Program, domain: str, known: tuple[str, ...]) -> str:
@@ -112,7 +147,57 @@ def _is_file(path: Path) -> bool:
         return False
 
 
-def load_checked(path: str | Path) -> tuple[Scenario, dict[str, Program]]:
-    """``load_scenario`` then ``check_scenario``; raises ScenarioError."""
-    scenario = load_scenario(path)
-    return scenario, check_scenario(scenario)
+def load_checked(path: str | Path, overrides: Sequence[str] = ()
+                 ) -> tuple[Scenario, dict[str, Program]]:
+    """The scenario in ``path`` with ``overrides`` (`--set KEY=VALUE`, world/overrides.py)
+    applied, checked as ``check_scenario`` checks it, and each agent's program. Raises
+    ScenarioError with every error: of the overrides themselves (not KEY=VALUE, no such
+    place), of the file and of the checks; an error only the overrides bring is said to
+    come from the one that brings it, else from them all:
+    `s.toml: --set run.cycles=-5: [run].cycles: expected >= 0, got -5`."""
+    path = Path(path)
+    doc = read_document(path)
+    parsed, errors = parse_all(overrides, path)
+    changed, wrong = apply_to(doc, path, parsed)
+    fitting = tuple(o for o in parsed if o not in wrong)
+    draft, programs, found = _everything(changed, path, tuple(o.text for o in parsed))
+    if found and fitting:
+        found = _attributed(found, doc, path, fitting)
+    if errors or wrong or found:
+        raise ScenarioError(*errors, *wrong.values(), *found)
+    return draft.scenario, programs
+
+
+def _everything(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ()
+                ) -> tuple[Draft, dict[str, Program], list[str]]:
+    """The document read (run_scenario.read_draft) and checked, with every error."""
+    draft = read_draft(doc, path, overrides)
+    programs, errors = _checks(draft.scenario, draft.spoilt)
+    return draft, programs, [*draft.errors, *errors]
+
+
+def _attributed(errors: list[str], doc: dict[str, Any], path: Path,
+                overrides: tuple[Override, ...]) -> list[str]:
+    """``errors`` with each one the file alone does not have said to come from the
+    override that alone brings it, else from all of them together."""
+    own = set(_everything(doc, path)[2])
+    alone = [set(_everything(apply_to(doc, path, (o,))[0], path)[2]) for o in overrides]
+    prefix = f"{path}: "
+    out = []
+    for error in errors:
+        if error in own:
+            out.append(error)
+            continue
+        by = [o.label for o, found in zip(overrides, alone, strict=True) if error in found] \
+            or [o.label for o in overrides]
+        rest = error[len(prefix):] if error.startswith(prefix) else error
+        out.append(f"{prefix}{', '.join(by)}: {rest}")
+    return out
+
+override_option = click.option(
+    "--set", "overrides", multiple=True, metavar="KEY=VALUE",
+    help="Change a field of the scenario for this run, checked as the file is: "
+         "run.cycles=300, world.pedestrians=20, agents.ME.program=programs/x.tlp "
+         "(docs/scenarios.md, \"Overrides\"); repeatable.")
+"""`--set KEY=VALUE` of `teleo launch`, `simulate` and `check` (world/overrides.py)."""
+

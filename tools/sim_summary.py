@@ -1,7 +1,9 @@
 """The summary of a `teleo simulate` run in the form of `teleo launch`'s (tools/summary.py):
 the same keys, the same goal records (ids g1, g2, ... from the goal store, statuses as the
-goal-entry process reports them), so a script reads either the same way; `mode` is
-"simulate" and nothing is late, dead or restarted in one process."""
+goal-entry process reports them, each with its history of status changes, told in the loop
+as the record is told them, so the summary is the same with or without a record), so a
+script reads either the same way; `mode` is "simulate" and nothing is late, dead or
+restarted in one process."""
 
 from __future__ import annotations
 
@@ -10,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.lang.solving.learned import clause_heads
+from tools import records
 from tools.summary import finish_status, refused_events
 from tools.summary_agents import bodies, planner_section
 from world.domain import get_domain
@@ -20,12 +23,14 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
     """The summary dict of ``run`` (a tools.simulate.SimRun) of ``scenario``."""
     spec = get_domain(scenario.domain)
     counters: dict[str, dict[str, int]] = run.final.get("counters", {})
-    goals = [g.to_dict() for g in run.goals.goals]
+    goals = records.goals_with_history([g.to_dict() for g in run.goals.goals],
+                                       dict(run.history.changes))
     done = len(run.records)
     learned_files = learned_files or {}
     summary = {
         "run": scenario.run.name, "scenario": str(scenario.path), "mode": "simulate",
         "seed": seed, "cycles_requested": cycles, "secured": False,
+        "overrides": list(scenario.overrides),
         "completed": done == cycles, "cycles": done,
         "elapsed_s": round(run.elapsed_s, 3),
         "cycles_per_s": round(done / run.elapsed_s, 2) if run.elapsed_s > 0 else 0.0,

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -24,11 +25,12 @@ from agents.lang.solving.learned import learned_text, read_learned
 from agents.processes.goal_store import GoalStore, GoalStoreError
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
-from tools import records, sim_summary, summary
+from tools import sim_summary, summary
 from tools.paths import OutputPath, picture_check
 from tools.plot import plot_check
 from tools.progress import progress_cycles
-from tools.scenario_check import load_checked
+from tools.records import GoalHistory
+from tools.scenario_check import load_checked, override_option
 from world.domain import get_domain
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
@@ -52,6 +54,7 @@ class SimRun:
     trace: list[str] = field(default_factory=list)   # trace.jsonl lines (world/trace.py)
     goals: GoalStore = field(default_factory=GoalStore)  # user goals, as a launch keeps them
     memory: dict[str, dict[str, Any]] = field(default_factory=dict)  # each agent's, at the end
+    history: GoalHistory = field(default_factory=GoalHistory)  # each goal's changes
     elapsed_s: float = 0.0
 
 
@@ -69,13 +72,18 @@ class _Goals:
         self.validate = validator(engines)
         self.sync = {a: GoalSync() for a in engines}
 
-    def before(self, cycle: int, states: dict[str, EngineState]) -> None:
-        """Apply the requests due at ``cycle``, then give each engine its goal list."""
+    def before(self, cycle: int, states: dict[str, EngineState],
+               history: GoalHistory) -> None:
+        """Apply the requests due at ``cycle``, then give each engine its goal list (told to
+        ``history`` as the record is told the goal-entry process's GoalList)."""
         for g in self.scenario.goals:
             if g.at_cycle == cycle:
                 self.store = _request(self.store, g, cycle, self.validate)
         for a, engine in self.engines.items():
-            states[a] = self.sync[a].apply(engine, states[a], self.store.goal_list(a), log)
+            listed = self.store.goal_list(a)
+            history.feed({"kind": "GoalList", "agent": a, "env": {"cycle": cycle},
+                          "goals": list(listed)})
+            states[a] = self.sync[a].apply(engine, states[a], listed, log)
 
     def after(self, agent: str, decision: dict[str, Any], cycle: int) -> None:
         """Mirror the statuses the agent's decision of ``cycle`` reports."""
@@ -125,12 +133,14 @@ def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str
 
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
              keep_every: int = 0, learned: Path | None = None, recorder: Any = None,
-             show_progress: bool = False) -> SimRun:
+             show_progress: bool = False,
+             until: Callable[[dict[str, EngineState]], bool] | None = None) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
     file:line:col if it does not fit an agent's program); `recorder` (a
     tools.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
-    bar on a terminal (tools/progress.py)."""
+    bar on a terminal (tools/progress.py); `until`: stop after the first cycle at whose end
+    it answers True for the agents' states (a benchmark's run ends when its work is done)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
@@ -148,7 +158,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     for cycle in progress_cycles(total, show_progress):
         w0 = time.perf_counter()
         injected = [sim.inject(ev.event) for ev in scenario.events if ev.at_cycle == cycle]
-        goals.before(cycle, states)
+        goals.before(cycle, states, run.history)
         if recorder is not None:
             for a in agents:
                 recorder.goal_list(cycle, a, goals.store.goal_list(a))
@@ -166,7 +176,10 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             w0 = time.perf_counter()
             outcomes[a] = sim.apply_actions(a, actions)
             world_ms += (time.perf_counter() - w0) * 1e3
-            goals.after(a, with_hints(seen.decision.to_dict(), seen.percepts), cycle)
+            decided = seen.decision.to_dict()
+            run.history.feed({"kind": "Intention", "agent": a, "env": {"cycle": cycle},
+                              "decision": decided})
+            goals.after(a, with_hints(decided, seen.percepts), cycle)
             record[a] = {"actions": actions,
                          "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
             for name in ("solver", "planner"):
@@ -185,6 +198,8 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         sim.step()
         if recorder is not None:
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
+        if until is not None and until(states):
+            break
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
     run.states = states
@@ -231,20 +246,25 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 @click.option("--plot", type=OutputPath(plot_check, path_type=Path), default=None,
               help="Write plots of the run record (PNG): speed, goal timeline, stage times.")
 @click.option("--no-record", is_flag=True, help="Do not write the run record (record.mcap).")
+@click.option("--summary", "summary_file", type=OutputPath(path_type=Path), default=None,
+              help="Write the summary JSON here (the --json object), as a launch's --summary.")
+@override_option
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object (a launch's --json form) instead.")
 def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
                      render: Path | None, learned: Path | None, learned_out: Path | None,
-                     plot: Path | None, no_record: bool, as_json: bool) -> None:
+                     plot: Path | None, no_record: bool, summary_file: Path | None,
+                     overrides: tuple[str, ...], as_json: bool) -> None:
     """Run SCENARIO in one process without the bus (to write programs).
 
     The same cycle as a lockstep launch, with the same goal ids (g1, g2, ...), trace lines
-    and summary; a progress bar on a terminal."""
+    and summary, with or without its record; a progress bar on a terminal. `--set
+    KEY=VALUE` changes a field of the scenario for this run, as `teleo launch --set`."""
     from tools.recorder import SimRecorder
 
     recorder = None
     try:
-        sc, _ = load_checked(scenario)
+        sc, _ = load_checked(scenario, overrides)
         if cycles is None and sc.run.cycles == 0:
             raise click.UsageError(f"{scenario}: cycles = 0 runs a launch until Ctrl-C; a "
                                    f"simulation needs a number: give --cycles N")
@@ -265,14 +285,25 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
         from tools.plot import plot_record
 
         notes.append(f"plot written to {plot_record(recorder.writer.path, plot)}")
-    _write_outputs(run, sc, trace, render, learned_out, seed, cycles, as_json, notes,
-                   str(recorder.writer.path) if recorder else None)
+    _write_outputs(run, sc, _Outputs(trace, render, learned_out, summary_file), seed, cycles,
+                   as_json, notes, str(recorder.writer.path) if recorder else None)
 
 
-def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path | None,
-                   learned_out: Path | None, seed: int | None, cycles: int | None,
-                   as_json: bool, notes: list[str], record: str | None) -> None:
+@dataclass(frozen=True)
+class _Outputs:
+    """The files a simulate writes besides its record (None: not asked for)."""
+
+    trace: Path | None
+    render: Path | None
+    learned_out: Path | None
+    summary: Path | None
+
+
+def _write_outputs(run: SimRun, sc: Scenario, out: _Outputs, seed: int | None,
+                   cycles: int | None, as_json: bool, notes: list[str],
+                   record: str | None) -> None:
     """The files asked for, then the summary (text, or JSON on stdout)."""
+    trace, render, learned_out = out.trace, out.render, out.learned_out
     files = dict(zip(sc.agent_ids, write_learned(run, sc, learned_out), strict=False)) \
         if learned_out else {}
     if trace:
@@ -288,8 +319,11 @@ def _write_outputs(run: SimRun, sc: Scenario, trace: Path | None, render: Path |
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
     result["record_missing"] = None if record is None else 0  # written in the loop: all of it
-    if record is not None:  # each goal's status changes, as a launch's summary has them
-        result["goals"] = records.with_history(result["goals"], Path(record).parent)
+    result["record_gaps"], result["record_failed"] = (None if record is None else []), None
+    if out.summary:
+        out.summary.parent.mkdir(parents=True, exist_ok=True)
+        out.summary.write_text(json.dumps(result, indent=1))
+        notes.append(f"summary written to {out.summary}")
     if as_json:
         click.echo(json.dumps(result, indent=1))
         for note in notes:

@@ -23,6 +23,7 @@ The run's status (docs/faults.md, "What counts as a failed run"):
 from __future__ import annotations
 
 import json
+import logging
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
@@ -30,9 +31,11 @@ from typing import Any
 import click
 
 from tools import records
+from tools.record_coverage import coverage, ranges_text
 from tools.summary_agents import agent_sections, echo_agents, read_json_file
-from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, read_jsonl
+from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, complete_lines_bytes, read_jsonl
 
+log = logging.getLogger(__name__)
 GOALS_FILE = "goals.json"
 EXIT_CODES = {"completed": 0, "failed": 1, "interrupted": 130}
 _NOT_KEPT = ("failed",)
@@ -52,23 +55,25 @@ def state_file(run_dir: Path, agent: str) -> Path:
 
 def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
           domain: str = "driving", left_down: tuple[str, ...] = (), ended: str = "",
-          requested_stop: bool = False, scripted: Sequence[Any] = ()) -> dict[str, Any]:
+          requested_stop: bool = False, scripted: Sequence[Any] = (),
+          recorder: dict[str, Any] | None = None) -> dict[str, Any]:
     """The summary as a JSON-able dict. `base` holds run, scenario, mode, seed, requested
     cycles; `left_down`: processes the launcher gave up on; `ended`: the launcher's reason
     for ending the run early; `requested_stop`: a user asked for the stop; `scripted`: the
-    scenario's events (ScriptedEvent: at_cycle, event)."""
+    scenario's events (ScriptedEvent: at_cycle, event); `recorder`: the launch recorder's
+    report (tools/recorder.py BusRecorder.report: a write that failed, a drain cut short)."""
     from world.domain import get_domain
 
     spec = get_domain(domain)
-    trace = read_jsonl(run_dir / TRACE)
+    cycles, last, trace = _trace(run_dir / TRACE)
     health = read_jsonl(run_dir / HEALTH)
     final = read_json_file(run_dir / WORLD_FINAL)
     final = final if isinstance(final, dict) else {}
-    cycles = len(trace)
-    counters: dict[str, dict[str, int]] = trace[-1].get("counters", {}) if trace else {}
+    counters: dict[str, dict[str, int]] = last.get("counters", {})
     elapsed = _elapsed(health)
     goals, incidents = _goals(run_dir / GOALS_FILE)
-    goals = records.with_history(goals, run_dir)  # when each became active, achieved, ...
+    record = _open_record(run_dir)
+    goals = records.with_history(goals, run_dir, record)  # when each became active, ...
     totals = _totals(health)
     memory: dict[str, Any] = {}
     for line in trace:  # each change of an agent's memory, in order
@@ -98,12 +103,23 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "counters": counters,
         **agent_sections(run_dir, counters, memory),
         "trace": str(run_dir / TRACE),
-        **_record(run_dir, cycles),
+        **_record(run_dir, cycles, record, recorder or {}),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
         "cycle_time": cycle_time(final.get("timing_ms"), cycles),
         "events_refused": refused_events(trace, scripted),
     }
     return finish_status(summary, ended, requested_stop)
+
+
+def _trace(path: Path) -> tuple[int, dict[str, Any], list[dict[str, Any]]]:
+    """(cycles run, the last cycle's line, the lines with events or memory changes) of a
+    trace: only those lines are parsed, so a run of 74,000 cycles is summarised in a tenth
+    of the time that parsing each line took (the stop of a long run waits for it)."""
+    lines = complete_lines_bytes(path)
+    notable = [json.loads(x) for x in lines if b'"events"' in x or b'"memory"' in x]
+    last = json.loads(lines[-1]) if lines else {}
+    return len(lines), last if isinstance(last, dict) else {}, \
+        [x for x in notable if isinstance(x, dict)]
 
 
 def refused_events(trace: Iterable[dict[str, Any]], scripted: Sequence[Any]
@@ -184,6 +200,13 @@ def _failures(s: dict[str, Any], ended: str) -> list[str]:
     out += [f"goal store: {i}" for i in s["goal_store_incidents"] if i.startswith("GOALS LOST")]
     out += [f"scripted event {json.dumps(e['event'], sort_keys=True)} at cycle {e['cycle']} "
             f"refused by the world: {e['reason']}" for e in s.get("events_refused", ())]
+    failed = s.get("record_failed")
+    if failed:
+        gaps = s.get("record_gaps")
+        lacks = f"it lacks cycles {ranges_text(gaps)}" if gaps else \
+            f"nothing was written from about cycle {failed.get('cycle')} on"
+        out.append(f"the run record {s.get('record')} could not be written "
+                   f"({failed.get('reason')}): {lacks}")
     if ended:
         out.append(ended)
     return out
@@ -213,6 +236,8 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"run {summary['run']} {state[summary['status']]}: {summary['cycles']} cycles "
                f"in {summary['elapsed_s']} s ({summary['cycles_per_s']} cycles/s, "
                f"{summary['mode']}, seed {summary['seed']})")
+    if summary.get("overrides"):
+        click.echo(f"  --set: {', '.join(summary['overrides'])}")
     for reason in summary["failures"]:
         click.echo(f"  failed: {reason}")
     late, dead = summary["late_stages"], summary["dead_stages"]
@@ -245,15 +270,32 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
     echo_agents(summary)
     if summary.get("record_missing"):
+        gaps = summary.get("record_gaps") or []
         click.echo(f"  RECORD INCOMPLETE: {summary['record']} lacks the world states of "
-                   f"{summary['record_missing']} of {summary['cycles']} cycles")
+                   f"{summary['record_missing']} of {summary['cycles']} cycles"
+                   + (f" (cycles {ranges_text(gaps)})" if gaps else ""))
 
 
-def _record(run_dir: Path, cycles: int) -> dict[str, Any]:
+def _open_record(run_dir: Path) -> records.RunRecord | None:
+    """The run's record, read once for its goal histories and its coverage (None: none)."""
+    path = run_dir / records.RECORD_FILE
+    try:
+        return records.RunRecord(path) if path.is_file() else None
+    except records.RecordError as exc:
+        log.warning("run record not read: %s", exc)
+        return None
+
+
+def _record(run_dir: Path, cycles: int, record: records.RunRecord | None,
+            recorder: dict[str, Any]) -> dict[str, Any]:
     """"record": the run record's path (None: not recorded), as simulate's summary has it;
-    "record_missing": the cycles whose world state it lacks (None: it does not say)."""
-    kept = records.coverage(run_dir, cycles)
-    return {"record": kept and kept["file"], "record_missing": kept and kept["missing"]}
+    "record_missing": how many cycles' world states it lacks, "record_gaps": which
+    ([[first, last], ...]; both None when it cannot be read); "record_failed": the write
+    that failed ({"cycle", "reason"}: nothing recorded from about that cycle), or None."""
+    kept = coverage(run_dir, cycles, record)
+    return {"record": kept and kept["file"], "record_missing": kept and kept["missing"],
+            "record_gaps": kept and kept["gaps"],
+            "record_failed": recorder.get("failed") or None}
 
 
 def _pairs(d: dict[str, Any]) -> str:

@@ -78,8 +78,8 @@ def planner_section(planners: dict[str, dict[str, Any]],
                     counters: dict[str, dict[str, int]]) -> dict[str, Any]:
     """Per agent run by the ROGUE planner (seed 003), from its saved planner state: the
     operators it executed (its head-plan) with what monitoring found, each request's end, the
-    distance travelled (odometer) and, by the map, that of the executed order and of
-    first-come-first-served."""
+    choices its failed steps excluded (failure memory), the distance travelled (odometer) and,
+    by the map, that of the executed order and of first-come-first-served."""
     out = {}
     for agent, planner in sorted(planners.items()):
         if not planner:
@@ -93,6 +93,9 @@ def planner_section(planners: dict[str, dict[str, Any]],
                           "reason": f.get("reason", ""), "arrived": f["arrived"],
                           "ended": f["ended"]} for f in planner.get("finished", ())],
             "pending": [t["goal_id"] for t in planner.get("tasks", ())],
+            "excluded": [{"id": r["goal_id"], **x} for r in (*planner.get("finished", ()),
+                                                            *planner.get("tasks", ()))
+                         for x in r.get("excluded", ())],
             "travelled_m": round(counters.get(agent, {}).get("travel_cm", 0) / 100, 2),
             "executed_m": travel.get("executed_m", 0.0), "fcfs_m": travel.get("fcfs_m", 0.0),
             "log": planner.get("log", [])}
@@ -105,6 +108,14 @@ def _echo_planner(summary: dict[str, Any]) -> None:
         for a in plan["executed"]:
             extra = "" if a["result"] in ("verified", "applied") else f" ({a['note']})"
             click.echo(f"    {a['step']} for {' '.join(a['tasks'])}: {a['result']}{extra}")
+        if plan.get("excluded"):
+            click.echo(f"  {agent}: choices excluded by failed steps (failure memory): "
+                       f"{len(plan['excluded'])}")
+        for x in plan.get("excluded", ()):
+            held = " ".join(x["depends"]) or f"(not {x['achieves']})"
+            click.echo(f"    {x['id']} {x['step']} for {x['achieves']} at cycle {x['since']}: "
+                       f"{x['why']}; " + (f"open again at cycle {x['opened']}: {x['reopened']}"
+                                          if x["opened"] >= 0 else f"stands while {held} holds"))
         click.echo(f"  {agent}: travelled {plan['travelled_m']:.1f} m (odometer); by the map "
                    f"{plan['executed_m']:.1f} m in the executed order, "
                    f"{plan['fcfs_m']:.1f} m first-come-first-served")

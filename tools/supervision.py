@@ -9,104 +9,110 @@ What it does on each fault (docs/faults.md has the table with measured times):
   cannot resume, or whose stages never all came up, ends the run with that reason;
 - the router exits: restarted on the same endpoint; every process reconnects to it;
 - a process is left down (restarts used up): the run ends at once, as failed;
-- Ctrl-C, SIGTERM or SIGHUP: the run is stopped within about two seconds, in any state.
+- the world cannot write its run folder (a full disk): the run ends as failed, with the
+  reason; before that, the launcher stops the run itself once the folder's file system is
+  nearly full, while every file can still be closed whole (tools/diskspace.py);
+- Ctrl-C, SIGTERM or SIGHUP, at any moment from the command's start: the run is stopped in
+  order (tools/run_stop.py, tools/stop_signals.py), its registry entry removed.
 
-It also records, in the run folder's supervision.jsonl, when each process was seen gone and
-when each came back (its liveliness token appeared again): bench/drills.py reads it for
-detection and recovery times.
+Registering the run also removes the stale entries other launches left (their launcher
+killed outright, and nothing of their run left). It records, in the run folder's
+supervision.jsonl, when each process was seen gone and when each came back (its liveliness
+token appeared again), and how long each part of the stop took: bench/drills.py reads it.
 """
 
 from __future__ import annotations
 
-import json
 import logging
 import os
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from pathlib import Path
-from typing import Any
 
 import click
 
 from bus.errors import BusError
-from tools import runfile
+from tools import runfile, stop_signals
+from tools.diskspace import free_text, shortage
+from tools.paths import describe_os_error
 from tools.progress import WorldProgress
+from tools.run_commands import echo_pruned
 from tools.run_plan import Plan, bus_config, process_specs, start_timeout
+from tools.run_stop import Held, Journal, Outcome, stop_run, trace_cycles
 from tools.supervisor import Exit, ProcSpec, Supervisor
 
 log = logging.getLogger(__name__)
 POLL_S = 0.05           # [s] between looks at the children when nothing else wakes us
 JOIN_GRACE_S = 5.0      # [s] a joined launch waits after the main launcher's token is gone
 ROUTER_RESTARTS = 10
-EXIT_CANNOT_RESUME, EXIT_NOT_READY = 3, 4  # world/process.py
-
-
-@dataclass
-class Outcome:
-    """How the launch ended: restarts per process, processes left down, the launcher's reason
-    for ending the run early, and whether a user asked for the stop."""
-
-    restarts: dict[str, int] = field(default_factory=dict)
-    left_down: tuple[str, ...] = ()
-    ended: str = ""
-    requested_stop: bool = False
-
-
-class _Journal:
-    """supervision.jsonl: what the launcher saw, with wall-clock times [s]."""
-
-    def __init__(self, path: Path) -> None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        self.path = path
-
-    def write(self, event: str, **fields: Any) -> None:
-        line = json.dumps({"t": round(time.time(), 4), "event": event, **fields})
-        with self.path.open("a") as f:
-            f.write(line + "\n")
+EXIT_CANNOT_RESUME, EXIT_NOT_READY, EXIT_CANNOT_WRITE = 3, 4, 5  # world/process.py
+ROOM_EVERY_S = 0.2      # [s] between looks at the run folder's free space
 
 
 def supervise(plan: Plan) -> Outcome:
     """Run the plan to its end (see the module doc); never raises on a process's fault."""
-    plan.run_dir.mkdir(parents=True, exist_ok=True)
-    sup = Supervisor(plan.run_dir / "logs")
-    journal = _Journal(plan.run_dir / "supervision.jsonl")
-    outcome = Outcome()
-    info: runfile.RunInfo | None = None
-    recorder = None
     try:
-        if not plan.joined:
-            plan = _start_router(plan, sup)
-        if plan.record and plan.runs_world:
-            from tools.recorder import start_run_recorder
-
-            # subscribed before any process starts, so the record holds cycle 0
-            recorder = start_run_recorder(bus_config(plan, "operator"), plan.run,
-                                          plan.run_dir, plan.scenario)
-        specs = process_specs(plan)
-        for spec in specs:
-            sup.start(spec)
-        where = "on the joined router" if plan.joined else "and a router at"  # not counted
-        mode = ", secured" if plan.secrets else ", clients of the router" if plan.client else ""
-        click.echo(f"run {plan.run}: {len(specs)} processes {where} {plan.endpoint}{mode}, "
-                   f"logs in {plan.run_dir / 'logs'}")
-        info = _loop(plan, sup, journal, outcome)
+        plan.run_dir.mkdir(parents=True, exist_ok=True)
+        sup = Supervisor(plan.run_dir / "logs")
+    except OSError as exc:
+        raise click.ClickException(f"cannot make the run folder: "
+                                   f"{describe_os_error(exc)}") from exc
+    short = shortage(plan.run_dir)
+    if short:  # nothing started: a run there would be stopped as soon as it began
+        raise click.ClickException(f"not started: the run folder {plan.run_dir} is on a file "
+                                   f"system that {short}")
+    journal = Journal(plan.run_dir / "supervision.jsonl")
+    outcome, held = Outcome(), Held()
+    try:
+        _start(plan, sup, journal, outcome, held)
     except KeyboardInterrupt:
+        stop_signals.stopping(held.cut_short)  # first: a second signal must not break the stop
         click.echo("interrupted: stopping the run")
         outcome.requested_stop = True
     except (click.ClickException, BusError) as exc:  # BusError: the router cannot be reached
         outcome.ended = exc.message if isinstance(exc, click.ClickException) else str(exc)
         click.echo(f"Error: {outcome.ended}", err=True)
+    except OSError as exc:  # a file of the launcher's own could not be written
+        outcome.ended = f"the launcher could not go on: {describe_os_error(exc)}"
+        click.echo(f"Error: {outcome.ended}", err=True)
     finally:
-        t0 = time.monotonic()
-        sup.stop_all(["world"], keep=["router"])
-        journal.write("stopped", seconds=round(time.monotonic() - t0, 3))
-        if recorder is not None:  # drained while the router still holds what it is owed
-            recorder.stop()
-        sup.stop_all([], last=["router"])
-        if info is not None:
-            runfile.remove(info)
+        stop_signals.stopping(held.cut_short)  # nothing from here on breaks off the stop
+        stop_run(plan, sup, journal, outcome, held)
     outcome.restarts = sup.restarts()
     return outcome
+
+
+def _start(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
+           held: Held) -> None:
+    """Start the router, the recorder and the processes, then watch the run to its end."""
+    if not plan.joined:
+        plan = _start_router(plan, sup)
+    if plan.record and plan.runs_world:
+        _start_recorder(plan, held)  # subscribed before any process starts: cycle 0 is in
+    specs = process_specs(plan)
+    for spec in specs:
+        sup.start(spec)
+    where = "on the joined router" if plan.joined else "and a router at"  # not counted
+    mode = ", secured" if plan.secrets else ", clients of the router" if plan.client else ""
+    click.echo(f"run {plan.run}: {len(specs)} processes {where} {plan.endpoint}{mode}, "
+               f"logs in {plan.run_dir / 'logs'}")
+    _loop(plan, sup, journal, outcome, held)
+
+
+def _start_recorder(plan: Plan, held: Held) -> None:
+    """The run's recorder (tools/recorder.py); when it cannot start the run goes on
+    unrecorded, said on the log."""
+    from tools.recorder import run_recorder
+
+    try:
+        held.recorder = run_recorder(bus_config(plan, "operator"), plan.run, plan.run_dir,
+                                     plan.scenario)
+        held.recorder.start()
+    except (BusError, OSError) as exc:
+        log.error("run %s is not recorded: %s", plan.run, exc)
+        if held.recorder is not None:
+            held.recorder.writer.close()
+        held.recorder = None
 
 
 def _start_router(plan: Plan, sup: Supervisor) -> Plan:
@@ -124,30 +130,46 @@ def _start_router(plan: Plan, sup: Supervisor) -> Plan:
     return replace(plan, endpoint=router.endpoint)
 
 
-def _loop(plan: Plan, sup: Supervisor, journal: _Journal, outcome: Outcome) -> runfile.RunInfo:
+def _loop(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
+          held: Held) -> None:
     from bus.node import open_node
 
     cfg = bus_config(plan, "launch")
-    with open_node(cfg, plan.run, "launch" if not plan.joined else f"join-{os.getpid()}") as node:
-        _wait_ready(sup, node, plan)
-        _show_status(sup, node.alive())
-        info = runfile.RunInfo(plan.run, plan.endpoint, os.getpid(), tuple(plan.scenario.agent_ids),
-                               str(plan.run_dir), str(plan.scenario.path), sup.pids(),
-                               str(plan.secrets.credentials("operator")) if plan.secrets else "",
-                               plan.joined, time.time())
+    name = "launch" if not plan.joined else f"join-{os.getpid()}"
+    node = held.session.enter_context(open_node(cfg, plan.run, name))  # closed by stop_run
+    _wait_ready(sup, node, plan)
+    _show_status(sup, node.alive())
+    held.info = runfile.RunInfo(plan.run, plan.endpoint, os.getpid(),
+                                tuple(plan.scenario.agent_ids), str(plan.run_dir),
+                                str(plan.scenario.path), sup.pids(),
+                                str(plan.secrets.credentials("operator")) if plan.secrets
+                                else "", plan.joined, time.time())
+    _register(held.info)
+    if not plan.joined:
+        node.announce()  # joined launches end when this token goes
+    journal.write("ready", processes=sup.names())
+    with WorldProgress(node, plan.run, plan.cycles if plan.runs_world else 0) as bar:
+        _watch(plan, sup, node, journal, outcome, held.info, bar)
+
+
+def _register(info: runfile.RunInfo, update: bool = False) -> None:
+    """Write the run's registry entry (first removing stale ones, whose launcher is gone
+    and nothing of whose run is left: tools/run_commands.py); one that cannot be written is
+    said, and the run goes on (the tools will not find it)."""
+    if not update:
+        echo_pruned(*runfile.prune())
+    try:
         runfile.write(info)
-        if not plan.joined:
-            node.announce()  # joined launches end when this token goes
-        journal.write("ready", processes=sup.names())
-        with WorldProgress(node, plan.run, plan.cycles if plan.runs_world else 0) as bar:
-            _watch(plan, sup, node, journal, outcome, info, bar)
-    return info
+    except OSError as exc:
+        log.warning("run %s: registry entry %s not written (%s): the tools will not find it",
+                    info.run, runfile.path_of(info), exc.strerror)
 
 
-def _watch(plan: Plan, sup: Supervisor, node, journal: _Journal, outcome: Outcome,
+def _watch(plan: Plan, sup: Supervisor, node, journal: Journal, outcome: Outcome,
            info: runfile.RunInfo, bar: WorldProgress) -> None:
     seen = dict(node.presence.incarnations())
     main_gone_since: float | None = None
+    room_at = 0.0
     while True:
         bar.poll()
         exits = sup.poll(restartable=_restartable)
@@ -155,13 +177,20 @@ def _watch(plan: Plan, sup: Supervisor, node, journal: _Journal, outcome: Outcom
             journal.write("exit", name=ex.name, rc=ex.returncode, restarted=ex.restarted)
             _tell(plan, ex)
         if exits:
-            runfile.write(replace(info, pids=sup.pids(),
-                                  restarts={n: k for n, k in sup.restarts().items() if k}))
+            _register(replace(info, pids=sup.pids(),
+                              restarts={n: k for n, k in sup.restarts().items() if k}),
+                      update=True)
         ended = _ended(plan, sup, exits)
+        if ended is None and time.monotonic() >= room_at:
+            room_at = time.monotonic() + ROOM_EVERY_S
+            ended = _short_of_room(plan)
         if ended is not None:
             outcome.ended = ended
-            # a world that finished (ended == "") is not "left down"; one that failed is
-            outcome.left_down = tuple(n for n in sup.left_down() if n != "world" or ended)
+            # a world that finished (ended == "") is not "left down", nor one that stopped
+            # because it cannot write (`ended` says so); one that failed is
+            quiet = ended == "" or any(ex.name == "world" and ex.returncode == EXIT_CANNOT_WRITE
+                                       for ex in exits)
+            outcome.left_down = tuple(n for n in sup.left_down() if n != "world" or not quiet)
             return
         now = dict(node.presence.incarnations())
         for name, n in now.items():
@@ -175,9 +204,20 @@ def _watch(plan: Plan, sup: Supervisor, node, journal: _Journal, outcome: Outcom
         node.presence.wait_change(POLL_S)
 
 
+def _short_of_room(plan: Plan) -> str | None:
+    """The reason to stop the run when its folder's file system is nearly full (stopped
+    while every file can still be closed whole: tools/diskspace.py), else None."""
+    short = shortage(plan.run_dir)
+    if not short:
+        return None
+    return f"the run was stopped: its folder {plan.run_dir} is on a file system that {short}"
+
+
 def _restartable(name: str, rc: int) -> bool:
-    """The world is not restarted when it finished (0), cannot resume or never got ready."""
-    return not (name == "world" and rc in (0, EXIT_CANNOT_RESUME, EXIT_NOT_READY))
+    """The world is not restarted when it finished (0), cannot resume, never got ready, or
+    cannot write its run folder (a restart would fail the same way)."""
+    return not (name == "world" and rc in (0, EXIT_CANNOT_RESUME, EXIT_NOT_READY,
+                                           EXIT_CANNOT_WRITE))
 
 
 def _ended(plan: Plan, sup: Supervisor, exits: list[Exit]) -> str | None:
@@ -186,6 +226,10 @@ def _ended(plan: Plan, sup: Supervisor, exits: list[Exit]) -> str | None:
         if ex.name == "world" and not ex.restarted:
             if ex.returncode == 0:
                 return ""
+            if ex.returncode == EXIT_CANNOT_WRITE:
+                return (f"the world stopped at cycle {trace_cycles(plan.run_dir)}: it could "
+                        f"not write its files in {plan.run_dir} "
+                        f"({free_text(plan.run_dir) or 'see its log'})")
             tail = _log_tail(plan.run_dir / "logs" / "world.log", 1)
             return f"the world exited with code {ex.returncode} and was not restarted: {tail}"
     down = [n for n in sup.left_down() if n != "world"]
@@ -199,6 +243,9 @@ def _tell(plan: Plan, ex: Exit) -> None:
         how = " on the same endpoint" if ex.name == "router" else (
             ", resuming" if ex.name == "world" else "")
         click.echo(f"{ex.name} exited with code {ex.returncode}: restarted ({ex.restarts}){how}",
+                   err=True)
+    elif ex.name == "world" and ex.returncode == EXIT_CANNOT_WRITE:
+        click.echo(f"world stopped (code {ex.returncode}): it cannot write its run folder",
                    err=True)
     elif not (ex.name == "world" and ex.returncode == 0):
         click.echo(f"{ex.name} exited with code {ex.returncode}: left down", err=True)

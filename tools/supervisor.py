@@ -8,9 +8,10 @@ output goes to its own log file, and each is told the launcher's pid (TELEO_PARE
 exits when the launcher dies (bus/lifeline.py).
 
 Stopping is bounded (docs/faults.md: Ctrl-C stops a run within 2 s in any state): the `first`
-group (the world, the clock) is asked to stop and given up to `first_s`, then every other
-process at once, then the `last` group (the router); whatever is still there after its share
-of time, a stopped (SIGSTOPped) or hung process included, is killed.
+group (the world, the clock) is asked to stop (SIGTERM) and given up to `first_s`, then every
+other process at once, then the `last` group (the router); whatever is still there after its
+share of time (a hung process) is killed, and a stopped (SIGSTOPped) one is killed at once:
+the stop never waits on it.
 """
 
 from __future__ import annotations
@@ -146,7 +147,7 @@ class Supervisor:
         return exits
 
     def stop(self, names: list[str], timeout: float = 5.0) -> dict[str, int | None]:
-        """Stop `names` one after the other: SIGINT, then SIGKILL after `timeout` [s]."""
+        """Stop `names` one after the other: SIGTERM, then SIGKILL after `timeout` [s]."""
         codes: dict[str, int | None] = {}
         for name in names:
             codes.update(self._stop_group([name], timeout))
@@ -171,10 +172,15 @@ class Supervisor:
     def _stop_group(self, names: list[str], timeout: float,
                     quiet: bool = False) -> dict[str, int | None]:
         children = [(n, self._children[n]) for n in names if n in self._children]
-        for _, child in children:
+        for name, child in children:
             child.gave_up = True
-            _signal(child.popen, signal.SIGINT)
-            _signal(child.popen, signal.SIGCONT)  # a stopped process must run to stop
+            if stopped(child.popen.pid):  # SIGSTOPped: it has nothing to finish, so the stop
+                log.info("%s (pid %d) is stopped: killed", name, child.popen.pid)  # waits
+                _signal(child.popen, signal.SIGKILL)  # for none of it
+                continue
+            # SIGTERM, not SIGINT: one still importing its modules, which has no handler
+            # yet, ends quietly (SIGINT made Python print a KeyboardInterrupt traceback)
+            _signal(child.popen, signal.SIGTERM)
         if os.environ.get(ENV_PROFILE):
             timeout += PROFILE_GRACE_S   # writing a profile takes a while on a busy machine
         end = time.monotonic() + timeout
@@ -184,11 +190,20 @@ class Supervisor:
                 codes[name] = child.popen.wait(max(0.0, end - time.monotonic()))
             except subprocess.TimeoutExpired:
                 (log.info if quiet else log.warning)(
-                    "%s (pid %d) still running %.1f s after SIGINT: killed", name,
+                    "%s (pid %d) still running %.1f s after SIGTERM: killed", name,
                     child.popen.pid, timeout)
                 _signal(child.popen, signal.SIGKILL)
                 codes[name] = child.popen.wait()
         return codes
+
+
+def stopped(pid: int) -> bool:
+    """Whether process `pid` is stopped (SIGSTOP, or a debugger's): state T or t."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return stat.rsplit(")", 1)[-1].split()[0] in ("T", "t")
 
 
 def _signal(popen: subprocess.Popen, sig: signal.Signals) -> None:

@@ -2,8 +2,11 @@
 
 Sources: a run's `snapshots.jsonl` (one snapshot dict a line, as the world process saves them),
 a `.json` file (one snapshot dict or a list of them), a run record (the record.mcap of a
-launch, a simulate or `teleo record`: its world states), or a scenario `.toml` (simulated here
-for --steps cycles with idle agent cars, to look at a city).
+launch, a simulate or `teleo record`: its world states), or a scenario `.toml`: its world as
+the scenario starts it, at cycle 0, so that every line of the picture's caption is true (no
+agent has run: a robot "idle" and "travelled 0.0 m" at cycle 100 would say it idled for
+50 s, issue 24 #14); `--steps N` steps the world N cycles without its agents (traffic and
+pedestrians move, the agents' cars and robots stand), and the command's line says so.
 """
 
 from __future__ import annotations
@@ -111,8 +114,9 @@ def load_snapshots(source: Path, steps: int = 100, seed: int | None = None) -> l
 @click.option("--scale", type=_POSITIVE, default=None, help="Pixels per metre.")
 @click.option("--follow", type=_POSITIVE, default=None,
               help="Draw only a square of this side [m] that follows the agent's car.")
-@click.option("--steps", type=click.IntRange(min=0), default=100, show_default=True,
-              help="Scenario source: cycles to simulate.")
+@click.option("--steps", type=click.IntRange(min=0), default=0, show_default=True,
+              help="Scenario source: cycles to step its world without its agents "
+                   "(0: the world as the scenario starts it).")
 @click.option("--seed", type=int, default=None,
               help="Scenario source: seed (default: the scenario's).")
 def render(source: Path, out: Path, agent: str | None, cycle: int | None, every: int,
@@ -120,8 +124,8 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
     """Draw a run or a scenario to a PNG, JPEG or GIF.
 
     SOURCE: a run's snapshots (.jsonl/.json), a run record (an .mcap, a run folder or a
-    run id, as `teleo explain` takes), or a scenario .toml (simulated for --steps cycles with
-    its own seed)."""
+    run id, as `teleo explain` takes), or a scenario .toml (its world at cycle 0, or after
+    --steps cycles without its agents, with its own seed)."""
     if not source.is_file():
         try:
             source = locate(source)
@@ -136,14 +140,14 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
         if domain.name != "driving":
             upto = [r for r in rows if cycle is None or r.get("cycle", 0) <= cycle]
             frames = domain.render(upto, out, agent)
-            click.echo(f"{out}: {frames} frame(s)")
+            click.echo(f"{out}: {frames} frame(s){_world_only(source, rows)}")
             return
         snaps = [WorldSnapshot.from_dict(r) for r in rows]
         if is_animation(out):
             render_gif(snaps, out, agent=agent, every=max(1, every),
                        px_per_m=scale or (4.0 if follow else 1.5), follow=follow)
             click.echo(f"{out}: {len(snaps[::max(1, every)])} frame(s), cycles "
-                       f"{snaps[0].cycle}..{snaps[-1].cycle}")
+                       f"{snaps[0].cycle}..{snaps[-1].cycle}{_world_only(source, rows)}")
             return
         chosen = snaps[-1] if cycle is None else next(
             (s for s in snaps if s.cycle == cycle), None)
@@ -153,9 +157,18 @@ def render(source: Path, out: Path, agent: str | None, cycle: int | None, every:
         upto = [s for s in snaps if s.cycle <= chosen.cycle]
         render_png(chosen, out, agent=agent, px_per_m=scale or (6.0 if follow else 3.0),
                    trail=agent_trail(upto, agent), follow=follow)
-        click.echo(f"{out}: cycle {chosen.cycle}")
+        click.echo(f"{out}: cycle {chosen.cycle}{_world_only(source, rows)}")
     except (WorldError, ValueError, OSError) as exc:
         raise click.ClickException(str(exc)) from exc
+
+
+def _world_only(source: Path, rows: list[dict[str, Any]]) -> str:
+    """What the line of a scenario's picture adds: that no agent ran in it."""
+    if source.suffix != ".toml":
+        return ""
+    last = rows[-1].get("cycle", 0) if rows else 0
+    return (" (the scenario's world as it starts; no agent has run)" if not last else
+            f" (the world stepped {last} cycles without its agents: they stood still)")
 
 
 commands = [render]

@@ -10,6 +10,10 @@ bus.clock.Clock, apply them (the world's safe action for an agent whose actions 
 arrive) and step the physics by dt. The files it keeps in DIR are described in
 world/recorder.py. `--resume` (the launcher restarting a world that died) first brings the
 simulation back to the cycle the run had reached (world/resume.py), then goes on from there.
+In lockstep the world also keeps pace with the launch's recorder: it does not begin a cycle
+more than `record_window` cycles ahead of the last one the recorder has written whole (its
+ProcessStats say which), so that on a loaded machine the run slows down rather than lose the
+end of its record (bus/clock.py Clock.keep_pace; no wait when there is no recorder).
 Each agent's memory (what its executive sends with its actions: world-model facts, SCS
 threads and discount factors) is kept and handed back in the next world state, so a restarted
 agent process loses none of it (docs/bus.md, "Agent memory"); the trace records each change
@@ -17,8 +21,10 @@ of it, so a restarted world hands back the same.
 
 Exit status: 0 when the cycles are done or a signal stopped it; EXIT_CANNOT_RESUME when a
 restart cannot get back to the run's state, EXIT_NOT_READY when the stages did not all
-announce themselves in time (the launcher then ends the run with the reason in the log);
-anything else is a crash, after which the launcher restarts it with --resume.
+announce themselves in time, EXIT_CANNOT_WRITE when it cannot write its trace or health
+record (a full disk: it stops at the cycle it could not record, world/recorder.py) (the
+launcher then ends the run with the reason); anything else is a crash, after which the
+launcher restarts it with --resume.
 """
 
 from __future__ import annotations
@@ -44,6 +50,7 @@ from bus.node import Inbox, open_node
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
 from world.domain import Domain, World, get_domain
+from world.errors import CannotRecord
 from world.recorder import CHECKPOINT_EVERY, Recorder
 from world.resume import CannotResume, Resumed, can_checkpoint, resume
 from world.run_scenario import Scenario, ScenarioError, load_scenario
@@ -53,8 +60,11 @@ READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
 RESTART_TIMEOUT = 30.0    # [s] lockstep waits this long for a crashed stage to come back
 STALL_TIMEOUT = 30.0      # [s] lockstep waits this long for a live but silent stage
 STALL_REPORT_S = 1.0      # [s] a lockstep cycle waiting longer is recorded as a stall
+RECORD_BACKLOG = 8192     # [messages] see record_window
+HOLD_REPORT_S = 1.0       # [s] a wait for the record longer than this is in health.jsonl
 EXIT_CANNOT_RESUME = 3
 EXIT_NOT_READY = 4
+EXIT_CANNOT_WRITE = 5
 __all__ = ["pipelines", "run_world"]
 
 
@@ -88,6 +98,16 @@ def _inject(sim: World, due: list[dict[str, Any]], events_in: Inbox, asked: Pend
         pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
                                   str(outcome.get("reason", "")), outcome))
     return injected
+
+
+def record_window(agents: int) -> int:
+    """[cycles] a lockstep run may be ahead of its recorder: about RECORD_BACKLOG messages
+    (a world state and its stats, each agent's percepts, beliefs, intention, actions, goal
+    list and three stats, the goal-entry process's stats per cycle), an eighth of what the
+    recorder's queue holds, so that no sender ever waits for it with messages queued (a
+    process that stops drops them: 7,447 of 120,000 in tests/e2e/test_record_drain.py's
+    case, 8,124 of 45,594 cycles in drill d4d) and its drain at a stop stays short."""
+    return max(20, RECORD_BACKLOG // (8 * agents + 3))
 
 
 def _actions_of(sim: World, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
@@ -134,7 +154,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     if again:
         log.info("resumed at cycle %d (checkpoint %d, %d cycles replayed)", first,
                  begun.checkpoint, begun.replayed)
-    start, reason = time.monotonic(), "done"
+    start, reason, unwritable = time.monotonic(), "done", None
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
         asked = serve_later(node, keys.world_events(run))
@@ -144,6 +164,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
+        pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
+        state: WorldState | None = None  # the last one published
         collector = Collector()
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
@@ -155,14 +177,19 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 if stop.is_set():
                     reason = "stopped by a signal"
                     break
+                if pace and t > first:  # never more than `pace` cycles ahead of the record,
+                    held = clock.keep_pace(  # and its first cycle in it before the next
+                        keys.RECORDER, t - 1 - pace if t > first + 1 else -1,
+                        resend=state if t == first + 1 else None)
+                    if held > HOLD_REPORT_S:
+                        rec.event("record-wait", cycle=t, seconds=round(held, 3))
                 w0 = time.perf_counter()
                 injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
                 snap = sim.snapshot_dict()
                 world_ms = (time.perf_counter() - w0) * 1e3
-                report = clock.run_cycle(t, WorldState(node.envelope(t), snap, outcomes,
-                                                       injected, dict(memory)),
-                                         meanwhile=partial(_off_the_path, rec, collector,
-                                                           t, snap))
+                state = WorldState(node.envelope(t), snap, outcomes, injected, dict(memory))
+                report = clock.run_cycle(t, state, meanwhile=partial(_off_the_path, rec,
+                                                                      collector, t, snap))
                 changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
                 memory.update(changed)  # an agent given the no-op keeps its last memory
                 w0 = time.perf_counter()
@@ -177,12 +204,16 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
+        except CannotRecord as exc:  # a full disk: no cycle runs that nothing records
+            reason, unwritable = f"stopped: {exc}", exc
         collector.close()
         asked.close("the run ended before the event could be applied")
         completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
         rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
              "complete" if completed else "early", reason)
+    if unwritable is not None:
+        raise unwritable
     return completed
 
 
@@ -197,16 +228,18 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
               help="Resume the run recorded in --out (a restarted world).")
 @click.option("--ready-timeout", type=float, default=READY_TIMEOUT, show_default=True,
               help="Seconds to wait for every stage to announce itself.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="A field of the scenario changed for this run (world/overrides.py).")
 @bus_options
 def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
          run_mode: str | None, out: str, again: bool, ready_timeout: float,
-         bus_config: BusConfig) -> None:
+         overrides: tuple[str, ...], bus_config: BusConfig) -> None:
     """The world process of one run."""
     logging.basicConfig(level=logging.INFO,
                         format="%(asctime)s world %(name)s %(levelname)s %(message)s")
     stop = stop_on_signals(child=True)
     try:
-        scenario = load_scenario(scenario_file)
+        scenario = load_scenario(scenario_file, overrides)
         run_world(bus_config, run, scenario,
                   scenario.run.cycles if cycles is None else cycles,
                   scenario.run.seed if seed is None else seed,
@@ -217,6 +250,9 @@ def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
     except NotReady as exc:
         log.error("%s", exc)
         raise SystemExit(EXIT_NOT_READY) from exc
+    except CannotRecord as exc:
+        log.error("%s", exc)
+        raise SystemExit(EXIT_CANNOT_WRITE) from exc
     except (ScenarioError, BusError) as exc:
         log.error("%s", exc)
         raise SystemExit(1) from exc

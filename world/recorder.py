@@ -17,11 +17,18 @@ world-final.json the totals of a world that ended by itself or by a signal
 
 Lines are written whole and flushed at once; a process killed mid-line leaves a partial last
 line, which `complete_lines` ignores and `truncate_partial` removes before appending.
+
+A file that cannot be written (a full disk, docs/faults.md): the trace and the health record
+are the run's own record, which the summary and a restart read, so a failed write of either
+raises CannotRecord and the world stops the run; the snapshots (pictures only) and the
+checkpoint (a shorter replay after a restart) are given up from that cycle on, said on the
+log and in world-final.json's "lost", and the run goes on.
 """
 
 from __future__ import annotations
 
 import json
+import logging
 import os
 import pickle
 import time
@@ -30,10 +37,12 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, Protocol, TextIO
 
+from world.errors import CannotRecord
 from world.trace import digest, trace_line
 
 TRACE, HEALTH, SNAPSHOTS = "trace.jsonl", "health.jsonl", "snapshots.jsonl"
 CHECKPOINT, WORLD_FINAL = "checkpoint.pkl", "world-final.json"
+log = logging.getLogger("teleo.world")
 CHECKPOINT_EVERY = 100   # [cycles]
 PROGRESS_EVERY_S = 1.0   # [s] between progress lines in health.jsonl
 
@@ -54,12 +63,17 @@ class CycleReport(Protocol):
 
 def complete_lines(path: Path) -> list[str]:
     """The whole lines of a JSON-lines file (a partial last line is left out)."""
+    return [line.decode(errors="replace") for line in complete_lines_bytes(path)]
+
+
+def complete_lines_bytes(path: Path) -> list[bytes]:
+    """`complete_lines` as bytes, not decoded (for a reader that looks at few of them)."""
     try:
         data = path.read_bytes()
     except FileNotFoundError:
         return []
     end = data.rfind(b"\n")
-    return data[:end + 1].decode(errors="replace").splitlines() if end >= 0 else []
+    return data[:end].split(b"\n") if end >= 0 else []
 
 
 def truncate_partial(path: Path) -> None:
@@ -91,16 +105,20 @@ class Recorder:
     """Writes the run folder's files (see the module doc) for one world process."""
 
     def __init__(self, out: Path, render_every: int, resumed_at: int = 0) -> None:
-        out.mkdir(parents=True, exist_ok=True)
         self.out = out
         self.render_every = render_every
         mode = "a" if resumed_at else "w"
-        for name in (TRACE, SNAPSHOTS, HEALTH):
-            if resumed_at:
-                truncate_partial(out / name)
-        self.trace: TextIO = (out / TRACE).open(mode, buffering=1)  # whole lines
-        self.snaps: TextIO = (out / SNAPSHOTS).open(mode)
-        self.health: TextIO = (out / HEALTH).open("a" if resumed_at else "w", buffering=1)
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+            for name in (TRACE, SNAPSHOTS, HEALTH):
+                if resumed_at:
+                    truncate_partial(out / name)
+            self.trace: TextIO = (out / TRACE).open(mode, buffering=1)  # whole lines
+            self.snaps: TextIO = (out / SNAPSHOTS).open(mode)
+            self.health: TextIO = (out / HEALTH).open("a" if resumed_at else "w", buffering=1)
+        except OSError as exc:
+            raise CannotRecord(f"{exc.filename or out}: cannot be opened for writing "
+                               f"({exc.strerror or exc})") from exc
         self.totals = {k: Counter() for k in ("late", "dead", "noop", "stalled")}
         self.stage_ms: Counter[str] = Counter()
         self.cycle_ms = self.world_ms = 0.0
@@ -109,8 +127,24 @@ class Recorder:
         self._prepared: tuple[int, Any, str, str] = (-1, None, "", "")
         self.last_written = -1
         self._progress_at = 0.0
+        self.lost: dict[str, dict[str, Any]] = {}  # file -> {"cycle", "reason"}: given up
         if resumed_at:
             self._reload_totals()
+
+    def _record(self, f: TextIO, text: str, cycle: int) -> None:
+        """Write one whole line of the trace or the health record, or raise CannotRecord."""
+        try:
+            f.write(text)
+        except OSError as exc:
+            raise CannotRecord(f"{Path(f.name).name}: cycle {cycle} cannot be written "
+                               f"({exc.strerror or exc})") from exc
+
+    def _give_up(self, name: str, cycle: int, exc: OSError) -> None:
+        """A file the run can do without could not be written: not again from here on."""
+        if name not in self.lost:
+            self.lost[name] = {"cycle": cycle, "reason": exc.strerror or str(exc)}
+            log.error("%s: not written from cycle %d on (%s); the run goes on without it",
+                      self.out / name, cycle, exc.strerror or exc)
 
     def _reload_totals(self) -> None:
         for doc in read_jsonl(self.out / HEALTH):
@@ -121,7 +155,8 @@ class Recorder:
     def event(self, kind: str, **fields: Any) -> None:
         """A health line: start, resume, end, progress, ... with the wall time [s]."""
         line = {"kind": kind, "t": round(time.time(), 3), **fields}
-        self.health.write(json.dumps(line, sort_keys=True) + "\n")
+        self._record(self.health, json.dumps(line, sort_keys=True) + "\n",
+                     int(fields.get("cycle", self.cycles)))
 
     def prepare(self, t: int, snap: dict[str, Any]) -> None:
         """Make what cycle `t`'s record needs of its state alone (its digest, and its line
@@ -137,7 +172,8 @@ class Recorder:
         `memory`: the agents whose memory changed this cycle, with the new one."""
         ready = self._prepared if self._prepared[0] == t and self._prepared[1] is snap \
             else (t, snap, "", "")
-        self.trace.write(trace_line(t, snap, applied, injected, memory, ready[2]))
+        self._record(self.trace, trace_line(t, snap, applied, injected, memory, ready[2]), t)
+        self.cycles = t + 1
         if not report.clean or report.stalled or report.republished:
             self.event("cycle", cycle=t, noop=list(report.noop), late=list(report.late),
                        dead=list(report.dead), stalled=list(report.stalled),
@@ -149,7 +185,6 @@ class Recorder:
         self.stage_ms.update(report.stage_ms)
         self.cycle_ms += report.elapsed_ms
         self.world_ms += world_ms
-        self.cycles = t + 1
         self.last_snapshot = snap
         if t % self.render_every == 0:
             self._snapshot(t, snap, ready[3])
@@ -159,26 +194,46 @@ class Recorder:
             self.event("progress", cycle=t)
 
     def _snapshot(self, t: int, snap: dict[str, Any], line: str = "") -> None:
-        self.snaps.write(line or json.dumps(snap) + "\n")
-        self.last_written = t
+        if SNAPSHOTS in self.lost:
+            return
+        try:
+            self.snaps.write(line or json.dumps(snap) + "\n")
+            self.last_written = t
+        except OSError as exc:
+            self._give_up(SNAPSHOTS, t, exc)
 
     def checkpoint(self, next_cycle: int, blob: bytes, outcomes: dict[str, list]) -> None:
-        """Save the simulation as it is before cycle `next_cycle` (atomic replace)."""
+        """Save the simulation as it is before cycle `next_cycle` (atomic replace; one that
+        cannot be written leaves the last one as it was, and none is tried again)."""
+        if CHECKPOINT in self.lost:
+            return
         tmp = self.out / (CHECKPOINT + ".tmp")
-        with tmp.open("wb") as f:
-            pickle.dump({"version": 1, "cycle": next_cycle, "world": blob,
-                         "outcomes": outcomes}, f)
-        os.replace(tmp, self.out / CHECKPOINT)
+        try:
+            with tmp.open("wb") as f:
+                pickle.dump({"version": 1, "cycle": next_cycle, "world": blob,
+                             "outcomes": outcomes}, f)
+            os.replace(tmp, self.out / CHECKPOINT)
+        except OSError as exc:
+            tmp.unlink(missing_ok=True)  # its own half-written file: the room it took back
+            self._give_up(CHECKPOINT, next_cycle, exc)
 
     def finish(self, completed: bool, elapsed_s: float, reason: str,
                memory: dict[str, Any] | None = None) -> None:
-        """Close the files and write world-final.json (totals of the whole run, and each
-        agent's last memory)."""
+        """Close the files and write world-final.json (totals of the whole run, each agent's
+        last memory, and what was given up: "lost"); on a full disk as much of it as can be
+        written (never raises)."""
         if self.last_snapshot is not None and self.last_written != self.cycles - 1:
             self._snapshot(self.cycles - 1, self.last_snapshot)
-        self.event("end", cycle=self.cycles, completed=completed, reason=reason)
+        try:
+            self.event("end", cycle=self.cycles, completed=completed, reason=reason,
+                       **({"lost": self.lost} if self.lost else {}))
+        except CannotRecord as exc:
+            log.error("%s", exc)
         for f in (self.trace, self.snaps, self.health):
-            f.close()
+            try:
+                f.close()
+            except OSError as exc:  # what it still held could not be written
+                log.error("%s: not closed whole (%s)", f.name, exc.strerror or exc)
         final = {
             "completed": completed, "cycles": self.cycles, "elapsed_s": elapsed_s,
             "reason": reason, **{k: dict(v) for k, v in self.totals.items()},
@@ -186,7 +241,12 @@ class Recorder:
             "timing_ms": {"cycle": self.cycle_ms, "world": self.world_ms,
                           "stages": dict(self.stage_ms)},
             "memory": memory or {},
+            "lost": self.lost,
         }
         tmp = self.out / (WORLD_FINAL + ".tmp")
-        tmp.write_text(json.dumps(final, indent=1))
-        tmp.replace(self.out / WORLD_FINAL)
+        try:
+            tmp.write_text(json.dumps(final, indent=1))
+            tmp.replace(self.out / WORLD_FINAL)
+        except OSError as exc:
+            tmp.unlink(missing_ok=True)
+            log.error("%s: not written (%s)", self.out / WORLD_FINAL, exc.strerror or exc)

@@ -9,218 +9,222 @@ names its domain (`domain = "driving"`, the default); the rest of it is the doma
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from bus.cycle import CycleMode as Mode
+from bus.errors import KeyFormatError
+from bus.keys import check_chunk
 from world.domain import DEFAULT_DOMAIN, DOMAINS
-from world.errors import WorldError
+from world.overrides import TABLES, Override, OverrideError, apply_overrides, parse_override
+from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only, shown
+from world.scenario_types import (
+    AGENT_STAGES,
+    GOAL_OPS,
+    AgentSpec,
+    RunSettings,
+    Scenario,
+    ScenarioError,
+    ScriptedEvent,
+    ScriptedGoal,
+)
 from world.toml_text import TomlTextError, read_toml
 
-AGENT_STAGES = ("perception", "inference", "executive")
-GOAL_OPS = ("post", "cancel", "priority")
+__all__ = ["AGENT_STAGES", "GOAL_OPS", "AgentSpec", "Draft", "RunSettings", "Scenario",
+           "ScenarioError", "ScriptedEvent", "ScriptedGoal", "load_scenario", "read_draft",
+           "read_document", "scenario_from_dict"]
+RUN_FIELDS = ("name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every",
+              "secure")
 
-
-class ScenarioError(WorldError):
-    """A scenario file that cannot be run; the message names the file and the field."""
-
-
-@dataclass(frozen=True)
-class RunSettings:
-    """The [run] table. cycles 0 means forever; deadline [s] is the realtime period per cycle;
-    secure: run on a secured bus (TLS, a user per process, access control: docs/bus.md)."""
-
-    name: str = "run"
-    mode: Mode = Mode.LOCKSTEP
-    cycles: int = 100
-    seed: int = 0
-    deadline: float = 0.1
-    goals_respawn: int = 3
-    render_every: int = 5
-    secure: bool = False
-
-
-@dataclass(frozen=True)
-class AgentSpec:
-    """One [[agents]] entry: its id, program, how often each of its processes may restart,
-    and the mechanism that answers an impasse: ``mechanism`` names it (default
-    "means-ends", the problem solver of seed 000; "rogue", the planner of seed 003;
-    agents.lang.engine.SOLVERS); ``solver = false``: none, the executive alone."""
-
-    id: str
-    program: Path
-    respawn: dict[str, int] = field(default_factory=dict)
-    solver: bool = True
-    mechanism: str = "means-ends"
-
-    @property
-    def impasse_handler(self) -> str | None:
-        """The SOLVERS name to give the Engine, or None for the executive alone."""
-        return self.mechanism if self.solver else None
-
-    def max_restarts(self, stage: str) -> int:
-        """Restarts allowed for `stage` (perception, inference, executive)."""
-        return self.respawn.get(stage, 3)
-
-
-@dataclass(frozen=True)
-class ScriptedGoal:
-    """One [[goals]] entry: a user request applied by the goal-entry process at `at_cycle`."""
-
-    agent: str
-    goal: str = ""
-    priority: int = 100
-    at_cycle: int = 0
-    op: str = "post"
-    goal_id: str = ""
-    force: bool = False  # rank above the program's goals, or cancel an achieved goal
-
-
-@dataclass(frozen=True)
-class ScriptedEvent:
-    """One [[events]] entry: a world event dict injected before the state of `at_cycle`."""
-
-    at_cycle: int
-    event: dict[str, Any]
-
-
-@dataclass(frozen=True)
-class Scenario:
-    """A whole scenario file, checked."""
-
-    path: Path
-    run: RunSettings
-    world: dict[str, Any]
-    agents: tuple[AgentSpec, ...]
-    goals: tuple[ScriptedGoal, ...]
-    events: tuple[ScriptedEvent, ...]
-
-    @property
-    def domain(self) -> str:
-        """The `[world] domain` name (world/domain.py registry)."""
-        return str(self.world.get("domain", DEFAULT_DOMAIN))
-
-    @property
-    def world_table(self) -> dict[str, Any]:
-        """The `[world]` table without its `domain` key: the domain's own configuration."""
-        return {k: v for k, v in self.world.items() if k != "domain"}
-
-    @property
-    def agent_ids(self) -> list[str]:
-        return [a.id for a in self.agents]
-
-    def agent(self, agent_id: str) -> AgentSpec:
-        for spec in self.agents:
-            if spec.id == agent_id:
-                return spec
-        raise ScenarioError(f"{self.path}: no agent {agent_id!r} (agents: {self.agent_ids})")
-
-
-def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario file; raises ScenarioError naming the file and field (or
-    file:line:col for text that is not UTF-8 or nested too deeply: world/toml_text.py)."""
+def load_scenario(path: str | Path, overrides: Sequence[str] = ()) -> Scenario:
+    """Read and check a scenario file, with ``overrides`` (`--set KEY=VALUE` texts,
+    world/overrides.py) applied; raises ScenarioError naming the file and field of every
+    error (or file:line:col for text that is not UTF-8 or nested too deeply:
+    world/toml_text.py)."""
     path = Path(path)
+    doc = read_document(path)
+    parsed, errors = parse_all(overrides, path)
+    doc, wrong = apply_to(doc, path, parsed)
+    if errors or wrong:
+        raise ScenarioError(*errors, *wrong.values())
+    return scenario_from_dict(doc, path, tuple(o.text for o in parsed))
+
+
+def read_document(path: Path) -> dict[str, Any]:
+    """The scenario file's TOML document; raises ScenarioError (world/toml_text.py)."""
     try:
-        doc = read_toml(path)
+        return read_toml(path)
     except TomlTextError as exc:
         raise ScenarioError(str(exc).replace(": file not found", ": scenario file not found"))\
             from None
-    return scenario_from_dict(doc, path)
 
 
-def scenario_from_dict(doc: dict[str, Any], path: Path) -> Scenario:
-    """Check a parsed scenario document (the TOML as a dict)."""
-    _only(doc, {"run", "world", "agents", "goals", "events"}, path, "top level")
-    run = _run(doc.get("run", {}), path)
-    agents = tuple(_agent(a, i, path) for i, a in enumerate(doc.get("agents", [])))
-    if not agents:
-        raise ScenarioError(f"{path}: [[agents]]: expected at least one agent, got none")
+def parse_all(overrides: Sequence[str], path: Path) -> tuple[tuple[Override, ...], list[str]]:
+    """Each `--set` text that parses, and an error (naming ``path``) for each that does
+    not."""
+    parsed, errors = [], []
+    for text in overrides:
+        try:
+            parsed.append(parse_override(text))
+        except OverrideError as exc:
+            errors.append(f"{path}: {exc}")
+    return tuple(parsed), errors
+
+
+def apply_to(doc: dict[str, Any], path: Path, overrides: tuple[Override, ...]
+             ) -> tuple[dict[str, Any], dict[Override, str]]:
+    """``doc`` with ``overrides`` applied, and the error (naming ``path``) of each that has
+    no place in it (left out)."""
+    out, errors = apply_overrides(doc, overrides)
+    return out, {o: f"{path}: {e}" for o, e in errors.items()}
+
+
+def scenario_from_dict(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ()
+                       ) -> Scenario:
+    """Check a parsed scenario document (the TOML as a dict); raises ScenarioError with
+    every error found."""
+    draft = read_draft(doc, path, overrides)
+    if draft.errors:
+        raise ScenarioError(*draft.errors)
+    return draft.scenario
+
+
+@dataclass(frozen=True)
+class Draft:
+    """A scenario document read as far as it goes: the scenario (a field in error at its
+    default), every error found, and what those errors spoil ("world", "agent ID",
+    "goal K" for [[goals]] #K), which the later checks (tools/scenario_check.py) leave out
+    rather than report what follows from an error already reported."""
+
+    scenario: Scenario
+    errors: tuple[str, ...]
+    spoilt: frozenset[str]
+
+
+def read_draft(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ()) -> Draft:
+    """Read every table of ``doc``, keeping every error (module world/scenario_fields.py)."""
+    errors, spoilt = Errors(path), set()
+    only(doc, set(TABLES), "top level", errors)
+    run = _run(doc.get("run", {}), errors)
+    agents = _agents(doc.get("agents", []), errors, spoilt)
+    ids = [a.id for a in agents]
+    goals = tuple(_goal(g, i, ids, errors, spoilt)
+                  for i, g in enumerate(_array(doc, "goals", errors)))
+    events = tuple(e for i, t in enumerate(_array(doc, "events", errors))
+                   if (e := _event(t, i, errors)) is not None)
+    world = doc.get("world", {})
+    before = len(errors)
+    if is_table(world, "[world]", errors):
+        domain = world.get("domain", DEFAULT_DOMAIN)
+        if not isinstance(domain, str) or domain not in DOMAINS:
+            errors.add(f"[world].domain: expected one of {list(DOMAINS)}, got {shown(domain)}")
+    if len(errors) > before:
+        spoilt.add("world")
+        world = {}
+    scenario = Scenario(path, run, world, agents, goals, events, overrides)
+    return Draft(scenario, tuple(errors.lines), frozenset(spoilt))
+
+
+def _array(doc: dict[str, Any], name: str, errors: Errors) -> list[Any]:
+    """The array of tables ``name`` ([[agents]], [[goals]], [[events]]); [] when it is not
+    one (recorded)."""
+    value = doc.get(name, [])
+    if isinstance(value, list):
+        return value
+    errors.add(f"[[{name}]]: expected an array of tables ([[{name}]] entries), "
+               f"got {shown(value)}")
+    return []
+
+
+def _run(table: Any, errors: Errors) -> RunSettings:
+    where = "[run]"
+    if not is_table(table, where, errors):
+        return RunSettings()
+    only(table, set(RUN_FIELDS), where, errors)
+    mode = table.get("mode", "lockstep")
+    if not isinstance(mode, str) or mode not in {m.value for m in Mode}:
+        errors.add(f"{where}.mode: expected 'lockstep' or 'realtime', got {shown(mode)}")
+        mode = "lockstep"
+    return RunSettings(
+        name=field(table, "name", str, "run", where, errors, (run_name_ok, RUN_NAME_RULE)),
+        mode=Mode(mode),
+        cycles=field(table, "cycles", int, 100, where, errors, at_least(0)),
+        seed=field(table, "seed", int, 0, where, errors),
+        deadline=float(field(table, "deadline", (int, float), 0.1, where, errors,
+                             at_least(0, strict=True, unit="s"))),
+        goals_respawn=field(table, "goals_respawn", int, 3, where, errors, at_least(0)),
+        render_every=field(table, "render_every", int, 5, where, errors, at_least(1)),
+        secure=field(table, "secure", bool, False, where, errors),
+    )
+
+
+RUN_NAME_CHARS = 64
+RUN_NAME_RULE = (f"a name of at most {RUN_NAME_CHARS} characters without spaces, control "
+                 "characters or any of / * $ ? # @ (it names the run's bus keys and folder)")
+
+
+def run_name_ok(name: str) -> bool:
+    """Whether ``name`` can begin a run id (`NAME-xxxxxx`): one chunk of a bus key and the
+    name of a folder under the runs folder, never a path out of it (issue 24, #2)."""
+    try:
+        check_chunk(name, "run name")
+    except KeyFormatError:
+        return False
+    return len(name) <= RUN_NAME_CHARS and name.isprintable()
+
+
+def _agents(entries: Any, errors: Errors, spoilt: set[str]) -> tuple[AgentSpec, ...]:
+    """Every [[agents]] entry whose id could be read (one in error is in ``spoilt``)."""
+    agents = []
+    for index, table in enumerate(_array({"agents": entries}, "agents", errors)):
+        before = len(errors)
+        agent = _agent(table, index, errors)
+        if agent is not None:
+            agents.append(agent)
+            if len(errors) > before:
+                spoilt.add(f"agent {agent.id}")
+    if not agents and not errors.lines:
+        errors.add("[[agents]]: expected at least one agent, got none")
     ids = [a.id for a in agents]
     if len(set(ids)) != len(ids):
-        raise ScenarioError(f"{path}: [[agents]]: agent ids must be unique, got {ids}")
-    goals = tuple(_goal(g, i, path, ids) for i, g in enumerate(doc.get("goals", [])))
-    events = tuple(_event(e, i, path) for i, e in enumerate(doc.get("events", [])))
-    world = doc.get("world", {})
-    if not isinstance(world, dict):
-        raise ScenarioError(f"{path}: [world]: expected a table, got {type(world).__name__}")
-    domain = world.get("domain", DEFAULT_DOMAIN)
-    if domain not in DOMAINS:
-        raise ScenarioError(f"{path}: [world].domain: expected one of {list(DOMAINS)}, "
-                            f"got {domain!r}")
-    return Scenario(path, run, world, agents, goals, events)
+        errors.add(f"[[agents]]: agent ids must be unique, got {ids}")
+    return tuple(agents)
 
 
-def _only(table: dict[str, Any], allowed: set[str], path: Path, where: str) -> None:
-    unknown = sorted(set(table) - allowed)
-    if unknown:
-        raise ScenarioError(
-            f"{path}: {where}: unknown field(s) {unknown}; expected {sorted(allowed)}")
-
-
-def _typed(table: dict[str, Any], key: str, kind: type | tuple, default: Any, where: str) -> Any:
-    value = table.get(key, default)
-    if isinstance(value, bool) or not isinstance(value, kind):
-        raise ScenarioError(f"{where}.{key}: expected {_kind_name(kind)}, got {value!r}")
-    return value
-
-
-def _kind_name(kind: type | tuple) -> str:
-    kinds = kind if isinstance(kind, tuple) else (kind,)
-    return " or ".join(k.__name__ for k in kinds)
-
-
-def _run(table: dict[str, Any], path: Path) -> RunSettings:
-    where = f"{path}: [run]"
-    _only(table, {"name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every",
-                  "secure"}, path, "[run]")
-    mode = table.get("mode", "lockstep")
-    if mode not in {m.value for m in Mode}:
-        raise ScenarioError(f"{where}.mode: expected 'lockstep' or 'realtime', got {mode!r}")
-    settings = RunSettings(
-        name=_typed(table, "name", str, "run", where),
-        mode=Mode(mode),
-        cycles=_typed(table, "cycles", int, 100, where),
-        seed=_typed(table, "seed", int, 0, where),
-        deadline=float(_typed(table, "deadline", (int, float), 0.1, where)),
-        goals_respawn=_typed(table, "goals_respawn", int, 3, where),
-        render_every=_typed(table, "render_every", int, 5, where),
-        secure=_flag(table, "secure", where),
-    )
-    if settings.cycles < 0 or settings.deadline <= 0 or settings.render_every < 1:
-        raise ScenarioError(f"{where}: expected cycles >= 0, deadline > 0 [s], render_every >= 1")
-    return settings
-
-
-def _flag(table: dict[str, Any], key: str, where: str) -> bool:
-    value = table.get(key, False)
-    if not isinstance(value, bool):
-        raise ScenarioError(f"{where}.{key}: expected true or false, got {value!r}")
-    return value
-
-
-def _agent(table: dict[str, Any], index: int, path: Path) -> AgentSpec:
-    where = f"{path}: [[agents]] #{index + 1}"
-    _only(table, {"id", "program", "respawn", "solver", "mechanism"}, path,
-          f"[[agents]] #{index + 1}")
-    agent_id = _typed(table, "id", str, None, where)
-    program = _resolve(_typed(table, "program", str, None, where), path)
-    respawn = _typed(table, "respawn", dict, {}, where)
+def _agent(table: Any, index: int, errors: Errors) -> AgentSpec | None:
+    where = f"[[agents]] #{index + 1}"
+    if not is_table(table, where, errors):
+        return None
+    only(table, {"id", "program", "respawn", "solver", "mechanism"}, where, errors)
+    agent_id = field(table, "id", str, REQUIRED, where, errors, (agent_id_ok, AGENT_ID_RULE))
+    program = field(table, "program", str, REQUIRED, where, errors)
+    respawn = field(table, "respawn", dict, {}, where, errors)
     for stage, count in respawn.items():
-        if stage not in AGENT_STAGES or isinstance(count, bool) or not isinstance(count, int):
-            raise ScenarioError(
-                f"{where}.respawn: expected {{stage = max restarts}} with stage in "
-                f"{list(AGENT_STAGES)}, got {stage} = {count!r}")
-    mechanism = _typed(table, "mechanism", str, "means-ends", where)
-    return AgentSpec(agent_id, program, dict(respawn), _bool(table, "solver", where, True),
-                     mechanism)
+        if stage not in AGENT_STAGES or isinstance(count, bool) or not isinstance(count, int) \
+                or count < 0:
+            errors.add(f"{where}.respawn: expected {{stage = max restarts >= 0}} with stage "
+                       f"in {list(AGENT_STAGES)}, got {stage} = {shown(count, 40)}")
+    mechanism = field(table, "mechanism", str, "means-ends", where, errors)
+    solver = field(table, "solver", bool, True, where, errors)
+    if agent_id is None:
+        return None
+    return AgentSpec(agent_id, _resolve(program, errors.path) if program else Path(""),
+                     dict(respawn), solver, mechanism)
 
 
-def _bool(table: dict[str, Any], key: str, where: str, default: bool = False) -> bool:
-    value = table.get(key, default)
-    if not isinstance(value, bool):
-        raise ScenarioError(f"{where}.{key}: expected true or false, got {value!r}")
-    return value
+AGENT_ID_RULE = "an id without spaces, control characters or any of / * $ ? # @"
+
+
+def agent_id_ok(agent_id: str) -> bool:
+    """Whether ``agent_id`` can name an agent: one chunk of its bus keys and a part of its
+    files' names (state-AGENT.json)."""
+    try:
+        check_chunk(agent_id, "agent id")
+    except KeyFormatError:
+        return False
+    return agent_id.isprintable()
 
 
 def _resolve(program: str, scenario_path: Path) -> Path:
@@ -239,37 +243,45 @@ def _resolve(program: str, scenario_path: Path) -> Path:
     return candidate
 
 
-def _goal(table: dict[str, Any], index: int, path: Path, agents: list[str]) -> ScriptedGoal:
-    where = f"{path}: [[goals]] #{index + 1}"
-    _only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id", "force"},
-          path, f"[[goals]] #{index + 1}")
+def _goal(table: Any, index: int, agents: list[str], errors: Errors,
+          spoilt: set[str]) -> ScriptedGoal:
+    """One [[goals]] entry (at its defaults where in error: "goal K" is then spoilt)."""
+    where = f"[[goals]] #{index + 1}"
+    before = len(errors)
+    if not is_table(table, where, errors):
+        spoilt.add(f"goal {index + 1}")
+        return ScriptedGoal(agent="")
+    only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id", "force"}, where,
+         errors)
+    sole = agents[0] if len(agents) == 1 else REQUIRED
     goal = ScriptedGoal(
-        agent=_typed(table, "agent", str, agents[0] if len(agents) == 1 else None, where),
-        goal=_typed(table, "goal", str, "", where),
-        priority=_typed(table, "priority", int, 100, where),
-        at_cycle=_typed(table, "at_cycle", int, 0, where),
-        op=_typed(table, "op", str, "post", where),
-        goal_id=_typed(table, "goal_id", str, "", where),
-        force=_bool(table, "force", where),
+        agent=field(table, "agent", str, sole, where, errors) or "",
+        goal=field(table, "goal", str, "", where, errors),
+        priority=field(table, "priority", int, 100, where, errors),
+        at_cycle=field(table, "at_cycle", int, 0, where, errors, at_least(0)),
+        op=field(table, "op", str, "post", where, errors),
+        goal_id=field(table, "goal_id", str, "", where, errors),
+        force=field(table, "force", bool, False, where, errors),
     )
-    if goal.agent not in agents:
-        raise ScenarioError(f"{where}.agent: expected one of {agents}, got {goal.agent!r}")
+    if goal.agent and goal.agent not in agents:
+        errors.add(f"{where}.agent: expected one of {agents}, got {shown(goal.agent)}")
     if goal.op not in GOAL_OPS:
-        raise ScenarioError(f"{where}.op: expected one of {list(GOAL_OPS)}, got {goal.op!r}")
-    if goal.op == "post" and not goal.goal:
-        raise ScenarioError(
-            f"{where}.goal: a post needs the goal text, e.g. '(package-delivered P1)'")
-    if goal.op != "post" and not goal.goal_id:
-        raise ScenarioError(f"{where}.goal_id: a {goal.op} needs the goal id, e.g. 'g1'")
-    if goal.at_cycle < 0:
-        raise ScenarioError(f"{where}.at_cycle: expected >= 0, got {goal.at_cycle}")
+        errors.add(f"{where}.op: expected one of {list(GOAL_OPS)}, got {shown(goal.op)}")
+    elif goal.op == "post" and not goal.goal:
+        errors.add(f"{where}.goal: a post needs the goal text, e.g. '(package-delivered P1)'")
+    elif goal.op != "post" and not goal.goal_id:
+        errors.add(f"{where}.goal_id: a {goal.op} needs the goal id, e.g. 'g1'")
+    if len(errors) > before:
+        spoilt.add(f"goal {index + 1}")
     return goal
 
 
-def _event(table: dict[str, Any], index: int, path: Path) -> ScriptedEvent:
-    where = f"{path}: [[events]] #{index + 1}"
-    at_cycle = _typed(table, "at_cycle", int, None, where)
+def _event(table: Any, index: int, errors: Errors) -> ScriptedEvent | None:
+    where = f"[[events]] #{index + 1}"
+    if not is_table(table, where, errors):
+        return None
+    at_cycle = field(table, "at_cycle", int, REQUIRED, where, errors, at_least(0))
     event = {k: v for k, v in table.items() if k != "at_cycle"}
     if not event:
-        raise ScenarioError(f"{where}: expected the event's fields besides at_cycle, got none")
-    return ScriptedEvent(at_cycle, event)
+        errors.add(f"{where}: expected the event's fields besides at_cycle, got none")
+    return ScriptedEvent(at_cycle, event) if at_cycle is not None and event else None

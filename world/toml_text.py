@@ -59,6 +59,28 @@ def read_toml(path: Path) -> dict[str, Any]:
     return doc
 
 
+NOT_A_VALUE = object()
+"""What ``toml_value`` returns for text that spells no TOML value."""
+
+
+def toml_value(text: str, where: str, key: tuple[str | int, ...]) -> Any:
+    """The one TOML value ``text`` spells (`20`, `2.5`, `true`, `"x"`, `[3, 4]`,
+    `{ agent = "ME" }`), or NOT_A_VALUE when it spells none (`programs/x.tlp`, `a = 1` over
+    two lines); within the bounds of ``read_toml``: nesting deeper than MAX_TOML_DEPTH or a
+    value no message can carry raises TomlTextError naming ``where`` and ``key``."""
+    if len(text) > MAX_TOML_BYTES:
+        raise TomlTextError(f"{where}: longer than the limit of {MAX_TOML_BYTES} bytes")
+    _check_depth(text, Path(where))
+    try:
+        doc = tomllib.loads(f"v = {text}")
+    except (tomllib.TOMLDecodeError, ValueError, RecursionError):
+        return NOT_A_VALUE
+    if set(doc) != {"v"}:
+        return NOT_A_VALUE
+    _check_values(doc["v"], where, key)
+    return doc["v"]
+
+
 def _decode(data: bytes, path: Path) -> str:
     try:
         return data.decode("utf-8")

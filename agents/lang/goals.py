@@ -61,14 +61,15 @@ def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
 
 def parse_goal(text: str, program: Program | None = None) -> Goal:
     """Read a goal such as ``(package-delivered PACKET2)`` or ``(and (on A B) (on B C))``;
-    check concepts and arities if given a program. Raises GoalError with the reason (and
-    line:col for a reading error); a text over MAX_GOAL_CHARS is refused before it is read."""
+    check concepts and arities if given a program. Raises GoalError with the reason (and the
+    column for a reading error); a text over MAX_GOAL_CHARS is refused before it is read."""
     if len(text) > MAX_GOAL_CHARS:
         raise GoalError(f"goal {shorten(text)!r}: longer than {MAX_GOAL_CHARS} characters")
     forms, diags = read(text, "<goal>")
     errors = [d for d in diags if d.severity == "error"]
     if errors:
-        raise GoalError(f"goal {text!r}: {errors[0].line}:{errors[0].col}: {errors[0].message}")
+        raise GoalError(f"goal {text!r}: {_where(text, errors[0].line, errors[0].col)}: "
+                        f"{errors[0].message}")
     if len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:
         raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)"
                         " or (and (on A B) (on B C))")
@@ -99,8 +100,14 @@ def _conjunction(text: str, form: SList) -> Conjunction:
     problems = [d for d in parts.diags if d.severity == "error"]
     if conj is None or problems:
         d = problems[0]
-        raise GoalError(f"goal {text!r}: {d.line}:{d.col}: {d.message}")
+        raise GoalError(f"goal {text!r}: {_where(text, d.line, d.col)}: {d.message}")
     return conj
+
+
+def _where(text: str, line: int, col: int) -> str:
+    """A position in a goal's text, in words: it is a string typed by a user, not a file
+    (``column 7``; ``line 2, column 1`` when the text has several lines)."""
+    return f"column {col}" if "\n" not in text else f"line {line}, column {col}"
 
 
 def instances(goal: Goal, program: Program, pidx: PerceptIndex) -> list[Literal]:

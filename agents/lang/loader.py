@@ -49,14 +49,23 @@ def _not_utf8(source: str, data: bytes, exc: UnicodeDecodeError) -> Diagnostic:
                       f"({exc.reason}); save the file as UTF-8")
 
 
+EMPTY_PROGRAM = ("the file holds no forms (an empty program): expected (concepts ...), "
+                 "(skills ...) or (goals ...)")
+EMPTY_FILE = "the file holds no forms (the program's other files do)"
+
+
 def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str]) -> Program:
-    """Parse and check program ``text`` (plus further (text, source) pairs forming one program)."""
+    """Parse and check program ``text`` (plus further (text, source) pairs forming one
+    program). A program whose files hold no forms at all is an error (issue 24, #17); one
+    empty file among others is a warning."""
     parts = Parts()
-    for t, src in ((text, source), *more):
-        forms, diags = read(t, src)
-        if not forms and not diags:
-            diags.append(Diagnostic(src, 1, 1, "the file holds no forms (empty program)",
-                                    "warning"))
+    sources = ((text, source), *more)
+    read_all = [(read(t, src), src) for t, src in sources]
+    empty = not any(forms for (forms, _), _ in read_all)
+    for (forms, diags), src in read_all:
+        if not forms and not diags:  # all empty: a run would "complete" with 0 of 0 goals
+            diags.append(Diagnostic(src, 1, 1, EMPTY_PROGRAM if empty else EMPTY_FILE,
+                                    "error" if empty else "warning"))
         parts.diags.extend(diags)
         parts.sources.append(src)
         parse_forms(forms, src, parts)

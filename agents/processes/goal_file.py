@@ -126,11 +126,15 @@ def _move_aside(path: Path) -> str:
 def _write_durably(path: Path, text: str) -> None:
     """Temp file, fsync, rename over `path`, fsync of the folder (so the rename is kept too)."""
     tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    try:
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except OSError:
+        tmp.unlink(missing_ok=True)  # a full disk: the old copy stays, the room comes back
+        raise
     _fsync_dir(path.parent)
 
 

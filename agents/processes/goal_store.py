@@ -145,7 +145,7 @@ class GoalStore:
                 raise GoalStoreError(f"{text}: already posted for {agent} as {other.id}")
         reason = validate(agent, text, priority)
         if reason:
-            raise GoalStoreError(f"{text}: refused for {agent}: {reason}")
+            raise GoalStoreError(f"{agent} cannot take {reason}")  # its reason names the goal
         record = GoalRecord(f"g{self.next_id}", agent, text, priority, GoalState.PENDING,
                             cycle, cycle)
         return replace(self, goals=self.goals + (record,), next_id=self.next_id + 1), record

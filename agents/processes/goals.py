@@ -147,6 +147,8 @@ class GoalEntry:
             store, record = self.store.post(agent, goal, priority, at, self.validate)
             self._commit(store)
             return f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){forced}"
+        if op in ("cancel", "priority"):
+            self._not_a_program_goal(agent, goal_id, op)
         if op == "cancel":
             self._commit(self.store.cancel(goal_id, at, force))
             return f"cancelled {goal_id} (from cycle {at})"
@@ -158,6 +160,23 @@ class GoalEntry:
             return ""
         raise GoalStoreError(f"unknown op {shorten(op)!r}: expected post, cancel, priority or "
                              "list")
+
+    def _not_a_program_goal(self, agent: str, goal_id: str, op: str) -> None:
+        """Refuse to cancel or reprioritise a program goal (p1..pn: the program's own, in its
+        order; user goals are g1, g2, ...), saying which one it is, or that the program has
+        no such goal."""
+        number = goal_id[1:]
+        if goal_id[:1] != "p" or not number.isdigit() or number.startswith("0"):
+            return
+        standing = self.standing.get(agent, ())
+        ids = {0: "none", 1: "p1"}.get(len(standing), f"p1..p{len(standing)}")
+        if int(number) > len(standing):
+            raise GoalStoreError(f"no goal {goal_id!r}: the program goals of {agent} are {ids}")
+        what = "cancelled" if op == "cancel" else "given another priority"
+        raise GoalStoreError(
+            f"{goal_id} is a program goal of {agent}, {standing[int(number) - 1]}: it cannot "
+            f"be {what} (program goals rank in the program's order; user goals are g1, g2, "
+            "...)")
 
     def _rank(self, agent: str, priority: int, force: bool) -> str:
         """The priority rule: raises GoalStoreError when `priority` ranks a goal above the
@@ -246,10 +265,13 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
 @click.option("--scenario", "scenario_file", required=True, type=click.Path(exists=True))
 @click.option("--store", "store_file", required=True, type=click.Path(dir_okay=False),
               help="JSON file keeping the goals across restarts.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="A field of the scenario changed for this run (world/overrides.py).")
 @bus_options
-def main(run: str, scenario_file: str, store_file: str, bus_config: BusConfig) -> None:
+def main(run: str, scenario_file: str, store_file: str, overrides: tuple[str, ...],
+         bus_config: BusConfig) -> None:
     """The goal-entry process of one run."""
-    serve(bus_config, run, load_scenario(scenario_file), Path(store_file))
+    serve(bus_config, run, load_scenario(scenario_file, overrides), Path(store_file))
 
 
 if __name__ == "__main__":

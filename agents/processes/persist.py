@@ -25,8 +25,12 @@ def write_atomically(path: Path, text: str) -> None:
     """Replace ``path`` by ``text`` in one rename (same folder, so the same file system)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
+    try:
+        tmp.write_text(text, encoding="utf-8")
+        os.replace(tmp, path)
+    except OSError:
+        tmp.unlink(missing_ok=True)  # a half-written copy would only take room
+        raise
 
 
 @dataclass(frozen=True)
@@ -51,6 +55,7 @@ class StateFile:
         self.log = log
         self.fd: int | None = None
         self.size = 0
+        self.unsaved: int | None = None  # the first cycle whose save failed, until one works
 
     def load(self) -> Saved | None:
         """What was last written, or None (no file yet, or one that cannot be read: then it is
@@ -78,15 +83,26 @@ class StateFile:
         return saved
 
     def save(self, saved: Saved) -> None:
+        """Write `saved`; one that cannot be written (a full disk) is logged, once until a
+        save succeeds again, and the process goes on: the file keeps the last version that
+        was written, from which a restart would decide the cycles after it again."""
         data = orjson.dumps({"cycle": saved.cycle, "state": saved.state.to_dict(),
                              "intention": saved.intention, "actions": saved.actions},
                             option=orjson.OPT_NON_STR_KEYS)  # ~10x json.dumps, every cycle
-        if self.fd is None:
-            self.path.parent.mkdir(parents=True, exist_ok=True)
-            self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
-            self.size = os.fstat(self.fd).st_size
-        os.pwrite(self.fd, data + b" " * (self.size - len(data)), 0)
+        try:
+            if self.fd is None:
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+                self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+                self.size = os.fstat(self.fd).st_size
+            os.pwrite(self.fd, data + b" " * (self.size - len(data)), 0)
+        except OSError as exc:
+            if self.unsaved is None:
+                self.unsaved = saved.cycle
+                self.log.error("engine state %s: cycle %d cannot be saved (%s); it keeps an "
+                               "earlier cycle's", self.path, saved.cycle, exc.strerror or exc)
+            return
         self.size = max(self.size, len(data))
+        self.unsaved = None
 
 
 class LearnedFile:
@@ -101,5 +117,10 @@ class LearnedFile:
         from agents.lang.solving.learned import learned_text
 
         if learned != self.written:
-            write_atomically(self.path, learned_text(learned, self.program))
+            try:
+                write_atomically(self.path, learned_text(learned, self.program))
+            except OSError as exc:  # a full disk: tried again when the next skill is learned
+                logging.getLogger(__name__).error("learned skills %s: not written (%s)",
+                                                  self.path, exc.strerror or exc)
+                return
             self.written = learned

@@ -34,10 +34,19 @@ class Chromium:
 
     def __init__(self, profile: Path) -> None:
         profile.mkdir(parents=True, exist_ok=True)
+        port_file = profile / "DevToolsActivePort"
+        port_file.unlink(missing_ok=True)  # a profile used before names a port long closed
         self.proc = subprocess.Popen([chromium_path(), *FLAGS, f"--user-data-dir={profile}",
                                       "about:blank"], stdout=subprocess.DEVNULL,
                                      stderr=subprocess.DEVNULL)
-        port_file = profile / "DevToolsActivePort"
+        try:
+            self.ws = self._connect(port_file)
+        except BaseException:
+            self._stop()  # a browser that did not start is not left running
+            raise
+        self._ids = itertools.count(1)
+
+    def _connect(self, port_file: Path) -> websocket.WebSocket:
         end = time.monotonic() + 60
         while not port_file.exists() or not port_file.read_text().strip():
             assert self.proc.poll() is None, f"chromium exited with {self.proc.returncode}"
@@ -46,9 +55,8 @@ class Chromium:
         port = port_file.read_text().split()[0]
         pages = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list"))
         page = next(p for p in pages if p.get("type") == "page")
-        self.ws = websocket.create_connection(page["webSocketDebuggerUrl"], timeout=60,
-                                              suppress_origin=True)
-        self._ids = itertools.count(1)
+        return websocket.create_connection(page["webSocketDebuggerUrl"], timeout=60,
+                                           suppress_origin=True)
 
     def send(self, method: str, **params: Any) -> dict[str, Any]:
         """Call a DevTools method and return its result (events in between are skipped)."""
@@ -60,8 +68,19 @@ class Chromium:
                 assert "error" not in reply, f"{method}: {reply['error']}"
                 return reply["result"]
 
-    def goto(self, url: str) -> None:
+    def goto(self, url: str, timeout: float = 60) -> None:
+        """Open `url` and wait until the page (its scripts included) has loaded."""
         self.send("Page.navigate", url=url)
+        end = time.monotonic() + timeout
+        while self.evaluate("[location.href, document.readyState]") != [url, "complete"]:
+            assert time.monotonic() < end, f"{url} did not load in {timeout:g} s"
+            time.sleep(0.05)
+
+    def viewport(self, width: int, height: int) -> None:
+        """Make the page's viewport exactly `width` x `height` CSS pixels (the window of
+        --window-size loses some height to the browser's own frame)."""
+        self.send("Emulation.setDeviceMetricsOverride", width=width, height=height,
+                  deviceScaleFactor=1, mobile=False)
 
     def evaluate(self, expression: str) -> Any:
         """The value of a JavaScript expression in the page (JSON-able)."""
@@ -77,12 +96,15 @@ class Chromium:
         try:
             self.ws.close()
         finally:
-            self.proc.terminate()
-            try:
-                self.proc.wait(10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(10)
+            self._stop()
+
+    def _stop(self) -> None:
+        self.proc.terminate()
+        try:
+            self.proc.wait(10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait(10)
 
     def __enter__(self) -> Chromium:
         return self

@@ -8,6 +8,7 @@ import os
 import signal
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 from e2e_helpers import ROOT, TELEO, Teleo, wait_for
@@ -22,6 +23,8 @@ from fault_helpers import (
     trace,
     wait_cycles,
 )
+
+from tools.records import RunRecord
 
 CYCLES = "400"
 
@@ -197,3 +200,75 @@ def test_the_launcher_drill_runs_as_a_user_would_run_it(tmp_path):
     assert [r.split("  ")[1] for r in rows] == ["drill=SIGKILL launcher",
                                                 "drill=SIGHUP launcher"]
     assert all("left=0" in r and "all_gone_ms=None" not in r for r in rows)
+
+
+def test_a_killed_router_costs_the_run_record_nothing(teleo, reference):
+    """Drill N1: after a router kill the record lacked about half of the demo's cycles and
+    the summary dated goals to the cycle after the gap. The launcher's recorder is a peer
+    of the run's processes, which keep their links to each other: every cycle is recorded."""
+    launcher, info = start(teleo, "--cycles", CYCLES)
+    wait_cycles(info, 100)
+    os.kill(info["pids"]["router"], signal.SIGKILL)
+    assert launcher.wait(180) == 0, teleo.launch_output()
+    s = summary(teleo)
+    assert s["restarts"] == {"router": 1} and trace(info) == reference
+    assert s["record_missing"] == 0 and s["record_gaps"] == [], teleo.launch_output()
+    held: dict[str, set[int]] = {}
+    for key, rec in RunRecord(Path(s["record"])).records():
+        held.setdefault(key.split("/", 2)[2], set()).add(rec["env"]["cycle"])
+    assert {k for k, cycles in held.items() if cycles != set(range(int(CYCLES)))} == set()
+    assert len(held) == 11  # the world state, ME's percepts, beliefs, intention, actions and
+    #                         goal list, the stats of the world, goals and ME's three stages
+    assert all("after" not in h for g in s["goals"] for h in g["history"])
+
+
+def sigint_taken(pid: int) -> bool:
+    """Whether `pid` is the launcher (no longer the shell that starts it) and has its own
+    SIGINT handler set."""
+    try:
+        argv = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    caught = next(int(x.split()[1], 16) for x in status.splitlines() if x.startswith("SigCgt"))
+    return argv[0] != b"sh" and b"launch" in argv and bool(caught & 1 << signal.SIGINT - 1)
+
+
+def test_a_sigint_while_the_launcher_starts_stops_it_before_it_starts_anything(teleo):
+    """Drill d1c: a launch started with `&` from `sh -c` has SIGINT ignored (POSIX); one
+    sent while it was still importing was lost and the run went on. It is kept now, from
+    the first moment the command runs, and the launch ends at once, having started nothing."""
+    out = teleo.run_dir / "bg.out"
+    shell = subprocess.Popen(["sh", "-c", f"{TELEO[0]} launch {scenario(teleo.run_dir)} "
+                              f"--cycles 0 > {out} 2>&1 & echo $!; wait $!; echo $?"],
+                             env=teleo.env, stdout=subprocess.PIPE, text=True)
+    pid = int(shell.stdout.readline())
+    try:
+        assert wait_for(lambda: sigint_taken(pid), 60)
+        os.kill(pid, signal.SIGINT)
+        code = shell.communicate(timeout=60)[0].split()[-1]
+    finally:
+        kill_all([pid])
+    assert code == "130", out.read_text()
+    assert out.read_text().splitlines()[-1] == ("interrupted before the run started: no "
+                                                "process was started")
+    assert not (teleo.run_dir / "runs").exists() and teleo.run_files() == []
+
+
+def test_a_second_signal_while_the_run_stops_does_not_break_off_the_stop(teleo):
+    """Ctrl-C pressed again, or a `teleo stop` after a Ctrl-C: the stop still goes to its
+    end (registry entry, record, summary) and says nothing of a KeyboardInterrupt."""
+    launcher, info = start(teleo, "--cycles", "0")
+    try:
+        wait_cycles(info, 20)
+        launcher.send_signal(signal.SIGINT)
+        assert wait_for(lambda: "interrupted: stopping the run" in teleo.launch_output(), 30)
+        launcher.send_signal(signal.SIGINT)
+        launcher.send_signal(signal.SIGTERM)
+        assert launcher.wait(60) == 0, teleo.launch_output()
+    finally:
+        kill_all(info["pids"].values())
+    s = summary(teleo)
+    assert s["status"] == "completed" and s["cycles"] == cycles(info)
+    assert "Traceback" not in teleo.launch_output() and teleo.run_files() == []
+    assert pids_alive(info["pids"].values()) == []

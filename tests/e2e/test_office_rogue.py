@@ -1,9 +1,11 @@
 """ROGUE (seed 003) over the real processes: `teleo launch` runs the office world, the
 robot's perception, inference and executive (with the planner, `mechanism = "rogue"`) and
 the goal-entry process on zenoh. Figure 6 with the second request scripted through the
-goal-entry process, and posted by `teleo goal post` once the robot is on its way; and a
-long run of 20 requests during which the executive and the goal-entry process are killed
-with SIGKILL: every request ends achieved or failed with its reason, none is lost."""
+goal-entry process, and posted by `teleo goal post` once the robot is on its way; Figure 7
+with the seed's prefer rule alone (the failure memory backtracks from the occupied room),
+the same operators as `teleo simulate`; and a long run of 20 requests during which the
+executive and the goal-entry process are killed with SIGKILL: every request ends achieved or
+failed with its reason, none is lost."""
 
 from __future__ import annotations
 
@@ -14,6 +16,8 @@ from pathlib import Path
 
 import pytest
 from e2e_helpers import FIXTURES, ROOT, Teleo, interrupt, wait_for
+
+from tests.lang.planning.office_runs import FIGURE_7, prefer_only
 
 FIGURE_6 = [
     "<goto-pickup-loc mitchell r-5303>", "<acquire-item r-5303 mitchell mail-mitchell>",
@@ -98,6 +102,37 @@ def test_figure_6_with_the_request_posted_by_teleo_goal_post(teleo):
     assert [a["step"] for a in plan["executed"] if a["result"] == "verified"] == FIGURE_6
     assert {a["result"] for a in plan["executed"]} <= {"verified", "interrupted"}
     assert (plan["executed_m"], plan["fcfs_m"]) == (84.0, 103.0)
+
+
+def test_figure_7_with_the_prefer_rule_alone_over_the_real_processes(tmp_path):
+    """Issue 23: no AVOID-OCCUPIED-CONF-ROOMS rule; r-5309 is found occupied, the choice is
+    excluded, and the planner backtracks to r-5311, as `teleo simulate` does."""
+    program = prefer_only(tmp_path)
+    text = (ROOT / "scenarios" / "office_figure7.toml").read_text()
+    scenario = tmp_path / "figure7_prefer_only.toml"
+    scenario.write_text(text.replace('"programs/office_rogue.tlp"', f'"{program}"'))
+    teleo = Teleo(tmp_path)
+    done = teleo("launch", str(scenario), "--summary", str(tmp_path / "launch.json"),
+                 timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    launched = json.loads((tmp_path / "launch.json").read_text())
+    sim = teleo("simulate", str(scenario), "--no-record", "--json", timeout=300)
+    assert sim.returncode == 0, sim.stdout + sim.stderr
+    simulated = json.loads(sim.stdout)
+    for summary in (launched, simulated):
+        plan = summary["planner"]["ME"]
+        assert [(a["step"], a["result"]) for a in plan["executed"]] == FIGURE_7
+        assert [g["status"] for g in summary["goals"]] == ["achieved"]
+        (x,) = plan["excluded"]
+        assert (x["id"], x["step"], x["achieves"], x["depends"], x["opened"]) == (
+            "g1", "<observe-conference-room r-5309>", "(room-empty r-5309)",
+            ["(room-occupied r-5309)"], -1)
+        assert not any("AVOID-OCCUPIED" in e for e in plan["log"])
+    assert _gotos(launched) == ["r-5309", "r-5311"]
+    assert "ME: choices excluded by failed steps (failure memory): 1" in done.stdout
+    assert "g1 <observe-conference-room r-5309> for (room-empty r-5309) at cycle 124: " \
+        "(room-empty r-5309) did not hold after it, (room-occupied r-5309) observed; stands " \
+        "while (room-occupied r-5309) holds" in done.stdout
 
 
 def test_twenty_requests_through_kills_of_the_executive_and_the_goal_entry(teleo):

@@ -204,8 +204,8 @@ def test_a_replayed_record_shows_in_the_view(demo, tmp_path):
             assert played.returncode == 0, played.stderr
             sent = len(RunRecord(path).records())   # 11 a cycle, and any re-sent (a stall)
             assert sent >= CYCLES * 11
-            assert f"replayed {sent} messages of run {summary['run']} to router " \
-                   f"{router.endpoint}" in played.stderr
+            assert f"replayed {sent} messages ({CYCLES} cycles) of run {summary['run']} to " \
+                   f"router {router.endpoint}" in played.stderr
 
             def status() -> dict:
                 return json.loads(urllib.request.urlopen(url + "api/status", timeout=30).read())

@@ -1,7 +1,8 @@
 """Finding and stopping runs (rough edges 3 and 4): two launches side by side each keep their
 own run file, `teleo ps` lists both with their processes, every tool finds a run the same
 way from any directory and says which it reached, `teleo stop` stops one run and cleans up
-after a launcher that died."""
+after a launcher that died; a run stopped by a signal leaves no entry, and the next launch
+removes those a killed launcher left."""
 
 from __future__ import annotations
 
@@ -10,8 +11,11 @@ import os
 import signal
 import subprocess
 
+import pytest
 from e2e_helpers import TELEO, Teleo, wait_for
 from fault_helpers import kill_all, pids_alive, scenario, wait_cycles
+
+from tools import runfile
 
 
 def anywhere(teleo: Teleo, *args: str) -> subprocess.CompletedProcess:
@@ -50,7 +54,7 @@ def test_two_runs_side_by_side_are_listed_found_by_name_and_stopped_one_by_one(t
         assert unsure.returncode != 0 and "2 runs are running" in unsure.stderr
         named = anywhere(teleo, "goal", "list", "--run", other)
         assert named.returncode == 0 and "g1" in named.stdout
-        assert f"run {other}: router tcp/127.0.0.1:" in named.stderr
+        assert named.stderr.startswith(f"run {other} (router tcp/127.0.0.1:")
         wait_cycles(info, 5)
         echoed = anywhere(teleo, "echo", "world/state", "--count", "2", "--run", info["run"])
         assert echoed.returncode == 0, echoed.stderr
@@ -116,3 +120,35 @@ def test_tools_say_where_they_looked_when_no_run_is_there(teleo):
     assert "Traceback" not in done.stderr
     echoed = anywhere(teleo, "echo", "**", "--seconds", "1")
     assert echoed.returncode != 0 and "no running teleo launch found" in echoed.stderr
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_a_run_stopped_by_a_signal_takes_its_entry_out_of_the_registry(teleo, sig):
+    """Trial #1: a run stopped by Ctrl-C or SIGTERM (the tutorial's `kill -TERM %1`) stayed
+    in `teleo ps` as STALE, and a bare `teleo stop` then refused. Only SIGKILL leaves one."""
+    launcher = teleo.start("launch", str(scenario(teleo.run_dir)), "--cycles", "0")
+    info = teleo.run_info()
+    try:
+        wait_cycles(info, 10)
+        launcher.send_signal(sig)
+        assert launcher.wait(60) == 0, teleo.launch_output()
+    finally:
+        kill_all(info["pids"].values())
+    assert teleo.run_files() == []
+    assert anywhere(teleo, "ps").stdout.startswith("no runs registered in ")
+    stopped = anywhere(teleo, "stop")
+    assert stopped.returncode == 1 and "no runs registered in " in stopped.stderr
+
+
+def test_the_next_launch_removes_the_entries_of_runs_nothing_is_left_of(teleo, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(teleo.run_dir))
+    gone = subprocess.Popen(["true"])
+    gone.wait()
+    runfile.write(runfile.RunInfo("hold-speed-0ld0ne", "tcp/127.0.0.1:1", gone.pid, ("ME",),
+                                  str(teleo.run_dir / "runs" / "hold-speed-0ld0ne"),
+                                  "hold.toml", started=1.0))
+    launcher = teleo.start("launch", str(scenario(teleo.run_dir)), "--cycles", "30")
+    assert launcher.wait(120) == 0, teleo.launch_output()
+    assert (f"removed the stale entry of run hold-speed-0ld0ne (its launcher {gone.pid} is "
+            "gone, and nothing of the run is left)") in teleo.launch_output()
+    assert teleo.run_files() == []

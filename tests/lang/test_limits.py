@@ -108,16 +108,28 @@ def test_a_goal_of_a_concept_defined_with_two_arities_is_an_error_not_a_crash():
                                 "1 at p.tlp:1:12")
 
 
-def test_an_empty_program_loads_with_a_warning():
-    program = load_program_text("; only a comment\n", "empty.tlp")
+EMPTY = ("the file holds no forms (an empty program): expected (concepts ...), (skills ...) "
+         "or (goals ...)")
+
+
+@pytest.mark.parametrize("text", ["", "; only a comment\n", "  \n\n\t\n"])
+def test_an_empty_program_is_an_error(text):
+    """Issue 24, #17: it loaded with a warning, and a run of it "completed" 0 of 0 goals."""
+    with pytest.raises(ProgramError) as info:
+        load_program_text(text, "empty.tlp")
+    assert str(info.value) == f"empty.tlp:1:1: {EMPTY}"
+    with pytest.raises(ProgramError, match="an empty program"):   # every file of it empty
+        load_program_text(text, "p.tlp", (text, "more.tlp"))
+    program = load_program_text("(concepts ((a ?x) :percepts ((o ?x))))", "p.tlp",
+                                (text, "more.tlp"))               # one file of several: a warning
     assert [str(w) for w in program.warnings] == [
-        "empty.tlp:1:1: warning: the file holds no forms (empty program)"]
+        "more.tlp:1:1: warning: the file holds no forms (the program's other files do)"]
 
 
 @pytest.mark.parametrize("goal, message", [
-    ("(" * 100, "1:65: lists nested deeper than 64 levels"),
+    ("(" * 100, "column 65: lists nested deeper than 64 levels"),
     ("(package-delivered " + "P" * 4100 + ")", "longer than 4096 characters"),
-    ("(package-delivered 1e999)", "1:20: 1e999: number inf is not finite"),
+    ("(package-delivered 1e999)", "column 20: 1e999: number inf is not finite"),
     ("(package-delivered " + "7" * 5000 + ")", "longer than 4096 characters"),
 ])
 def test_goals_within_the_limits(goal, message):
@@ -173,12 +185,12 @@ def test_teleo_check_reports_deep_nesting_and_bad_bytes_without_a_traceback(tmp_
         f"{digits}: 1 error"]
 
 
-def test_teleo_check_warns_about_an_empty_program(tmp_path):
+def test_teleo_check_refuses_an_empty_program(tmp_path):
     empty = tmp_path / "empty.tlp"
     empty.write_text("")
     done = teleo("check", str(empty))
-    assert done.returncode == 0
-    assert f"{empty}:1:1: warning: the file holds no forms (empty program)" in done.stderr
+    assert done.returncode == 1 and "Traceback" not in done.stderr
+    assert done.stderr.splitlines() == [f"{empty}:1:1: {EMPTY}", f"{empty}: 1 error"]
 
 
 def test_teleo_launch_refuses_a_program_that_is_not_utf8_before_starting(tmp_path):

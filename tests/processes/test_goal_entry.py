@@ -107,3 +107,31 @@ def test_the_store_mirrors_a_pending_goals_note_so_goal_list_shows_the_hint(entr
     assert entry.store.get("g1").note == hint
     listed = entry.answer(GoalRequest(ENV, "list", "ME"))[2]
     assert listed[0]["note"] == hint
+
+
+def test_a_goal_that_does_not_read_is_refused_naming_it_once_and_its_column(entry):
+    # trial 2026-12-02 #15: "refused: (cruising ME: refused for ME: goal '(cruising ME':
+    # 1:1: '(' is never closed" echoed the goal twice, with a position as in a file
+    ok, reason = ask(entry, "post", "(cruising ME", 5)
+    assert not ok
+    assert reason == "ME cannot take goal '(cruising ME': column 1: '(' is never closed " \
+                     "(missing ')')"
+    ok, reason = ask(entry, "post", "(flying ME)", 5)
+    assert reason == "ME cannot take goal (flying ME): undefined concept 'flying'"
+    ok, reason = ask(entry, "post", "(package-delivered PACKET1 (x)", 5)
+    assert reason.count("(package-delivered PACKET1 (x)") == 1 and "column 1:" in reason
+
+
+@pytest.mark.parametrize("op", ["cancel", "priority"])
+def test_a_program_goal_cannot_be_cancelled_or_reprioritised_and_says_so(entry, op):
+    # trial 2026-12-02 #16: `teleo goal cancel p1` said "no goal 'p1'"
+    ok, reason = ask(entry, op, priority=7, goal_id="p1")
+    what = "cancelled" if op == "cancel" else "given another priority"
+    assert not ok and reason.startswith(
+        f"p1 is a program goal of ME, (not-hitting-pedestrians ?self): it cannot be {what}")
+    ok, reason = ask(entry, op, priority=7, goal_id="p2")
+    assert not ok and reason.startswith("p2 is a program goal of ME, (at-desired-speed ?self)")
+    ok, reason = ask(entry, op, priority=7, goal_id="p3")   # driving.tlp has two
+    assert not ok and reason == "no goal 'p3': the program goals of ME are p1..p2"
+    assert ask(entry, "post", "(package-delivered PACKET1)", 5)[0]
+    assert ask(entry, op, priority=7, goal_id="g1")[0]      # a user goal still can

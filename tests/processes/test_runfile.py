@@ -1,16 +1,21 @@
 """The run registry (tools/runfile.py): one file per run, readable by its owner only, found
 the same way by every tool from any directory; a second run never takes over the first's
-file; a run whose launcher has exited is told apart."""
+file; a run whose launcher has exited is told apart, and its entry removed (`teleo ps
+--prune`, the next launch) once nothing of it is left, or stopped with `teleo stop --all`."""
 
 from __future__ import annotations
 
+import signal
 import stat
 import subprocess
 import sys
+from dataclasses import replace
 
 import pytest
+from click.testing import CliRunner
 
 from tools import runfile
+from tools.cli import cli
 
 
 @pytest.fixture
@@ -93,3 +98,55 @@ def test_a_secured_run_gives_tools_the_operators_credentials(registry, launcher)
                               credentials="/r/secrets/operator.cred.json")
     cfg = runfile.bus_config(secured)
     assert cfg.mode.value == "client" and cfg.credentials.endswith("operator.cred.json")
+
+
+@pytest.fixture
+def leftover():
+    """A process left of a run whose launcher is gone: its command line names the run."""
+    proc = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)", "run-left"])
+    yield proc
+    proc.kill()
+    proc.wait()
+
+
+def stale_runs(launcher: int, leftover: int) -> None:
+    """Three entries: one running, one stale with nothing left, one stale with a process."""
+    runfile.write(info("live", launcher))
+    runfile.write(info("run-gone", exited_pid(), started=2.0))
+    runfile.write(replace(info("run-left", exited_pid(), started=3.0),
+                          pids={"ME.inference": leftover, "world": exited_pid()}))
+
+
+def test_prune_removes_the_stale_entries_nothing_is_left_of(registry, launcher, leftover):
+    stale_runs(launcher, leftover.pid)
+    removed, kept = runfile.prune()
+    assert [i.run for i in removed] == ["run-gone"] and [i.run for i in kept] == ["run-left"]
+    assert [(i.run, up) for i, up in runfile.all_runs()] == [("live", True),
+                                                             ("run-left", False)]
+    assert runfile.leftovers(kept[0]) == [leftover.pid]
+
+
+def test_ps_prune_says_which_entries_it_removed_and_which_it_kept(registry, launcher,
+                                                                    leftover):
+    stale_runs(launcher, leftover.pid)
+    done = CliRunner().invoke(cli, ["ps", "--prune"])
+    assert done.exit_code == 0, done.output
+    lines = done.output.splitlines()
+    assert lines[0].startswith("removed the stale entry of run run-gone (its launcher ")
+    assert lines[1].startswith("kept the stale entry of run run-left: its launcher ")
+    assert f"(pids {leftover.pid}); `teleo stop run-left` stops them" in lines[1]
+    assert "live  launcher" in done.output and "run-gone" not in "".join(lines[2:])
+
+
+def test_stop_all_stops_what_is_left_of_every_run(registry, leftover):
+    runfile.write(info("run-gone", exited_pid()))
+    runfile.write(replace(info("run-left", exited_pid(), started=2.0),
+                          pids={"ME.inference": leftover.pid}))
+    done = CliRunner().invoke(cli, ["stop", "--all"])
+    assert done.exit_code == 0, done.output
+    assert leftover.wait(10) == -signal.SIGTERM
+    assert "stopped 1 process(es) of run-left left without a launcher" in done.output
+    assert "run run-gone was not running" in done.output
+    assert runfile.all_runs() == []
+    both = CliRunner().invoke(cli, ["stop", "--all", "run-left"])
+    assert both.exit_code == 2 and "give RUN or --all, not both" in both.output

@@ -13,7 +13,7 @@ CRASH = "import sys; print('started'); sys.exit(3)"
 SLEEPER = ("import signal, sys, time\n"
            "def bye(*_):\n"
            "    open(sys.argv[1], 'a').write(sys.argv[2] + '\\n'); sys.exit(0)\n"
-           "signal.signal(signal.SIGINT, bye)\n"
+           "signal.signal(signal.SIGTERM, bye)\n"
            "print('ready', flush=True)\n"
            "while True: time.sleep(0.05)\n")
 
@@ -70,9 +70,9 @@ def test_stop_all_can_keep_the_router_until_the_record_is_drained(tmp_path):
     assert order.read_text().split() == ["world", "goals", "router"]
 
 
-# Ignores SIGINT (and is then SIGSTOPped by the test): only a kill ends it.
+# Ignores SIGTERM (and is then SIGSTOPped by the test): only a kill ends it.
 STUBBORN = ("import signal, time\n"
-            "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+            "signal.signal(signal.SIGTERM, signal.SIG_IGN)\n"
             "print('ready', flush=True)\n"
             "while True: time.sleep(0.05)\n")
 
@@ -103,3 +103,40 @@ def test_a_restart_gets_its_restart_args_and_the_launchers_pid(tmp_path):
     assert [(e.returncode, e.restarted) for e in exits] == [(9, True), (0, True)]
     mine = str(os.getpid())
     assert [x.split() for x in marker.read_text().splitlines()] == [[mine], ["--resume", mine]]
+
+
+# Stops cleanly on SIGTERM, saying so, unless it is stopped (SIGSTOP) when the stop comes.
+POLITE = ("import signal, sys, time\n"
+          "def bye(*_):\n"
+          "    print('stopped cleanly', flush=True); sys.exit(0)\n"
+          "signal.signal(signal.SIGTERM, bye)\n"
+          "print('ready', flush=True)\n"
+          "while True: time.sleep(0.05)\n")
+
+
+def test_a_stopped_process_is_killed_at_once_and_the_others_still_stop_cleanly(tmp_path):
+    """Ctrl-C during a stall (drill d2b): the stop never waits on a SIGSTOPped stage (it
+    has nothing to finish); the others get their SIGTERM and stop in order."""
+    sup = Supervisor(tmp_path / "logs")
+    for name in ("stalled", "goals"):
+        sup.start(ProcSpec(name, (sys.executable, "-c", POLITE)))
+    logs = tmp_path / "logs"
+    assert wait_until(lambda: all("ready" in (logs / f"{n}.log").read_text()
+                                  for n in ("stalled", "goals")), timeout=30)
+    os.kill(sup.pid("stalled"), signal.SIGSTOP)
+    codes = sup.stop_all([], rest_s=60)
+    assert codes == {"stalled": -signal.SIGKILL, "goals": 0}
+    assert "stopped cleanly" not in (logs / "stalled.log").read_text()
+    assert "stopped cleanly" in (logs / "goals.log").read_text()
+
+
+def test_a_process_still_starting_stops_quietly(tmp_path):
+    """A process stopped before it has set its handlers (still importing: the world in
+    drill d1c) ends without a KeyboardInterrupt traceback in its log."""
+    sup = Supervisor(tmp_path / "logs")
+    sup.start(ProcSpec("world", (sys.executable, "-c",
+                                 "import time; print('importing', flush=True); time.sleep(60)")))
+    log = tmp_path / "logs" / "world.log"
+    assert wait_until(lambda: "importing" in log.read_text(), timeout=30)
+    assert sup.stop_all(["world"], first_s=30) == {"world": -signal.SIGTERM}
+    assert "Traceback" not in log.read_text()

@@ -5,6 +5,7 @@ refused with file:line:col or the key, never a traceback (item 1)."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -181,3 +182,134 @@ def test_a_scenario_goal_may_be_a_conjunction_and_a_bad_one_is_refused(tmp_path)
                                             'goal = "(and (on C A) (onn A B))"'), "d.toml")
     with pytest.raises(ScenarioError, match=r"undefined concept 'onn' \(conjunct \(onn A B\)\)"):
         load_checked(bad)
+
+
+# -- the 2026-12-02 trial's defects (issue 24, #2, #8, #9, #17) -------------------------------
+
+@pytest.mark.parametrize("name", ["../../etc/x y", "a/b", "x y", "", "a\nb", "a*b", "n" * 65])
+def test_a_run_name_that_cannot_name_keys_and_a_folder_is_refused_by_check(tmp_path, name):
+    """#2: check said ok, simulate crashed with a traceback after making a folder outside
+    out/runs, launch blamed a --run option nobody gave."""
+    path = scenario(tmp_path, DEMO.replace('name = "driving-demo"', f"name = {json.dumps(name)}"))
+    result = invoke("check", path)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    shown = repr(name) if len(repr(name)) <= 60 else repr(name)[:57] + "..."  # cut at 60
+    assert result.output == (f"{path}: [run].name: expected a name of at most 64 characters "
+                             "without spaces, control characters or any of / * $ ? # @ (it "
+                             f"names the run's bus keys and folder), got {shown}\n")
+
+
+@pytest.mark.parametrize("command", ["simulate", "launch"])
+def test_simulate_and_launch_of_such_a_name_write_nothing_anywhere(tmp_path, monkeypatch,
+                                                                    command):
+    work = tmp_path / "deep" / "w"
+    work.mkdir(parents=True)
+    path = scenario(tmp_path, DEMO.replace('name = "driving-demo"', 'name = "../../etc/x y"'))
+    monkeypatch.chdir(work)
+    monkeypatch.delenv("TELEO_RUN_DIR", raising=False)
+    monkeypatch.setenv("XDG_RUNTIME_DIR", str(tmp_path / "xdg"))
+    result = invoke(command, path, "--cycles", "3")
+    assert result.exit_code == 1 and "Traceback" not in result.output, result.output
+    assert result.output.startswith(f"Error: {path}: [run].name: expected a name of at most")
+    assert "--run" not in result.output
+    assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == [
+        Path("deep"), Path("deep/w"), Path("s.toml")]      # nothing written, here or above
+
+
+def test_launch_names_the_option_or_the_field_a_bad_run_id_came_from(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    result = invoke("launch", scenario(tmp_path, DEMO), "--run", "a b")
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    assert result.output == "Error: --run: run id 'a b' contains forbidden character(s) ' '\n"
+
+
+def test_check_reports_every_error_of_a_scenario_at_once(tmp_path):
+    """#8: only the first error was reported; the next showed after mending it."""
+    bad = scenario(tmp_path, DEMO.replace('street = "B", from', 'street = "Z", from')
+                   .replace('goal = "(package-delivered PACKET1)"', 'goal = "(cruising ME"'))
+    result = invoke("check", bad)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    assert result.output.splitlines() == [
+        f"{bad}: [world] car ME: unknown street 'Z'",
+        f"{bad}: [[goals]] #1: goal '(cruising ME': column 1: '(' is never closed (missing ')')",
+        f"{bad}: 2 errors"]
+    agents = DEMO[DEMO.index("[[agents]]"):DEMO.index("[[goals]]")]
+    typo = scenario(tmp_path, DEMO.replace("[run]\n", "[run]\ntypo_key = 1\n")
+                    .replace("[[goals]]", agents + "[[goals]]", 1), "typo.toml")
+    doc = json.loads(invoke("check", "--json", typo).output)
+    assert [e["message"] for e in doc["files"][0]["errors"]] == [
+        f"{typo}: [run]: unknown field(s) ['typo_key']; expected ['cycles', 'deadline', "
+        "'goals_respawn', 'mode', 'name', 'render_every', 'secure', 'seed']",
+        f"{typo}: [[agents]]: agent ids must be unique, got ['ME', 'ME']"]
+
+
+def test_what_follows_from_an_error_is_not_reported_again(tmp_path):
+    """A goal of an agent whose entry is wrong is not checked against a program it has not."""
+    bad = scenario(tmp_path, DEMO.replace('program = "', 'program = 7\nx = "', 1)
+                   .replace("[[goals]]", '[[goals]]\nop = "cancel"\ngoal_id = "g9"', 1))
+    with pytest.raises(ScenarioError) as info:
+        load_checked(bad)
+    assert info.value.errors[:2] == (
+        f"{bad}: [[agents]] #1: unknown field(s) ['x']; expected ['id', 'mechanism', "
+        "'program', 'respawn', 'solver']",
+        f"{bad}: [[agents]] #1.program: expected str, got 7")
+    assert len(info.value.errors) == 3 and "[[goals]] #1" in info.value.errors[2]
+
+
+@pytest.mark.parametrize("field, value, message", [
+    ("cycles", "-5", "[run].cycles: expected >= 0, got -5"),
+    ("deadline", "0", "[run].deadline: expected > 0 [s], got 0"),
+    ("deadline", "-0.5", "[run].deadline: expected > 0 [s], got -0.5"),
+    ("render_every", "0", "[run].render_every: expected >= 1, got 0"),
+    ("goals_respawn", "-1", "[run].goals_respawn: expected >= 0, got -1"),
+    ("seed", "1.5", "[run].seed: expected int, got 1.5"),
+    ("cycles", '"many"', "[run].cycles: expected int, got 'many'"),
+    ("secure", "1", "[run].secure: expected true or false, got 1"),
+    ("mode", '"fast"', "[run].mode: expected 'lockstep' or 'realtime', got 'fast'"),
+])
+def test_each_run_field_in_error_names_itself_and_its_value(tmp_path, field, value, message):
+    """#9: `[run]: expected cycles >= 0, deadline > 0 [s], render_every >= 1` named neither."""
+    run = DEMO[DEMO.index("[run]"):DEMO.index("[world]")]
+    lines = [line for line in run.splitlines() if not line.startswith(f"{field} =")]
+    path = scenario(tmp_path, DEMO.replace(run, "\n".join([*lines, f"{field} = {value}", ""])))
+    result = invoke("check", path)
+    assert result.exit_code == 1 and "Traceback" not in result.output
+    assert result.output == f"{path}: {message}\n"
+
+
+@pytest.mark.parametrize("text, message", [
+    ("run = 5\n", "[run]: expected a table, got 5"),
+    ("agents = 5\n", "[[agents]]: expected an array of tables ([[agents]] entries), got 5"),
+    ("agents = [5]\n", "[[agents]] #1: expected a table, got 5"),
+    ("goals = 3\n[[agents]]\nid = \"ME\"\nprogram = \"x.tlp\"\n",
+     "[[goals]]: expected an array of tables"),
+    ("world = 1\n[[agents]]\nid = \"ME\"\nprogram = \"x.tlp\"\n",
+     "[world]: expected a table, got 1"),
+    ("[[events]]\nat_cycle = -1\nkind = \"block\"\n", "[[events]] #1.at_cycle: expected >= 0, "
+                                                     "got -1"),
+    ("[[agents]]\nid = \"M E\"\nprogram = \"x.tlp\"\n", "[[agents]] #1.id: expected an id "
+                                                        "without spaces"),
+])
+def test_tables_of_the_wrong_shape_are_an_error_not_a_traceback(tmp_path, text, message):
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    with pytest.raises(ScenarioError, match=re.escape(message)):
+        load_checked(path)
+    for command in ("check", "simulate"):
+        result = invoke(command, path)
+        assert result.exit_code == 1 and "Traceback" not in result.output, result.output
+
+
+def test_a_scenario_whose_program_is_empty_is_refused(tmp_path, monkeypatch):
+    """#17: an empty program was accepted with exit 0, and its run 'completed' 0 of 0."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    empty = tmp_path / "empty.tlp"
+    empty.write_text("; nothing yet\n")
+    path = scenario(tmp_path, DEMO[:DEMO.index("[[goals]]")].replace(str(DRIVING), str(empty))
+                    .replace('"programs/driving.tlp"', f'"{empty}"'))
+    for command in ("check", "simulate"):
+        result = invoke(command, path)
+        assert result.exit_code == 1 and "Traceback" not in result.output, result.output
+        assert f"agent ME: program {empty}:\n{empty}:1:1: the file holds no forms (an empty " \
+               "program)" in result.output
+    assert not (tmp_path / "runs").exists()

@@ -58,7 +58,7 @@ def test_shell_completion_works_as_documented():
     (["echo", ""], "key expression must be a non-empty string"),
     (["echo", "teleo//x"], "empty chunk (a leading, trailing or double slash)"),
     (["echo", "teleo/a*"], "stands alone in a chunk"),
-    (["record", "f.rec", "--run", "*"], "run '*' contains forbidden character(s) '*'"),
+    (["record", "f.mcap", "--run", "*"], "run '*' contains forbidden character(s) '*'"),
 ])
 def test_bad_bus_inputs_are_usage_errors_not_tracebacks(args, message, tmp_path):
     result = CliRunner().invoke(cli, args)

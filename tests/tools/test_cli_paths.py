@@ -179,7 +179,7 @@ def test_join_to_a_router_that_does_not_answer(here):
     (["echo", "agent/ME/actions", "--seconds", "0"], "--seconds"),
     (["record", "r.mcap", "--count", "0"], "--count"),
     (["record", "r.mcap", "--seconds", "-1"], "--seconds"),
-    (["replay", "r.mcap", "--speed", "-1"], "--speed"),
+    (["replay", "r.mcap", "--rate", "-1"], "--rate"),
     (["inspect", "--seconds", "-1"], "--seconds"),
     (["render", str(DRIVING), "--out", "r.png", "--steps", "-1"], "--steps"),
     (["render", str(DRIVING), "--out", "r.png", "--scale", "-1"], "--scale"),

@@ -8,6 +8,7 @@ import importlib
 import re
 from pathlib import Path
 
+import click
 import pytest
 
 from tools.cli import cli
@@ -42,7 +43,7 @@ def test_every_teleo_command_the_docs_name_exists():
     named = set()
     for path in DOCS:
         named |= {m for m in re.findall(r"`teleo ([a-z]+)", path.read_text())}
-    assert named - set(cli.commands) == set()
+    assert named - set(cli.list_commands(None)) == set()
     assert {"check", "simulate", "launch", "goal", "event", "inspect"} <= named
 
 
@@ -52,3 +53,27 @@ def test_every_file_the_docs_point_to_exists():
     missing = {(path.name, ref) for path in DOCS for ref in pattern.findall(path.read_text())
                if not (ROOT / ref).exists() and ref != "scenarios/x.toml"}   # an example name
     assert missing == set()
+
+
+def _readme_rows() -> list[tuple[click.Command, str]]:
+    """(command, the row's description) of each row of the README's command table."""
+    rows = []
+    for line in (ROOT / "README.md").read_text().splitlines():
+        match = re.match(r"\| `teleo ([a-z]+)(?: ([a-z]+))?[^`]*`.*?\| (.*) \|$", line)
+        if match and match.group(1) in cli.commands:
+            command = cli.commands[match.group(1)]
+            sub = getattr(command, "commands", {}).get(match.group(2) or "")
+            rows.append((sub or command, match.group(3)))
+    return rows
+
+
+def test_readme_rows_say_a_flag_prints_not_that_it_writes_a_file():
+    """Issue 24, #19: "`--percepts` writes that cycle's percepts" sent a user to give it a
+    file; it is a flag that prints to stdout."""
+    rows = _readme_rows()
+    assert len(rows) >= 15
+    wrong = [(command.name, option.opts[0]) for command, text in rows
+             for option in command.params
+             if isinstance(option, click.Option) and option.is_flag
+             and re.search(rf"`{re.escape(option.opts[0])}` writes", text)]
+    assert wrong == []

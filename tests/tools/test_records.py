@@ -13,7 +13,8 @@ from bus import keys
 from bus.messages import Envelope, GoalList, Intention, Percepts, WorldEvent, WorldState
 from bus.record import message_record
 from tools.cli import cli
-from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, coverage, locate
+from tools.record_coverage import coverage
+from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, locate
 
 ROOT = Path(__file__).resolve().parents[2]
 FIGURE3 = ROOT / "scenarios" / "blocks_figure3.toml"
@@ -49,9 +50,12 @@ def test_the_summary_says_which_share_of_the_run_its_record_lacks(tmp_path) -> N
         for cycle in (0, 1, 1, 3, 4):                        # 1 twice (a re-sent state), 2 lost
             _add(rec, keys.world_state("r1"), WorldState(env(cycle), {"time": cycle}, {}, []))
     assert coverage(tmp_path, 5) == {"file": str(tmp_path / RECORD_FILE), "world_states": 4,
-                                     "missing": 1}
-    assert coverage(tmp_path, 4)["missing"] == 0
-    (tmp_path / RECORD_FILE).write_bytes(b"\x89MCAP0\r\n")   # never closed: count unknown
+                                     "missing": 1, "gaps": [[2, 2]]}
+    assert coverage(tmp_path, 2)["missing"] == 0             # the cycles 0 and 1 are there
+    assert coverage(tmp_path, 7)["gaps"] == [[2, 2], [5, 6]]   # the end never came
+    (tmp_path / RECORD_FILE).write_bytes(b"\x89MCAP0\r\n")   # never closed: read as it is
+    assert coverage(tmp_path, 5)["gaps"] == [[0, 4]]
+    (tmp_path / RECORD_FILE).write_bytes(b"not a record at all")
     assert coverage(tmp_path, 5)["missing"] is None
 
 
@@ -212,3 +216,26 @@ def test_explain_of_a_goal_finds_its_agent_in_a_run_of_several(tmp_path, monkeyp
         assert told.output.startswith(f"goal {goal_id} of {agent}: ")
     asked = runner.invoke(cli, ["explain", out["record"]])   # a decision: whose, then?
     assert asked.exit_code == 2 and "choose one with --agent" in asked.output
+
+
+def test_a_record_cut_at_any_byte_reads_as_far_as_it_goes(tmp_path) -> None:
+    """A record whose disk filled (or whose writer was killed) is cut anywhere, even inside
+    a record's header (drill full-disk: struct.error escaped the reader): it reads back
+    what it holds, a run of its first cycles, or says it is not a record; never a crash."""
+    env = lambda c: Envelope(1, "r1", c, "t", 99)  # noqa: E731
+    whole = tmp_path / "whole.mcap"
+    with RecordWriter(whole, "r1") as rec:
+        for cycle in range(60):
+            _add(rec, keys.world_state("r1"), WorldState(env(cycle), {"time": cycle,
+                                                                        "pad": "x" * 300},
+                                                         {}, []))
+    data = whole.read_bytes()
+    cut = tmp_path / RECORD_FILE
+    for end in range(0, len(data), 97):
+        cut.write_bytes(data[:end])
+        try:
+            held = sorted(r["env"]["cycle"] for _, r in RunRecord(cut).records())
+        except RecordError as exc:
+            assert "not a readable run record" in str(exc)
+            continue
+        assert held == list(range(len(held))), (end, held)

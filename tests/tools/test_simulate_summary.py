@@ -86,3 +86,84 @@ def test_a_scripted_event_the_world_refuses_fails_the_run(tmp_path, monkeypatch)
     assert summary["failures"] == ['scripted event {"kind": "block", "segment": "S999"} at '
                                    "cycle 2 refused by the world: inject: unknown segment "
                                    "'S999'"]
+
+
+def test_a_run_stops_at_the_end_of_the_first_cycle_its_until_accepts():
+    """simulate(until=...) ends a run once its work is done (bench/office.py)."""
+    from tools.simulate import simulate
+    from world.run_scenario import load_scenario
+
+    scenario = load_scenario(ROOT / "scenarios" / "office_figure6.toml")
+    whole = simulate(scenario)
+
+    def both_done(states) -> bool:
+        return len(states["ME"].planner.finished) == 2
+    cut = simulate(scenario, until=both_done)
+    end = next(k for k, r in enumerate(whole.records)
+               if r["ME"]["planner"]["finished"] and len(r["ME"]["planner"]["finished"]) == 2)
+    assert len(cut.records) == end + 1 < len(whole.records)
+    assert cut.records == whole.records[:end + 1]
+
+
+def test_the_summary_is_the_same_with_or_without_a_record(tmp_path, monkeypatch):
+    """Issue 24, #12: `--no-record` dropped each goal's history from the summary. A post, a
+    scripted cancel (the goal leaves the goal list) and a priority change, over random
+    cycles: the histories told in the loop are those the record gives."""
+    import random
+
+    from tools import records
+
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    rng = random.Random(11)
+    for k in range(3):
+        cancel, change = sorted(rng.sample(range(3, 40), 2))
+        path = scenario(tmp_path, f"""
+[[goals]]
+goal = "(package-delivered PACKET1)"
+priority = 5
+[[goals]]
+goal = "(package-delivered PACKET2)"
+priority = 6
+at_cycle = {rng.randrange(0, 3)}
+[[goals]]
+op = "priority"
+goal_id = "g2"
+priority = 4
+at_cycle = {change}
+[[goals]]
+op = "cancel"
+goal_id = "g1"
+force = true
+at_cycle = {cancel}
+""")
+        cycles = str(rng.randrange(40, 60))
+        runs = {}
+        for flag in ("", "--no-record"):
+            out = tmp_path / f"{k}{flag or 'record'}.json"
+            done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", cycles,
+                                            "--summary", str(out), *([flag] if flag else [])])
+            assert done.exit_code == 0, done.output
+            runs[flag] = (json.loads(out.read_text()), done.output)
+        (with_record, text), (without, bare) = runs[""], runs["--no-record"]
+        assert without["goals"] == with_record["goals"]
+        assert all(g["history"] for g in without["goals"])
+        assert records.with_history(without["goals"], Path(with_record["record"]).parent) \
+            == with_record["goals"]                              # as the record tells them
+        assert [line for line in bare.splitlines() if line.startswith("    g")] == \
+            [line for line in text.splitlines() if line.startswith("    g")]
+        assert (without["record"], with_record["record_missing"]) == (None, 0)
+
+
+def test_simulate_writes_its_summary_file_as_launch_does(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n')
+    out = tmp_path / "deep" / "summary.json"
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5", "--json",
+                                    "--summary", str(out), "--no-record"])
+    assert done.exit_code == 0
+    assert json.loads(out.read_text()) == json.loads(done.stdout)   # the --json object
+    assert f"summary written to {out}" in done.stderr
+    refused = CliRunner().invoke(cli, ["simulate", str(path), "--summary", str(tmp_path)])
+    assert refused.exit_code == 2 and "Traceback" not in refused.output
+    assert f"Error: Invalid value for '--summary': File '{tmp_path}' is a directory." \
+        in refused.output

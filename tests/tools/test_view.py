@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from bus import keys
 from tools.recorder import SimRecorder
 from tools.records import RecordWriter, RunRecord
 from tools.scenario_check import load_checked
@@ -61,7 +62,7 @@ def test_the_page_is_served_from_the_package_with_nothing_from_the_internet(serv
     url, _ = served
     ctype, html = _get(url)
     assert ctype.startswith("text/html") and b'<script src="/view.js">' in html
-    for name in ("view.js", "world.js", "view.css"):
+    for name in ("view.js", "panel.js", "world.js", "view.css"):
         _, body = _get(url + name)
         assert body == (STATIC / name).read_bytes()
     for path in STATIC.iterdir():
@@ -145,3 +146,97 @@ def test_the_office_floor_is_the_domains_own_picture(tmp_path) -> None:
     assert model.map["domain"] == "office" and not model.map["drawn"]
     assert "config" not in model.frame(11)["world"]
     assert scene.render_png(model.snapshots_for_render(11), "ME")[:4] == b"\x89PNG"
+
+
+def _cycle(model: ViewModel, cycle: int, goals: list[dict]) -> None:
+    """One cycle of a blocks run fed by hand: the world state and ME's intention."""
+    env = {"v": 1, "run": "hand-1", "cycle": cycle, "sender": "test", "sent_ns": 0}
+    snap = {"domain": "blocks", "cycle": cycle, "time": cycle / 10, "table": {"columns": 3},
+            "blocks": []}
+    model.add(keys.world_state("hand-1"), {"kind": "WorldState", "env": env, "snapshot": snap})
+    decision = {"cycle": cycle, "goals": goals, "goal_id": "", "path": [], "resources": [],
+                "actions": [], "parallel": [], "why": []}
+    model.add(keys.intention("hand-1", "ME"), {"kind": "Intention", "env": env,
+                                               "agent": "ME", "decision": decision})
+
+
+def test_a_failed_goal_stays_in_the_goal_table_of_every_later_cycle() -> None:
+    model = ViewModel()
+    goal = {"id": "g1", "goal": "(on A B)", "priority": 5, "bindings": {}, "instance": "(on A B)"}
+    for cycle in range(3):
+        _cycle(model, cycle, [{**goal, "status": "suspended", "note": "waits"}])
+    _cycle(model, 3, [{**goal, "status": "failed", "note": "(on A B): no plan"}])
+    for cycle in (4, 5):
+        _cycle(model, cycle, [])   # the executive has dropped it
+    assert [g["status"] for g in model.frame(2)["agents"]["ME"]["goals"]] == ["suspended"]
+    assert model.frame(3)["agents"]["ME"]["goals"][0]["status"] == "failed"
+    for cycle in (4, 5):
+        (row,) = model.frame(cycle)["agents"]["ME"]["goals"]
+        assert (row["id"], row["status"], row["failed_at"]) == ("g1", "failed", 3)
+        assert row["note"] == "(on A B): no plan"
+
+
+def test_the_run_state_says_live_ended_or_record(record) -> None:
+    model = ViewModel()
+    assert model.status(0)["state"] == "waiting"
+    _cycle(model, 0, [])
+    assert model.status(0)["state"] == "live"          # sending, no liveliness tokens
+    model.last_message -= 60
+    assert model.status(0)["state"] == "ended"         # a replay played to its end
+    model.set_presence(frozenset({"world", "ME.executive"}), {"world": 1, "ME.executive": 1})
+    assert model.status(0)["state"] == "live"
+    model.set_presence(frozenset(), {"world": 1, "ME.executive": 1})
+    status = model.status(0)
+    assert (status["state"], status["state_note"]) == ("ended", "no process of the run is "
+                                                                 "up any more")
+    recorded = ViewModel()
+    load_file(recorded, record)
+    assert recorded.status(0)["state"] == "record"
+
+
+def test_a_frame_of_a_record_has_the_beliefs_panel(served) -> None:
+    url, _ = served
+    why = json.loads(_get(url + "api/frame?cycle=12")[1])["agents"]["ME"]["why"]
+    assert why["program"].endswith("hold_speed.tlp") and why["warning"] == ""
+    assert why["count"] == len(why["beliefs"]) > 0
+
+
+def test_malformed_percepts_beliefs_or_paths_get_a_sentence_not_a_dead_page(record) -> None:
+    model = ViewModel()
+    load_file(model, record)
+    env = {"v": 1, "run": "hold-1", "cycle": 5, "sender": "test", "sent_ns": 0}
+    bad = [("percepts", {"kind": "Percepts", "percepts": [["man"], [1, 2]], "memory": []}),
+           ("beliefs", {"kind": "Beliefs", "beliefs": [[], 7]}),
+           ("intention", {"kind": "Intention", "decision": {
+               "goals": [{"id": "p1", "status": "active", "instance": "(((("}],
+               "path": ["x", {"where": 5, "bindings": []}], "parallel": 3}})]
+    for kind, body in bad:
+        model.add(f"teleo/hold-1/agent/ME/{kind}", {**body, "env": env, "agent": "ME"})
+        why = model.frame(5)["agents"]["ME"]["why"]
+        assert why["error"] or why["warning"] or why["goals"][0]["note"], (kind, why)
+    assert "do not read" in model.frame(5)["agents"]["ME"]["why"]["error"]
+
+
+def test_the_program_check_agrees_with_a_run_whose_scs_bodies_assert_facts(tmp_path) -> None:
+    """errands.tlp's bodies assert facts (seed 002's world model): a simulate record echoes
+    no agent memory, so the check infers with the model the previous decision held."""
+    scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
+    path = tmp_path / "errands.mcap"
+    with RecordWriter(path, "errands-1", {"scenario": str(scenario.path)}) as writer:
+        simulate(scenario, cycles=300, recorder=SimRecorder(writer, "errands-1"))
+    model = ViewModel()
+    load_file(model, path)
+    panels = [model.frame(c)["agents"]["ME"]["why"] for c in range(0, 300, 3)]
+    assert all(p["program"].endswith("errands.tlp") for p in panels)
+    assert [p["warning"] for p in panels if p["warning"]] == []
+    assert any(b.startswith("(served ME ") for p in panels for b in p["beliefs"])
+
+
+def test_an_intention_whose_decision_is_no_map_is_refused_and_the_cycle_still_shown() -> None:
+    model = ViewModel()
+    _cycle(model, 0, [])
+    env = {"v": 1, "run": "hand-1", "cycle": 0, "sender": "test", "sent_ns": 0}
+    with pytest.raises(TypeError, match="Intention.decision: expected a map, got list"):
+        model.add(keys.intention("hand-1", "ME"), {"kind": "Intention", "env": env,
+                                                   "agent": "ME", "decision": [1, 2]})
+    assert model.frame(0)["agents"]["ME"]["goals"] == []   # the earlier decision stays

@@ -29,6 +29,27 @@ def test_render_a_scenario_to_png(tmp_path: Path) -> None:
     assert Image.open(tmp_path / "a.png").format == "PNG"
 
 
+def test_a_scenario_is_drawn_as_it_starts_unless_steps_are_asked_for(tmp_path: Path) -> None:
+    """Issue 24, #14: the office robot was captioned "cycle 100, idle, travelled 0.0 m", as
+    if it had idled for 50 s, though no agent had run. Now cycle 0, and the line says that no
+    agent ran; with --steps the world moved without its agents, and the line says that."""
+    office = Path(__file__).resolve().parents[2] / "scenarios" / "office_figure6.toml"
+    runner = CliRunner()
+    start = runner.invoke(render, [str(office), "--out", str(tmp_path / "o.png")])
+    assert start.exit_code == 0, start.output
+    assert start.output == (f"{tmp_path / 'o.png'}: 1 frame(s) (the scenario's world as it "
+                            "starts; no agent has run)\n")
+    (tmp_path / "s.toml").write_text(SCENARIO)
+    first = runner.invoke(render, [str(tmp_path / "s.toml"), "--out", str(tmp_path / "a.png")])
+    assert first.output == (f"{tmp_path / 'a.png'}: cycle 0 (the scenario's world as it "
+                            "starts; no agent has run)\n")
+    moved = runner.invoke(render, [str(tmp_path / "s.toml"), "--out", str(tmp_path / "b.gif"),
+                                   "--steps", "4"])
+    assert moved.output == (f"{tmp_path / 'b.gif'}: 5 frame(s), cycles 0..4 (the world stepped "
+                            "4 cycles without its agents: they stood still)\n")
+    assert Image.open(tmp_path / "b.gif").n_frames == 5
+
+
 def test_render_saved_snapshots_to_gif_and_one_cycle(tmp_path: Path) -> None:
     sim = Simulation(WorldConfig(pedestrians=3, traffic=1), seed=1, agents=["ME"])
     lines = []

@@ -4,7 +4,8 @@ served on 127.0.0.1 (docs/view.md).
 One subscriber (tools/view/feeds.py) reads the bus into a model (model.py); the server
 (server.py) pushes the newest cycle to the page as server-sent events and answers the page's
 requests for past cycles; the page (static/) draws the world and each agent's goals, decision
-tree and actions, with a timeline to step back, and the processes with their rates.
+tree, actions and beliefs panel (why each unsatisfied goal is false: beliefs.py), with a
+timeline to step back, a badge saying live, ended or record, and the processes with rates.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
     """Serve a web page showing the running launch live (or RECORD: a run folder, run id or
     .mcap file): the world, each agent's goals and decision tree, processes and rates."""
     from tools.records import RecordError, locate
-    from tools.view.feeds import BusFeed, load_file
+    from tools.view.feeds import BusFeed, load_file, scenario_of
     from tools.view.model import ViewModel
     from tools.view.server import ViewServer
 
@@ -47,6 +48,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         else:
             target = _target(bus_config, run_id)
             model.run = run_id or target.run
+            model.programs.from_scenario(scenario_of(model.run))
             feed = BusFeed(model, target).start()
         server = ViewServer(model, port)
     except RecordError as exc:

@@ -14,9 +14,10 @@ from bus.errors import BusError, CodecError
 from bus.node import open_node
 from bus.presence import Presence
 from bus.record import to_record
-from tools.records import RunRecord
+from tools import runfile
+from tools.records import RUN_META, RunRecord
 from tools.target import Target
-from tools.view.model import ViewModel
+from tools.view.model import MALFORMED, ViewModel
 
 log = logging.getLogger(__name__)
 LEARN_RUN_S = 30.0  # [s] a view of a named router waits this long for a first message
@@ -25,9 +26,19 @@ LEARN_RUN_S = 30.0  # [s] a view of a named router waits this long for a first m
 def load_file(model: ViewModel, path: Path) -> None:
     """Feed every record of a run record file (the page can then step through all of it)."""
     rec = RunRecord(path)
-    model.source = f"record {path}"
+    model.source, model.recorded = f"record {path}", True
+    model.programs.from_scenario(rec.meta.get(RUN_META, {}).get("scenario", ""))
     for key, record in rec.records():
         model.add(key, record)
+
+
+def scenario_of(run: str | None) -> str:
+    """The scenario file of the running launch of `run`, from the run registry ("" when no
+    launch of it is registered: a replay, or a router named with --connect)."""
+    try:
+        return runfile.find(run).scenario if run else ""
+    except runfile.NoRunningLaunch:
+        return ""
 
 
 class BusFeed:
@@ -80,5 +91,5 @@ class BusFeed:
             try:
                 self.model.add(item.key, to_record(item.key, item.payload), len(item.payload),
                                item.t_ns)
-            except (CodecError, KeyError, TypeError) as exc:
-                log.warning("view: dropped %s", exc)
+            except (CodecError, *MALFORMED) as exc:  # a record is only shape-checked
+                log.warning("view: dropped %s: %r", item.key, exc)

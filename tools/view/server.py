@@ -1,12 +1,14 @@
 """The web view's HTTP server: the standard library's ThreadingHTTPServer, on 127.0.0.1 only.
 
-    GET /                  the page (static/: index.html, view.js, world.js, view.css; no CDN)
+    GET /                  the page (static/: index.html, view.js, panel.js, world.js, view.css;
+                           no CDN)
     GET /events            server-sent events: "frame" (newest cycle, at most `FRAME_HZ` a second)
                            and "status" (processes, rates, goal history; once a second)
     GET /api/frame?cycle=N one past cycle (the timeline), /api/frame for the newest
     GET /api/status        as the "status" event
     GET /api/map           the world's static map (tools/view/scene.py)
-    GET /api/render.png?cycle=N   the domain's own picture, for domains the page cannot draw
+    GET /api/render.png?cycle=N&agent=A   the domain's own picture (A's path), for domains the
+                           page cannot draw
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ log = logging.getLogger(__name__)
 STATIC = Path(__file__).with_name("static")
 FILES = {"/": ("index.html", "text/html; charset=utf-8"),
          "/view.js": ("view.js", "text/javascript; charset=utf-8"),
+         "/panel.js": ("panel.js", "text/javascript; charset=utf-8"),
          "/world.js": ("world.js", "text/javascript; charset=utf-8"),
          "/view.css": ("view.css", "text/css; charset=utf-8")}
 FRAME_HZ = 10.0     # frames pushed per second at most (the page cannot use more)
@@ -70,7 +73,7 @@ class _Handler(BaseHTTPRequestHandler):
         elif url.path == "/api/frame":
             self._frame(model, query.get("cycle"))
         elif url.path == "/api/render.png":
-            self._render(model, query.get("cycle"))
+            self._render(model, query.get("cycle"), query.get("agent"))
         else:
             self._send(HTTPStatus.NOT_FOUND, f"no page {url.path}\n".encode(), "text/plain")
 
@@ -85,7 +88,7 @@ class _Handler(BaseHTTPRequestHandler):
                               "text/plain")
         self._json(frame)
 
-    def _render(self, model: ViewModel, cycle: str | None) -> None:
+    def _render(self, model: ViewModel, cycle: str | None, agent: str | None) -> None:
         try:
             shown = int(cycle) if cycle else (model.newest() or 0)
         except ValueError:
@@ -94,7 +97,8 @@ class _Handler(BaseHTTPRequestHandler):
         snaps = model.snapshots_for_render(shown)
         if not snaps:
             return self._send(HTTPStatus.NOT_FOUND, b"no snapshot yet\n", "text/plain")
-        agent = next(iter(sorted(model.agents)), None)
+        if agent not in model.agents:
+            agent = next(iter(sorted(model.agents)), None)
         self._send(HTTPStatus.OK, scene.render_png(snaps, agent), "image/png")
 
     def _events(self, model: ViewModel) -> None:

@@ -122,9 +122,17 @@ def _record(item: Any, where: str, fields: dict[str, type]) -> dict:
     return item
 
 
+def _tables(d: dict, key: str) -> list:
+    """``d[key]``, a list of tables ([] when absent); ConfigError when it is no list."""
+    items = d.get(key, [])
+    if not isinstance(items, list):
+        raise ConfigError(f"[world] {key}: expected a list of tables, got {items!r:.60}")
+    return items
+
+
 def _packages(d: dict) -> tuple[PackageSpec, ...]:
     out = []
-    for k, item in enumerate(d.get("packages", [])):
+    for k, item in enumerate(_tables(d, "packages")):
         fields = {"id": str, "address": int, "street": str, "owner": str}
         r = _record(item, f"packages[{k}]", fields)
         out.append(PackageSpec(r["id"], r["address"], r["street"], r["owner"]))
@@ -133,7 +141,7 @@ def _packages(d: dict) -> tuple[PackageSpec, ...]:
 
 def _cars(d: dict) -> tuple[CarStart, ...]:
     out = []
-    for k, item in enumerate(d.get("cars", [])):
+    for k, item in enumerate(_tables(d, "cars")):
         r = _record(item, f"cars[{k}]", {"agent": str, "street": str, "from": str, "toward": str})
         along, speed = r.get("along", 20.0), r.get("speed", 0.0)
         for key, value in (("along", along), ("speed", speed)):

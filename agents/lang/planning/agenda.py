@@ -8,8 +8,10 @@
    back-chainer when it does not; the goal control rules select the requests to work on
    (Table 2: the top priority and those compatible with it; the others wait); requests whose
    next place is unreachable, or that wait after a failure, are blocked; planner-only steps
-   (no command) are applied in the model at once; and among the first steps of the selected
-   tail-plans the one of least expected travel is proposed (agents/lang/planning/merge.py).
+   (no command) are applied in the model at once; among the first steps of the selected
+   tail-plans the one of least expected travel is proposed (agents/lang/planning/merge.py),
+   unless it leaves the place the robot is in while a step of a selected or waiting request
+   can be done there at no cost to the others (agents/lang/planning/opportunity.py).
 """
 
 from __future__ import annotations
@@ -22,8 +24,10 @@ from ..solving.task import literal
 from .backchain import build, check, replan_note
 from .control import Control, GoalView
 from .domain import with_facts
+from .memory import objects, perceived_about, reopen
 from .merge import Choice, choose, detour, fcfs, visits
 from .monitor import Env, apply_model
+from .opportunity import opportunity
 from .state import Applied, Executing, Finished, PlannerState, Task
 
 MAX_MERGED = 4          # lower-priority requests merged with the top-priority ones [requests]
@@ -91,7 +95,9 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
     out = Decided(ps)
     control = Control(env.domain.rules, out.firings)
     before = {t.goal_id: (t.status, t.note) for t in ps.tasks}
-    tasks = [t for t in (_planned(t, env, control, out, events) for t in ps.tasks) if t]
+    tasks = [reopen(t, lambda f, t=t: env.holds(f, t.knowledge), env.cycle, events)
+             for t in ps.tasks]
+    tasks = [t for t in (_planned(t, env, control, out, events) for t in tasks) if t]
     for _ in range(8):   # planner-only steps are applied at once, then the choice is redone
         ready = [_gate(t, env, out, events) for t in tasks]
         tasks = [t for t in ready if t.goal_id not in out.failed]
@@ -99,7 +105,8 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
         tasks = [selected.get(t.goal_id, t) for t in tasks]
         plans = {t.goal_id: t.plan for t in tasks if t.status == "selected" and t.plan}
         last = ps.head[-1].tasks if ps.head else ()
-        out.choice = choose(env.metric, plans, {t.goal_id: t.seq for t in tasks}, last)
+        out.choice = choose(env.metric, plans, {t.goal_id: t.seq for t in tasks}, last,
+                            env.carry())
         step = out.choice.step if out.choice else None
         if step is None or step.actions:
             break
@@ -113,10 +120,12 @@ def decide(ps: PlannerState, env: Env, events: list[str]) -> Decided:
     for t in tasks:
         if before.get(t.goal_id, ("new", ""))[0] != t.status and t.status != "new":
             events.append(f"cycle {env.cycle}: {t.goal_id} {t.status}: {t.note}")
+    out.choice = opportunity(tasks, out.choice, env, events) or out.choice
     proposed = None
     if out.choice is not None and out.choice.step.actions:
-        proposed = Executing(out.choice.step, out.choice.tasks, env.cycle,
-                             out.choice.step.actions)
+        step = out.choice.step
+        proposed = Executing(step, out.choice.tasks, env.cycle, step.actions,
+                             before=perceived_about(env.domain, env.store, objects(step)))
     done = ps.finished + tuple(_finish(t, env.cycle, "failed", out.failed[t.goal_id])
                                for t in ps.tasks if t.goal_id in out.failed)
     ps = replace(ps, tasks=tuple(t for t in tasks if t.goal_id not in out.failed),
@@ -134,7 +143,8 @@ def _planned(t: Task, env: Env, control: Control, out: Decided, events: list[str
     why = t.replan or (check(env.domain, t.plan, goal, base, env.pidx) if t.plan else "")
     if t.plan and not why:
         return t
-    built = build(env.domain, goal, base, env.pidx, control, env.metric)
+    passed: dict = {}
+    built = build(env.domain, goal, base, env.pidx, control, env.metric, t.standing(), passed)
     if built.failed:
         out.failed[t.goal_id] = built.failed
         events.append(f"cycle {env.cycle}: {t.goal_id} failed: {built.failed}")
@@ -144,6 +154,8 @@ def _planned(t: Task, env: Env, control: Control, out: Decided, events: list[str
         f"replanned ({why}): {replan_note(t.plan, built.steps)}" if why else
         f"tail-plan: {shown}"))
     events += [f"cycle {env.cycle}: rule fired: {f}" for f in control.firings[fired:]]
+    events += [f"cycle {env.cycle}: {t.goal_id} passes over {x.step} for {x.achieves}: "
+               f"excluded since cycle {x.since}" for xs in passed.values() for x in xs]
     return replace(t, plan=built.steps, replan="")
 
 
@@ -208,4 +220,4 @@ def figures(ps: PlannerState, env: Env) -> object:
 
 def _finish(t: Task, cycle: int, status: str, reason: str = "") -> Finished:
     return Finished(t.goal_id, t.goal, t.priority, t.seq, t.arrived, cycle, status, reason,
-                    t.places)
+                    t.places, t.excluded)

@@ -11,12 +11,16 @@ preconditions hold in the *projected* state is added to the tail-plan and its ef
 applied to that state, so that the next literal is judged where the plan will be, not where
 the robot is. A choice that cannot be completed is given up for the next alternative and the
 plan and projection are cut back to where it was made (backtracking); when the request's
-goal runs out of alternatives, it cannot be achieved, with the reason."""
+goal runs out of alternatives, it cannot be achieved, with the reason. A choice excluded by
+the request's failure memory (agents/lang/planning/memory.py: a step of it that did not
+achieve its effect) is passed over while the exclusion stands (seed 003, section 6: "it will
+backtrack to find a different action which can achieve the goal")."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..matcher import subst
 from ..solving.search import decide
 from ..solving.state import StackEntry
 from ..solving.task import Task, literal
@@ -24,9 +28,11 @@ from ..store import FactStore, PerceptIndex
 from ..terms import Literal, Var
 from .control import Control, OperatorView
 from .domain import Domain, Metric, project
-from .state import PlanStep
+from .memory import excluded_here
+from .state import Exclusion, PlanStep
 
 MAX_DECISIONS = 400   # back-chaining decisions for one request [decisions]
+MAX_BINDINGS = 12     # instantiations of one operator kept for a literal (Table 1, step 4)
 
 
 @dataclass(frozen=True, slots=True)
@@ -38,14 +44,21 @@ class Built:
 
 
 class PlanTask(Task):
-    """The solver's Task over the operators, in a projected state, with control rules."""
+    """The solver's Task over the operators, in a projected state, with control rules; it
+    keeps up to MAX_BINDINGS instantiations of an operator (the solver keeps fewer), so that
+    backtracking can reach every room, say, after the nearest ones failed."""
+
+    per_clause = MAX_BINDINGS
 
     def __init__(self, domain: Domain, pidx: PerceptIndex, store: FactStore,
-                 control: Control, metric: Metric):
+                 control: Control, metric: Metric, excluded: tuple[Exclusion, ...] = (),
+                 passed: dict[str, list[Exclusion]] | None = None):
         super().__init__(domain.program, pidx, store)
         self.domain = domain
         self.control = control
         self.metric = metric
+        self.excluded = excluded
+        self.passed = {} if passed is None else passed   # goal -> exclusions applied
 
     def alternatives(self, goal: Literal, applicable: bool = True,
                      concepts: bool = False):
@@ -57,9 +70,25 @@ class PlanTask(Task):
                             lambda p: self.metric.move(here or None, p))
         return self.control.order(view, alts)
 
+    def admits(self, s, b: dict, goal: Literal) -> bool:
+        """Not a choice the failure memory excludes for ``goal`` (those passed over are
+        recorded in ``passed``)."""
+        if not self.excluded:
+            return True
+        op = self.domain.operators[s.number]
+        text = "<" + " ".join([op.name, *(str(subst(a, b)) for a in op.params)]) + ">"
+        hit = excluded_here(self.excluded, str(goal), text)
+        if hit is not None and hit not in self.passed.setdefault(str(goal), []):
+            self.passed[str(goal)].append(hit)
+        return hit is None
+
     def nothing_to_chain(self, goal: str) -> str:
         """Why no operator can be chained on for ``goal`` (the Back-Chainer chains on
         operators only)."""
+        gone = self.passed.get(str(literal(goal)))
+        if gone:
+            return "every operator for it is excluded: " + "; ".join(
+                f"{x.step} ({x.why})" for x in gone)
         pred = literal(goal).pred
         if not self.program.skills_for(pred):
             return f"nothing to chain off: no operator achieves {pred}"
@@ -74,15 +103,18 @@ class PlanTask(Task):
 
 
 def build(domain: Domain, goal: Literal, store: FactStore, pidx: PerceptIndex,
-          control: Control, metric: Metric) -> Built:
+          control: Control, metric: Metric, excluded: tuple[Exclusion, ...] = (),
+          passed: dict[str, list[Exclusion]] | None = None) -> Built:
     """A tail-plan achieving ``goal`` from ``store`` (beliefs, the planner's facts and the
-    request's knowledge), or why there is none."""
+    request's knowledge), or why there is none; the choices ``excluded`` are passed over
+    (those that were are added to ``passed``, goal -> exclusions)."""
     stack = [StackEntry(str(goal), "the request")]
     marks: list[tuple[int, FactStore]] = [(0, store)]
     steps: list[PlanStep] = []
     state = store
+    passed = {} if passed is None else passed
     for _ in range(MAX_DECISIONS):
-        task = PlanTask(domain, pidx, state, control, metric)
+        task = PlanTask(domain, pidx, state, control, metric, excluded, passed)
         top = stack[-1]
         if task.holds(top.goal):
             stack.pop()

@@ -67,6 +67,21 @@ class Domain:
         found = next(match_fact(loc, {}, state), None)
         return str(found[var]) if found else ""
 
+    def carried(self, store: FactStore) -> int:
+        """How many things the robot carries in ``store`` (instances of the travel
+        :carrying literal; 0 when the program does not say)."""
+        lit = self.travel.carrying if self.travel is not None else None
+        return 0 if lit is None else sum(1 for _ in match_fact(lit, {}, store))
+
+    def load_delta(self, step: PlanStep) -> int:
+        """What ``step`` changes in what the robot carries: +1 for each :carrying instance
+        its effects add, -1 for each they delete."""
+        lit = self.travel.carrying if self.travel is not None else None
+        if lit is None:
+            return 0
+        effects = [literal(e) for e in step.effects]
+        return sum((-1 if e.negated else 1) for e in effects if e.pred == lit.pred)
+
     def still_applies(self, step: PlanStep, pidx: PerceptIndex) -> bool:
         """The step's :percepts still match under its bindings (who holds the item, where
         the person is): otherwise the plan was made for a world that changed."""
@@ -142,13 +157,20 @@ def project(store: FactStore, effects: tuple[str, ...]) -> FactStore:
 class Metric:
     """Travel distances [m] from the percepts named by ``(travel ...)``: ``here[p]`` from the
     robot's position to place p, ``between(a, b)`` from place a to place b; UNREACHABLE
-    where no route is known (a negative distance, or no percept)."""
+    where no route is known (a negative distance, or no percept); and ``capacity``, what the
+    robot can carry (the :capacity percept), or None."""
 
     def __init__(self, travel: Travel | None, pidx: PerceptIndex):
         self.here: dict[str, float] = {}
         self.pairs: dict[tuple[str, str], float] = {}
+        self.capacity: int | None = None   # how many things the robot can carry, if known
         if travel is None:
             return
+        if travel.capacity is not None:
+            c = between_vars(travel.capacity)[-1]
+            sol = next(match_percept(travel.capacity, {}, pidx), None)
+            if sol is not None and isinstance(sol.get(c), int | float):
+                self.capacity = int(sol[c])
         a, b, d = between_vars(travel.between)
         for sol in islice(match_percept(travel.between, {}, pidx), 100_000):
             if isinstance(sol.get(d), int | float) and sol[d] >= 0:

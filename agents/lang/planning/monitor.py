@@ -8,10 +8,11 @@ effect must hold in what the robot perceives now ("ROGUE always verifies the loc
 secondary test"). A navigation reported done while the robot is elsewhere is a false
 success: the state already holds the actual position (it comes from perception), and the
 request is planned again from there; a step that ended without its effect (the room was
-occupied) announces its :on-failure commands and its request is planned again, so that
-control rules see the new facts; a failed step (a blocked door, a bump) is retried after
-RETRY_AFTER cycles, by whatever route or action the state then suggests. Effects on the
-planner's own predicates (no percept shows them) are taken from the outcome."""
+occupied) announces its :on-failure commands, is excluded for that goal while what it
+brought to light stands (agents/lang/planning/memory.py), and its request is planned again:
+the back-chainer backtracks to the next alternative; a failed step (a blocked door, a bump)
+is retried after RETRY_AFTER cycles, by whatever route or action the state then suggests.
+Effects on the planner's own predicates (no percept shows them) are taken from the outcome."""
 
 from __future__ import annotations
 
@@ -23,7 +24,9 @@ from ..solving.task import Task, literal
 from ..store import FactStore, PerceptIndex
 from ..terms import Literal
 from .domain import Domain, Metric, project, with_facts
-from .state import Applied, Executing, PlannerState, PlanStep
+from .memory import exclude
+from .merge import Carry
+from .state import Applied, Exclusion, Executing, PlannerState, PlanStep
 from .state import Task as Request
 
 WATCHDOG = 1200      # cycles without an outcome before a step counts as failed [cycles]
@@ -55,6 +58,13 @@ class Env:
     def place(self) -> str:
         return self.domain.place(self.store)
 
+    def carry(self) -> Carry | None:
+        """The load constraint of a merge here, when the program and percepts say it."""
+        cap = self.metric.capacity
+        if cap is None:
+            return None
+        return Carry(self.domain.carried(self.store), cap, self.domain.load_delta)
+
 
 def monitor(ps: PlannerState, env: Env, outcomes: tuple[Outcome, ...],
             events: list[str]) -> PlannerState:
@@ -83,7 +93,7 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
              events: list[str]) -> PlannerState:
     """Record the step in the head-plan with what monitoring found, and update the tasks."""
     step, dom = ex.step, env.domain
-    verified = False
+    verified, gone = False, None
     perceived = literal(step.primary).pred not in dom.model_preds and \
         env.holds(step.primary)
     if failed and perceived:   # what is observed counts, not what was reported
@@ -102,7 +112,10 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
                 f"from there")
     else:
         result = "not-achieved"
-        note = f"{step.primary} does not hold after it: replanning"
+        gone = exclude(dom, step, ex.before, env.store, env.cycle)
+        note = (f"{gone.why}: excluded for {gone.achieves} while "
+                f"{' '.join(gone.depends) or 'that holds'}"
+                f"{' holds' if gone.depends else ''}; backtracking to the next alternative")
     events.append(f"cycle {env.cycle}: {step.text} {result}: {note}")
     if step.on_failure and result == "not-achieved":
         ps = replace(ps, announce=ps.announce + step.on_failure)
@@ -114,7 +127,7 @@ def conclude(ps: PlannerState, env: Env, ex: Executing, failed: str,
     if verified:
         ps = apply_model(ps, dom, step)
     ps = replace(ps, travel=replace(ps.travel, route=_grow(ps.travel.route, where)))
-    tasks = tuple(_after(t, step, where, verified, failed, env.cycle)
+    tasks = tuple(_after(t, step, where, verified, failed, env.cycle, gone)
                   if t.goal_id in ex.tasks else t for t in ps.tasks)
     return replace(ps, tasks=tasks)
 
@@ -153,10 +166,10 @@ def _verified(step: PlanStep, env: Env) -> str:
 
 
 def _after(t: Request, step: PlanStep, where: str, verified: bool, failed: str,
-           cycle: int) -> Request:
+           cycle: int, gone: Exclusion | None = None) -> Request:
     """A served task after its step: done (its first step leaves the tail-plan), or to be
-    planned again (not achieved: the plan is made afresh; failed: retried later); ``where``
-    the robot went for it ("" if nowhere new)."""
+    planned again (not achieved: the choice is excluded, ``gone``, and the plan made afresh;
+    failed: retried later); ``where`` the robot went for it ("" if nowhere new)."""
     places = _grow(t.places, where)
     t = replace(t, places=places)
     if verified:
@@ -167,7 +180,7 @@ def _after(t: Request, step: PlanStep, where: str, verified: bool, failed: str,
     if failed:
         return replace(t, failures=t.failures + 1, retry_at=cycle + RETRY_AFTER)
     return replace(t, failures=t.failures + 1, replan=f"{step.text} did not achieve "
-                   f"{step.primary}")
+                   f"{step.primary}", excluded=t.excluded + ((gone,) if gone else ()))
 
 
 def _cancelled(reason: str) -> bool:

@@ -202,8 +202,8 @@ def _cond(p: Any, node: Any) -> Meta | None:
 
 
 def _travel(p: Any, item: SList) -> Travel | None:
-    f = _keyed(p, item, (":location", ":between", ":from-here", ":detour"), "(travel ...)",
-               atoms=(":detour",))
+    f = _keyed(p, item, (":location", ":between", ":from-here", ":detour", ":carrying",
+                         ":capacity"), "(travel ...)", atoms=(":detour",))
     missing = [k for k in (":location", ":between", ":from-here") if k not in f]
     if missing:
         p.err(item, f"(travel ...) needs {' '.join(missing)}")
@@ -218,9 +218,19 @@ def _travel(p: Any, item: SList) -> Travel | None:
             p.err(node, f"(travel ...) :detour: expected metres >= 0, got {to_text(node)}")
             return None
         detour = float(node.value)
-    if where is None or not between or not here:
+    carrying = p.literal(f[":carrying"], "carrying literal", allow_not=False) \
+        if ":carrying" in f else None
+    capacity = p.patterns(SList((f[":capacity"],), item.line, item.col)) \
+        if ":capacity" in f else []
+    if (":carrying" in f) != (":capacity" in f):
+        p.err(item, "(travel ...) :carrying and :capacity go together (what the robot "
+              "carries, and the percept that says how much it can)")
         return None
-    return Travel(where, between[0], here[0], detour, p.loc(item))
+    if where is None or not between or not here or (":capacity" in f and
+                                                    (carrying is None or not capacity)):
+        return None
+    return Travel(where, between[0], here[0], detour, p.loc(item), carrying,
+                  capacity[0] if capacity else None)
 
 
 def _head(node: Any) -> Any:

@@ -1,6 +1,7 @@
 """The planner's part of a Decision (explanation.Section, name "planner"): the head-plan,
 the step being executed, each request's tail-plan with its status, the merged order with its
-expected travel, the control rules that fired and what monitoring found this cycle, and the
+expected travel, the control rules that fired and what monitoring found this cycle, the
+choices excluded by failed steps (failure memory: which, why, while what holds), and the
 travel figures (seed 003: "the head-plan, tail-plan, merged order, rule firings and
 monitoring results are part of the intention")."""
 
@@ -40,12 +41,15 @@ class PlannerSection:
                 "waiting": [list(a) for a in ex.waiting]},
             "tails": [{"id": t.goal_id, "goal": t.goal, "priority": t.priority,
                        "status": t.status, "note": t.note,
-                       "plan": [s.text for s in t.plan]} for t in ps.tasks],
+                       "plan": [s.text for s in t.plan],
+                       "excluded": [x.describe() for x in t.excluded]} for t in ps.tasks],
             "order": {"visits": list(self.order), "expected_m": self.expected},
             "firings": list(self.firings), "events": list(self.events),
             "sending": [list(a) for a in self.sending],
             "finished": [{"id": f.goal_id, "goal": f.goal, "status": f.status,
-                          "reason": f.reason} for f in ps.finished],
+                          "reason": f.reason,
+                          "excluded": [x.describe() for x in f.excluded]}
+                         for f in ps.finished],
             "model": list(ps.model),
             "travel": ps.travel.to_dict()}
 
@@ -66,6 +70,7 @@ class PlannerSection:
             out.append(f"  {t.goal_id} p{t.priority} {t.status} {t.goal}"
                        + (f" -- {t.note}" if t.note else ""))
             out.append("    " + (" ".join(s.text for s in t.plan) or "(to be planned)"))
+            out += [f"    excluded: {x.describe()}" for x in t.excluded]
         if self.order:
             out.append(f"merged order ({self.expected:.1f} m from here): "
                        + " ".join(self.order))

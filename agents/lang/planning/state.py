@@ -53,14 +53,58 @@ class PlanStep:
 
 
 @dataclass(frozen=True, slots=True)
+class Exclusion:
+    """A choice the planner will not make again while the situation it failed in persists
+    (seed 003, section 6: the execution of an action failed, "it will backtrack to find a
+    different action which can achieve the goal"): operator instance ``step`` (its name and
+    bindings, ``<observe-conference-room r-5309>``) for the literal ``achieves``, excluded at
+    cycle ``since`` because ``why``; it stands while every fact of ``depends`` holds (what the
+    step brought to light, ``(room-occupied r-5309)``; none: while ``achieves`` does not
+    hold); ``opened``: the cycle it was opened again (-1 while it stands), with ``reopened``
+    saying why."""
+
+    step: str
+    achieves: str
+    since: int
+    why: str
+    depends: tuple[str, ...] = ()
+    opened: int = -1
+    reopened: str = ""
+
+    @property
+    def standing(self) -> bool:
+        return self.opened < 0
+
+    def describe(self) -> str:
+        """One line for the explanation and the summary."""
+        base = f"{self.step} for {self.achieves} excluded at cycle {self.since}: {self.why}"
+        if not self.standing:
+            return f"{base}; open again at cycle {self.opened}: {self.reopened}"
+        held = " ".join(self.depends) if self.depends else f"(not {self.achieves})"
+        return f"{base}; stands while {held} holds"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"step": self.step, "achieves": self.achieves, "since": self.since,
+                "why": self.why, "depends": list(self.depends), "opened": self.opened,
+                "reopened": self.reopened}
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> Exclusion:
+        return cls(str(d["step"]), str(d["achieves"]), int(d["since"]), str(d["why"]),
+                   _texts(d.get("depends")), int(d.get("opened", -1)),
+                   str(d.get("reopened", "")))
+
+
+@dataclass(frozen=True, slots=True)
 class Task:
     """One request: its goal, priority and arrival order (``seq``, ``arrived`` cycle), the
     knowledge added when it arrived, its tail-plan, ``status`` (new, selected, waiting,
     blocked) with a ``note``, ``places`` (where steps for it were executed, in order),
     ``failures`` (steps that failed or did not achieve their effect), ``blocked_since`` (the
     cycle its next place became unreachable, -1), ``retry_at`` (no step of it before that
-    cycle, after a failure) and ``replan`` (why its tail-plan must be made afresh: a step
-    of it did not achieve its effect; "" when it may be kept while it holds)."""
+    cycle, after a failure), ``replan`` (why its tail-plan must be made afresh: a step
+    of it did not achieve its effect; "" when it may be kept while it holds) and
+    ``excluded`` (the choices its failed steps excluded, standing or opened again)."""
 
     goal_id: str
     goal: str
@@ -76,6 +120,11 @@ class Task:
     blocked_since: int = -1
     retry_at: int = -1
     replan: str = ""
+    excluded: tuple[Exclusion, ...] = ()
+
+    def standing(self) -> tuple[Exclusion, ...]:
+        """The exclusions that stand now."""
+        return tuple(x for x in self.excluded if x.standing)
 
     def to_dict(self) -> dict[str, Any]:
         return {"goal_id": self.goal_id, "goal": self.goal, "priority": self.priority,
@@ -83,7 +132,7 @@ class Task:
                 "plan": [s.to_dict() for s in self.plan], "status": self.status,
                 "note": self.note, "places": list(self.places), "failures": self.failures,
                 "blocked_since": self.blocked_since, "retry_at": self.retry_at,
-                "replan": self.replan}
+                "replan": self.replan, "excluded": [x.to_dict() for x in self.excluded]}
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Task:
@@ -93,29 +142,34 @@ class Task:
                    str(d.get("status", "new")), str(d.get("note", "")),
                    _texts(d.get("places")), int(d.get("failures", 0)),
                    int(d.get("blocked_since", -1)), int(d.get("retry_at", -1)),
-                   str(d.get("replan", "")))
+                   str(d.get("replan", "")),
+                   tuple(Exclusion.from_dict(x) for x in d.get("excluded", ())))
 
 
 @dataclass(frozen=True, slots=True)
 class Executing:
     """A step whose commands were sent at cycle ``sent`` for the tasks ``tasks`` (the first
     one's plan named it); ``waiting``: commands whose outcome has not come back; ``failed``:
-    the first failure reported ("" while none)."""
+    the first failure reported ("" while none); ``before``: the perceived facts about the
+    step's objects when it was chosen (what it brings to light is judged against them)."""
 
     step: PlanStep
     tasks: tuple[str, ...]
     sent: int
     waiting: tuple[tuple, ...]
     failed: str = ""
+    before: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {"step": self.step.to_dict(), "tasks": list(self.tasks), "sent": self.sent,
-                "waiting": [list(a) for a in self.waiting], "failed": self.failed}
+                "waiting": [list(a) for a in self.waiting], "failed": self.failed,
+                "before": list(self.before)}
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Executing:
         return cls(PlanStep.from_dict(d["step"]), _texts(d["tasks"]), int(d["sent"]),
-                   tuple(tuple(a) for a in d["waiting"]), str(d.get("failed", "")))
+                   tuple(tuple(a) for a in d["waiting"]), str(d.get("failed", "")),
+                   _texts(d.get("before")))
 
 
 @dataclass(frozen=True, slots=True)
@@ -146,7 +200,8 @@ class Applied:
 @dataclass(frozen=True, slots=True)
 class Finished:
     """A request no longer pending: ``status`` achieved | failed | cancelled, with the
-    reason, and the places where steps for it were executed."""
+    reason, the places where steps for it were executed and the choices its failed steps
+    excluded."""
 
     goal_id: str
     goal: str
@@ -157,17 +212,20 @@ class Finished:
     status: str
     reason: str = ""
     places: tuple[str, ...] = ()
+    excluded: tuple[Exclusion, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {"goal_id": self.goal_id, "goal": self.goal, "priority": self.priority,
                 "seq": self.seq, "arrived": self.arrived, "ended": self.ended,
-                "status": self.status, "reason": self.reason, "places": list(self.places)}
+                "status": self.status, "reason": self.reason, "places": list(self.places),
+                "excluded": [x.to_dict() for x in self.excluded]}
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Finished:
         return cls(str(d["goal_id"]), str(d["goal"]), int(d["priority"]), int(d["seq"]),
                    int(d["arrived"]), int(d["ended"]), str(d["status"]),
-                   str(d.get("reason", "")), _texts(d.get("places")))
+                   str(d.get("reason", "")), _texts(d.get("places")),
+                   tuple(Exclusion.from_dict(x) for x in d.get("excluded", ())))
 
 
 @dataclass(frozen=True, slots=True)

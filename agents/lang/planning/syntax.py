@@ -166,13 +166,19 @@ class Travel:
     far apart places are: ``between`` a percept pattern with the two places and the distance
     as its variables in that order, ``from_here`` one with a place and the distance from the
     robot's position; ``detour`` [m]: how much a lower-priority request may add to the travel
-    of the top-priority ones and still be compatible with them (seed 003, Table 2)."""
+    of the top-priority ones and still be compatible with them (seed 003, Table 2);
+    ``carrying`` (optional) a literal with one instance per thing the robot carries, and
+    ``capacity`` a percept pattern whose last variable is how many it can carry: a step that
+    adds a ``carrying`` instance fills a place, one that deletes it frees one, and no merged
+    order carries more than the capacity."""
 
     location: Literal
     between: PerceptPattern
     from_here: PerceptPattern
     detour: float
     loc: Loc
+    carrying: Literal | None = None
+    capacity: PerceptPattern | None = None
 
     def define(self, checker: Any) -> None:
         pass
@@ -188,6 +194,11 @@ class Travel:
         if len(self.location.variables()) != 1:
             checker.err(self.loc, f"(travel ...) :location {self.location}: expected one "
                         "variable, the place")
+        if self.carrying is not None:
+            checker.use(self.carrying, "the :carrying of (travel ...)")
+        if self.capacity is not None and not _ordered_vars(self.capacity):
+            checker.err(self.loc, f"(travel ...) :capacity {self.capacity}: expected a "
+                        "variable for how many the robot can carry (its last one)")
 
 
 def _ordered_vars(p: PerceptPattern) -> list[Var]:

@@ -130,6 +130,13 @@ class Choosing:
         if not bids:
             if len(frame.failed) == len(node.steps) and not node.star:
                 return fail(f"({node.name}) every alternative failed")
+            if frame.failed and not node.star:
+                # seed 002, Appendix C: do-best's failure semantics are do-any's; after a
+                # failure the next true alternative is tried, and with none left the do-best
+                # fails in the same decision (it does not wait, inactive, for a condition)
+                tried = ", ".join(str(node.steps[i].step) for i in frame.failed)
+                return fail(f"({node.name}) {tried} failed and no other alternative's "
+                            "condition holds")
             return Res(R.IDLE, frame, f"({node.name}) no alternative's condition holds: "
                        "inactive", ThreadStatus.INACTIVE)
         top = max(b[0] for b in bids)

@@ -1,7 +1,13 @@
 """Reading a skill's ``:body`` into the step tree of agents/lang/scs/syntax.py, every problem
 reported through the program parser at file:line:col (agents/lang/parser.py calls
 ``BodyReader``): unknown constructs (with "did you mean"), misplaced or unknown modifiers,
-alternatives of the wrong shape, a do-best alternative without ``:utility``."""
+alternatives of the wrong shape, a do-best alternative without ``:utility``, conditions of
+neither form.
+
+CONDS (of do-first and do-best alternatives, of ``:while``/``:until``/``:when``/``:unless``)
+is one condition, ``(lamp-on L1)`` (seed 002's ``K1 -> S1`` written directly), or a list of
+them, ``((lamp-on L1) (not (busy ?j)))``, with ``()`` always true: a condition starts with a
+symbol, a list of conditions with a list, so the two are read without ambiguity."""
 
 from __future__ import annotations
 
@@ -41,6 +47,10 @@ class PieceReader(Protocol):
     def action(self, node: object) -> ActionTemplate | None: ...
 
     def expr(self, node: object) -> object: ...
+
+
+CONDS_FORMS = ("one condition such as (lamp-on L1), a list of conditions such as "
+               "((lamp-on L1) (clear ?x)), or () for always true")
 
 
 def head_word(node: object) -> object:
@@ -112,15 +122,35 @@ class BodyReader:
         return Atomic(tuple(steps), self.p.loc(node)) if steps else None
 
     def wait(self, node: SList) -> Wait | None:
+        """``(wait COND ...)``, or ``(wait CONDS)``: (wait (c1) (c2)), (wait ((c1) (c2))),
+        (wait (c1)) and (wait ()), always true, all read."""
         items = node.items[1:]
-        if len(items) == 1 and isinstance(items[0], SList) and items[0].items \
-                and isinstance(items[0].items[0], SList):
-            items = items[0].items   # (wait ((c1) (c2))) as well as (wait (c1) (c2))
         if not items:
-            self.p.err(node, "(wait COND ...) needs at least one condition")
+            self.p.err(node, f"(wait CONDS) needs its conditions: {CONDS_FORMS}")
             return None
-        conds = self.p.conditions(SList(tuple(items), node.line, node.col))
-        return Wait(tuple(conds), self.p.loc(node))
+        if len(items) == 1:
+            conds = self.conds(items[0], "(wait ...)")
+        else:
+            conds = self.conds(SList(tuple(items), node.line, node.col), "(wait ...)")
+        return Wait(conds, self.p.loc(node))
+
+    def conds(self, node: object, where: str) -> tuple:
+        """CONDS (see the top): one condition, a list of them, or () (always true); where
+        neither is found, the error names the forms expected."""
+        if not isinstance(node, SList):
+            self.p.err(node, f"{where}: expected CONDS, {CONDS_FORMS}; got {to_text(node)}")
+            return ()
+        if node.items and isinstance(node.items[0], Atom):
+            return tuple(self.p.conditions(SList((node,), node.line, node.col)))
+        good = []
+        for item in node.items:
+            if isinstance(item, SList) and item.items and isinstance(item.items[0], Atom):
+                good.append(item)
+            else:
+                self.p.err(item, f"{where}: in a list of conditions each one is a condition "
+                           f"such as (lamp-on L1) or (not (clear ?x)), got {to_text(item)} "
+                           f"(CONDS is {CONDS_FORMS})")
+        return tuple(self.p.conditions(SList(tuple(good), node.line, node.col)))
 
     def construct(self, node: SList, kind: Kind, star: bool) -> Construct | None:
         name = to_text(node.items[0])
@@ -149,12 +179,13 @@ class BodyReader:
                 self.p.err(items[i], f"unknown modifier {key} in ({name} ...){hint}; "
                            f"modifiers are {' '.join(MODIFIERS)}")
             elif i + 1 >= len(items) or not isinstance(items[i + 1], SList):
-                self.p.err(items[i], f"{key} needs a list of conditions after it, such as "
-                           f"{key} ((clear ?x))")
+                got = to_text(items[i + 1]) if i + 1 < len(items) else "nothing"
+                self.p.err(items[i], f"{key} in ({name} ...) needs CONDS after it: "
+                           f"{CONDS_FORMS}; got {got}")
             else:
                 if key in found:
                     self.p.err(items[i], f"{key} given twice in ({name} ...)")
-                found[key] = tuple(self.p.conditions(items[i + 1]))
+                found[key] = self.conds(items[i + 1], f"{key} of ({name} ...)")
             i += 2
         rest, skip = [], False
         for item in items[i:]:
@@ -174,10 +205,10 @@ class BodyReader:
         shape = "(CONDS :utility EXPR STEP)" if best else "(CONDS STEP)"
         if not (isinstance(node, SList) and len(node.items) >= 2
                 and isinstance(node.items[0], SList)):
-            self.p.err(node, f"each alternative of ({name} ...) is {shape}, where CONDS is a "
-                       f"list of conditions such as ((clear ?x)), got {to_text(node)}")
+            self.p.err(node, f"each alternative of ({name} ...) is {shape}, where CONDS is "
+                       f"{CONDS_FORMS}; got {to_text(node)}")
             return None
-        conds = tuple(self.p.conditions(node.items[0]))
+        conds = self.conds(node.items[0], f"the conditions of an alternative of ({name} ...)")
         rest = list(node.items[1:])
         keys: dict[str, object] = {}
         while len(rest) >= 2 and isinstance(rest[0], Atom) and isinstance(rest[0].value, str) \

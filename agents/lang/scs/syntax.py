@@ -6,7 +6,8 @@ wait point ``(wait COND ...)`` (seed 002, section 3, "Multiple Threads of Execut
 construct ``(NAME MODS STEP ...)``: ``do``, ``do-all``, ``do-any``, ``repeat`` and their
 starred forms take steps; ``do-first`` takes ``(CONDS STEP)`` pairs and ``do-best``
 ``(CONDS :utility EXPR [:reward EXPR] STEP)`` alternatives. MODS are ``:while``,
-``:until``, ``:when``, ``:unless``, each followed by a list of conditions.
+``:until``, ``:when``, ``:unless``, each followed by CONDS: one condition or a list of them
+(agents/lang/scs/reader.py).
 
 Every node is a frozen value that knows where it was written; a running step is addressed by
 the child indices leading to it from the body's root (``node_at``).

@@ -184,13 +184,20 @@ class Task(WayFilters):
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
             ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground, applicable) and not self.undoes_skill(s, b) and \
+            if self._chainable(ground, applicable) and self.admits(s, b, goal) and \
+                    not self.undoes_skill(s, b) and \
                     (applicable or not self._circular(goal, ground)):
                 ready = applicable and all(self.holds(c) for c in ground)
                 ranked.append(((not ready, *self.rank(ground)), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b))
                 for _, _, b, ground in self._best(ranked, not applicable)]
+
+    def admits(self, s: Skill, b: dict, goal: Literal) -> bool:
+        """Whether skill ``s`` under bindings ``b`` may be chained on for ``goal`` at all
+        (before the best-ranked are kept); the planner's failure memory says no to a choice
+        that failed (agents/lang/planning/backchain.py)."""
+        return True
 
     def _by_concept(self, clause: ConceptClause, goal: Literal) -> list[Alternative]:
         b0 = unify_head(clause.head, goal, {})
@@ -223,14 +230,15 @@ class Task(WayFilters):
         unsat = [c for c in ground if not self.holds(c)]
         return (applicable or bool(unsat)) and all(pushable(c) for c in unsat)
 
-    @staticmethod
-    def _best(ranked: list, closest: bool = True) -> list:
-        """The best-ranked bindings of a clause, at most MAX_PER_CLAUSE; with ``closest``
+    per_clause = MAX_PER_CLAUSE   # bindings kept per clause (the planner keeps more)
+
+    def _best(self, ranked: list, closest: bool = True) -> list:
+        """The best-ranked bindings of a clause, at most ``per_clause``; with ``closest``
         (the solver's chaining), none that holds fewer of the conditions than the best one
         (a block not on B3 is no way to clear B3: it would first have to be put there). The
         planner, which projects its operators, keeps them all."""
         ranked.sort(key=lambda r: (r[0], r[1]))
-        best = ranked[:MAX_PER_CLAUSE]
+        best = ranked[:self.per_clause]
         return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
 
     def rank(self, conds: list) -> tuple:

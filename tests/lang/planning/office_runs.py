@@ -64,6 +64,25 @@ def run(name: str, events: tuple = (), cycles: int | None = None) -> Office:
     return Office(simulate(scenario, cycles))
 
 
+def prefer_only(folder: Path) -> Path:
+    """programs/office_rogue.tlp without its AVOID-OCCUPIED-CONF-ROOMS reject rule (Figure 7
+    with the seed's prefer rule alone), written into ``folder``."""
+    text = (ROOT / "programs" / "office_rogue.tlp").read_text()
+    start = text.index("  ; an optional refinement: the planner's failure memory")
+    end = text.index("  ; where the robot is and how far")
+    path = folder / "office_prefer_only.tlp"
+    path.write_text(text[:start] + text[end:])
+    return path
+
+
+FIGURE_7 = [
+    ("<goto-room r-5309>", "verified"), ("<select-conference-room r-5309>", "applied"),
+    ("<observe-conference-room r-5309>", "not-achieved"),
+    ("<goto-room r-5311>", "verified"), ("<select-conference-room r-5311>", "applied"),
+    ("<observe-conference-room r-5311>", "verified"), ("<schedule-meeting r-5311>", "verified")]
+"""Seed 003, Figure 7: r-5309 first (the closest), found occupied; backtracking to r-5311."""
+
+
 def interleavings(a: tuple, b: tuple) -> list[tuple]:
     """Every merge of sequences ``a`` and ``b`` that keeps each one's order."""
     n = len(a) + len(b)

@@ -112,6 +112,21 @@ def test_travel_and_requests_are_checked():
                   ":from-here (place ?p dist ?d)))") == [
         "(travel ...) :between (road ?a to ?b): expected 3 variables (places, then the "
         "distance), got 2"]
+    travel = ("(control-rules (travel :location (at ?p) :between (road ?a to ?b length ?d) "
+              ":from-here (place ?p dist ?d) {}))")
+    assert errors(travel.format(":carrying (has ?x)")) == [
+        "(travel ...) :carrying and :capacity go together (what the robot carries, and the "
+        "percept that says how much it can)"]
+    assert errors(travel.format(":carrying (hass ?x) :capacity (self ?r capacity ?c)")) == [
+        "undefined concept 'hass' in (hass ?x) (the :carrying of (travel ...)) (did you mean "
+        "'has'?)"]
+    assert errors(travel.format(":carrying (has ?x) :capacity (self R1 capacity 4)")) == [
+        "(travel ...) :capacity (self R1 capacity 4): expected a variable for how many the "
+        "robot can carry (its last one)"]
+    ok = load_program_text(TOY.replace(":detour 5))", ":detour 5 :carrying (has ?x) "
+                                       ":capacity (self ?r capacity ?c)))"), "ok.tlp")
+    rule = next(r for r in ok.sections["control-rules"] if isinstance(r, Travel))
+    assert (str(rule.carrying), rule.capacity is not None) == ("(has ?x)", True)
     assert errors("(requests ((has ?x) :knowledge ((owner ?x ?who))))") == [
         "variable ?who in knowledge (owner ?x ?who) is bound nowhere; bind it in the head, "
         ":percepts or :start"]

@@ -89,7 +89,8 @@ def test_shapes_of_constructs_and_alternatives():
     assert "needs exactly one step after its conditions" in \
         errors("(do-first (((flag x)) (*a) (*b)))")[0]
     assert "(atomic ...) holds only actions" in errors("(atomic (*a) (do (*b)))")[0]
-    assert "(wait COND ...) needs at least one condition" in errors("(wait)")[0]
+    assert "(wait CONDS) needs its conditions: one condition such as (lamp-on L1)" in \
+        errors("(wait)")[0]
     assert "(assert (FACT)) takes exactly one fact" in errors("(assert (a 1) (b 2))")[0]
 
 

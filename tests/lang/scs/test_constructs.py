@@ -158,6 +158,26 @@ def test_do_best_fails_over_like_do_any_and_do_star_best_persists():
     assert "-" not in t and t[-1] in ("e", "a")
 
 
+def test_do_best_failure_is_decided_in_the_same_cycle_as_do_any():
+    """Seed 002, Appendix C: do-best's "failure semantics is the same as that of the do any
+    construct": when the chosen alternative fails, the next true alternative runs in that
+    cycle; with no other true alternative the do-best fails in that cycle, so the construct
+    around it goes on at once (it does not wait, inactive, for another condition)."""
+    body = "(do (do-best (() :utility 9 (*a)) (((flag y)) :utility 5 (*b))) (*e))"
+    assert trace(body, 3, failing("a", times=1), flags=["y"]) == ["a", "b", "e"]
+    d = Driver(body_program(body), policy=failing("a", times=1))
+    assert d.run(2) == ["a", "-"]                     # the do fails with it: nothing to send
+    assert any("(*a) failed and no other alternative's condition holds" in w
+               for w in d.why())
+    around = "(do-any (do-best (() :utility 9 (*a)) (((flag y)) :utility 5 (*b))) (*e))"
+    for seed in range(6):
+        t = trace(around, 6, failing("a"), seed=seed)
+        assert "-" not in t and "a" in t[:-1]
+        assert all(t[k + 1] == "e" for k in range(5) if t[k] == "a")   # the same cycle
+    star = "(do* (do-best (() :utility 9 (*a)) (((flag y)) :utility 5 (*b))) (*e))"
+    assert trace(star, 3, failing("a", times=1)) == ["a", "a", "e"]
+
+
 def test_do_best_utility_uses_the_alternative_bindings():
     extra = "(concepts ((cost ?c) :percepts ((cost ?c))))"
     body = "(do-best (((cost ?k)) :utility (- 10 ?k) (*a ?k)) (() :utility 6 (*b)))"

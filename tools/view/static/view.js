@@ -1,87 +1,17 @@
 // teleo view: the page. Frames arrive as server-sent events ("frame", "status"); the
-// timeline asks for past cycles at /api/frame?cycle=N. The decision tree arrives as nodes
-// (tools/tree.py to_json) and is drawn here as nested lists.
+// timeline asks for past cycles at /api/frame?cycle=N. One agent is shown at a time (the
+// tabs); panel.js draws its panel, world.js the world.
 "use strict";
 
 const $ = (id) => document.getElementById(id);
 const STATUS_COLOURS = { satisfied: "#3a9a48", active: "#2f6fd6", suspended: "#e59a1d",
-  impasse: "#d23c3c", failed: "#222", pending: "#c9c9c9" };
-const MARKS = { satisfied: "[o]", active: "[*]", suspended: "[~]", impasse: "[!]",
-  failed: "[x]", pending: "[ ]", skipped: "[-]" };
-const view = { live: true, map: null, mapId: "", frame: null, status: null, lastRender: 0 };
-
-function el(tag, cls, text) {
-  const e = document.createElement(tag);
-  if (cls) e.className = cls;
-  if (text !== undefined) e.textContent = text;
-  return e;
-}
-
-function fmt(v) { return typeof v === "number" && !Number.isInteger(v) ? +v.toFixed(3) : v; }
-function bindings(b) {
-  const pairs = Object.entries(b || {});
-  return pairs.length ? "{" + pairs.map(([k, v]) => `?${k}=${fmt(v)}`).join(", ") + "}" : "";
-}
-function action(a) { return "(" + a.map(fmt).join(" ") + ")"; }
-
-function treeNode(node) {
-  // one node of tools/tree.py's JSON: mark, label, bindings, where, note; children nested
-  const li = el("li", node.kind + (node.tip ? " tip" : ""));
-  const mark = node.tip ? "=> " : MARKS[node.status] ? MARKS[node.status] + " " : "";
-  li.append(el("span", "label", mark + node.label));
-  if (Object.keys(node.bindings).length) li.append(" ", el("span", "bind", bindings(node.bindings)));
-  if (node.where) li.append(" ", el("span", "where", `(${node.where})`));
-  if (node.note) li.append(" ", el("span", "note", (node.kind === "passed" ? ": " : "-- ") + node.note));
-  if (node.children.length) {
-    // skills passed over by a goal that does not act are folded (click to open)
-    const fold = node.kind === "goal" && node.status !== "active";
-    const passed = node.children.filter((c) => fold && c.kind === "passed");
-    const ul = el("ul");
-    node.children.filter((c) => !passed.includes(c)).forEach((c) => ul.append(treeNode(c)));
-    if (passed.length) {
-      const details = el("details", "passed");
-      details.append(el("summary", "", `${passed.length} skill${passed.length > 1 ? "s" : ""} passed over`));
-      const inner = el("ul");
-      passed.forEach((c) => inner.append(treeNode(c)));
-      details.append(inner);
-      const item = el("li");
-      item.append(details);
-      ul.append(item);
-    }
-    li.append(ul);
-  }
-  return li;
-}
-
-function agentPanel(name, a) {
-  const box = el("div", "agent");
-  box.dataset.agent = name;
-  box.append(el("h2", "", name));
-  const self = Object.entries(a.self || {}).map(([k, v]) => `${k} ${fmt(v)}`).join(", ");
-  if (self) box.append(el("div", "self", "self: " + self));
-  const table = el("table", "goals");
-  table.append(Object.assign(el("tr"), { innerHTML: "<th>status</th><th>id</th><th>goal</th><th>p</th><th>note</th>" }));
-  for (const g of a.goals) {
-    const tr = el("tr", "goal");
-    tr.dataset.id = g.id;
-    tr.dataset.status = g.status;
-    const st = el("td");
-    st.append(el("span", `status s-${g.status}`, g.status));
-    tr.append(st, el("td", "id", g.id), el("td", "", g.goal), el("td", "", g.priority),
-      el("td", "note", g.note));
-    table.append(tr);
-  }
-  box.append(table);
-  box.append(el("div", "actions", "actions: " + (a.actions.map(action).join(" ") || "none")));
-  const tree = el("div", "tree");
-  if (a.tree) {
-    const ul = el("ul");
-    ul.append(treeNode(a.tree));
-    tree.append(ul);
-  } else tree.append(el("p", "hint", "no decision recorded for this cycle"));
-  box.append(tree);
-  return box;
-}
+  impasse: "#d23c3c", failed: "#222", pending: "#c9c9c9", cancelled: "#bbb" };
+const STATES = { waiting: "waiting", live: "live", ended: "run ended", record: "record",
+  offline: "view offline" };
+const RENDER_MS = 1000; // the domain's own picture at most once a second
+const ROW = 11, LABEL_W = 90; // timeline: row height, label width [px]
+const view = { live: true, map: null, mapId: "", frame: null, status: null, agent: null,
+  online: false, lastRender: -Infinity, renderTimer: null };
 
 async function ensureMap(frame) {
   if (frame.map_id && frame.map_id !== view.mapId) {
@@ -96,17 +26,100 @@ async function show(frame) {
   await ensureMap(frame);
   document.body.dataset.cycle = frame.cycle;
   $("clock").textContent = `cycle ${frame.cycle}, t = ${frame.time.toFixed(1)} s`;
-  const focus = Object.keys(frame.agents)[0];
-  const now = performance.now();
-  if (view.map && (view.map.drawn || now - view.lastRender > 1000)) {
-    view.lastRender = now;
-    drawWorld($("map"), $("render"), view.map, frame, focus);
-  }
-  const agents = $("agents");
-  agents.replaceChildren(...Object.entries(frame.agents).map(([n, a]) => agentPanel(n, a)));
+  const names = Object.keys(frame.agents);
+  if (!names.includes(view.agent)) view.agent = names[0] || null;
+  drawTabs(names);
+  drawMap();
+  const a = view.agent && frame.agents[view.agent];
+  $("panel").replaceChildren(a ? agentPanel(view.agent, a) : el("p", "hint", "no agent yet"));
   if (!view.live) $("slider").value = frame.cycle;
-  $("at").textContent = view.live ? `live, cycle ${frame.cycle}` : `cycle ${frame.cycle}`;
+  showAt();
   drawStrip();
+}
+
+function drawTabs(names) {
+  const tabs = $("tabs");
+  tabs.hidden = names.length < 2;
+  if (tabs.dataset.names !== names.join(" ")) {
+    tabs.dataset.names = names.join(" ");
+    tabs.replaceChildren(...names.map((n) => {
+      const b = el("button", "", n);
+      b.dataset.agent = n;
+      b.addEventListener("click", () => { view.agent = n; view.lastRender = -Infinity; show(view.frame); });
+      return b;
+    }));
+  }
+  for (const b of tabs.children) b.classList.toggle("on", b.dataset.agent === view.agent);
+}
+
+function drawMap() {
+  // the page draws driving and blocks itself; any other domain is its own PNG, fetched at
+  // most once a second and always for the newest frame shown (a trailing redraw)
+  const frame = view.frame;
+  if (!frame || !view.map) return;
+  const wait = view.map.drawn ? 0 : view.lastRender + RENDER_MS - performance.now();
+  if (wait <= 0) {
+    view.lastRender = performance.now();
+    drawWorld($("map"), $("render"), view.map, frame, view.agent, named(frame.agents[view.agent]));
+  } else if (!view.renderTimer) {
+    view.renderTimer = setTimeout(() => { view.renderTimer = null; drawMap(); }, wait);
+  }
+}
+
+function named(agent) {
+  // the ids in the beliefs that make the agent's goals false (a pedestrian, a car)
+  const ids = new Set(), walk = (clauses) => clauses.forEach((c) => {
+    (c.because || []).forEach((h) => h.belief.slice(1, -1).split(" ").slice(1).forEach((a) => ids.add(a)));
+    walk(c.below || []);
+  });
+  ((agent && agent.why && agent.why.goals) || []).forEach((g) => walk(g.clauses));
+  return ids;
+}
+
+function runState() {
+  if (!view.online) return "offline";
+  return view.status ? view.status.state : "waiting";
+}
+
+function showAt() {
+  const state = runState(), f = view.frame;
+  const following = view.live && (state === "live" || state === "waiting");
+  $("live").textContent = state === "record" || state === "ended" ? "last" : "live";
+  if (f) $("at").textContent = following ? `live, cycle ${f.cycle}` : `cycle ${f.cycle}`;
+}
+
+function showState() {
+  const state = runState(), badge = $("state");
+  badge.dataset.state = state;
+  badge.textContent = STATES[state] || state;
+  badge.title = state === "offline" ? "the view server does not answer"
+    : view.status ? view.status.state_note : "";
+  showAt();
+}
+
+function niceStep(span, most) {
+  // the smallest of 1, 2, 5 x 10^k cycles that gives at most `most` ticks over `span`
+  for (let p = 1; ; p *= 10) for (const m of [1, 2, 5]) if (span / (m * p) <= most) return m * p;
+}
+
+function drawAxis(first, last, x, width) {
+  // cycle labels under the strip, as DOM elements (readable and selectable)
+  const axis = $("axis"), step = niceStep(Math.max(1, last - first), Math.max(2, Math.floor(width / 70)));
+  const ticks = [el("span", "unit", "cycle")];
+  for (let c = Math.ceil(first / step) * step; c <= last; c += step) {
+    if (x(c) < LABEL_W + 10) continue;
+    const t = el("span", "tick", String(c));
+    t.dataset.cycle = c;
+    t.style.left = `${x(c)}px`;
+    ticks.push(t);
+  }
+  axis.replaceChildren(...ticks);
+}
+
+function stripScale() {
+  const st = view.status, c = $("strip");
+  const span = Math.max(1, st.last - st.first);
+  return (cycle) => LABEL_W + ((cycle - st.first) / span) * (c.width - LABEL_W - 4);
 }
 
 function drawStrip() {
@@ -117,25 +130,25 @@ function drawStrip() {
   for (const [agent, goals] of Object.entries(st.goals))
     for (const [gid, changes] of Object.entries(goals)) rows.push([`${agent} ${gid}`, changes]);
   c.width = c.clientWidth || 800;
-  c.height = Math.max(30, rows.length * 11 + 4);
-  const ctx = c.getContext("2d"), span = Math.max(1, st.last - st.first), lw = 90;
-  const x = (cycle) => lw + ((cycle - st.first) / span) * (c.width - lw - 4);
+  c.height = Math.max(14, rows.length * ROW + 4);
+  const ctx = c.getContext("2d"), x = stripScale();
   ctx.clearRect(0, 0, c.width, c.height);
   ctx.font = "9px sans-serif";
   rows.forEach(([label, changes], i) => {
     ctx.fillStyle = "#333";
-    ctx.fillText(label, 2, i * 11 + 10);
+    ctx.fillText(label, 2, i * ROW + 10);
     changes.forEach((ch, k) => {
       const end = k + 1 < changes.length ? changes[k + 1].cycle : st.last + 1;
       ctx.fillStyle = STATUS_COLOURS[ch.status] || "#888";
       const from = x(Math.max(ch.cycle, st.first));
-      ctx.fillRect(from, i * 11 + 2, Math.max(1, x(end) - from), 9);
+      ctx.fillRect(from, i * ROW + 2, Math.max(1, x(end) - from), 9);
     });
   });
   if (view.frame) {
     ctx.fillStyle = "#000";
     ctx.fillRect(x(view.frame.cycle), 0, 1.5, c.height);
   }
+  drawAxis(st.first, st.last, x, c.width);
 }
 
 function showStatus(st) {
@@ -164,6 +177,7 @@ function showStatus(st) {
     [k.key, k.count, k.rate || "-", k.bytes || "-"].forEach((v) => tr.append(el("td", "", v)));
     keys.append(tr);
   }
+  showState();
   drawStrip();
 }
 
@@ -176,10 +190,10 @@ async function goTo(cycle) {
 
 function connect() {
   const events = new EventSource("/events");
-  events.onopen = () => { $("conn").textContent = "connected"; $("conn").classList.add("up"); };
-  events.onerror = () => { $("conn").textContent = "offline"; $("conn").classList.remove("up"); };
+  events.onopen = () => { view.online = true; showState(); };
+  events.onerror = () => { view.online = false; showState(); };
   events.addEventListener("frame", (e) => { if (view.live) show(JSON.parse(e.data)); });
-  events.addEventListener("status", (e) => showStatus(JSON.parse(e.data)));
+  events.addEventListener("status", (e) => { view.online = true; showStatus(JSON.parse(e.data)); });
 }
 
 $("slider").addEventListener("input", (e) => goTo(+e.target.value));
@@ -191,8 +205,15 @@ $("live").addEventListener("click", async () => {
   const r = await fetch("/api/frame");
   if (r.ok) await show(await r.json());
 });
+$("strip").addEventListener("click", (e) => {
+  const st = view.status, c = $("strip");
+  if (!st || st.first === null || e.offsetX < LABEL_W) return;
+  const span = Math.max(1, st.last - st.first);
+  goTo(Math.round(st.first + ((e.offsetX - LABEL_W) / (c.width - LABEL_W - 4)) * span));
+});
 document.addEventListener("keydown", (e) => {
   if (e.key === "ArrowLeft") $("back").click();
   if (e.key === "ArrowRight") $("fwd").click();
 });
+window.addEventListener("resize", () => { if (view.map && view.map.drawn) drawMap(); drawStrip(); });
 connect();

@@ -6,9 +6,19 @@ const COLOURS = {
   grass: "#c4deb4", walk: "#d6d6d0", road: "#4e5056", yellow: "#f6c828", white: "#f0f0f0",
   building: "#ceaa7e", outline: "#785a3c", ped: "#008c78", down: "#dc1e1e",
   traffic: "#3c6ec8", agent: "#f58214", me: "#d01f1f", trail: "#e0303080",
-  pkg: "#9628aa", delivered: "#1ea03c", table: "#8b6b4a", floor: "#e8e2d6",
+  pkg: "#9628aa", delivered: "#1ea03c", table: "#8b6b4a", floor: "#e8e2d6", named: "#7a1f8f",
 };
 const BLOCK_COLOURS = ["#d9534f", "#5b8def", "#4cae4c", "#f0ad4e", "#8e6bbf", "#2bb5b5"];
+
+function fitCanvas(canvas, x0, y0, x1, y1) {
+  // size the canvas to the largest box of the world box's aspect that its section holds
+  // (so the whole world is in the window), and return the world -> canvas transform
+  const box = canvas.parentElement, w = x1 - x0, h = y1 - y0;
+  const s = Math.min(box.clientWidth / w, (box.clientHeight || box.clientWidth) / h);
+  canvas.width = Math.max(40, Math.floor(w * s));
+  canvas.height = Math.max(40, Math.floor(h * s));
+  return fitView(canvas, x0, y0, x1, y1);
+}
 
 function fitView(canvas, x0, y0, x1, y1) {
   // world box -> canvas transform keeping the aspect ratio
@@ -45,10 +55,9 @@ function box(ctx, v, x, y, headingDeg, length, width, fill, minPx = 0) {
   ctx.restore();
 }
 
-function drawDriving(canvas, map, frame, focus) {
+function drawDriving(canvas, map, frame, focus, named) {
   const ctx = canvas.getContext("2d"), m = 30;
-  canvas.height = Math.round((canvas.width * (map.size[1] + 2 * m)) / (map.size[0] + 2 * m));
-  const v = fitView(canvas, -m, -m, map.size[0] + m, map.size[1] + m);
+  const v = fitCanvas(canvas, -m, -m, map.size[0] + m, map.size[1] + m);
   ctx.fillStyle = COLOURS.grass;
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   for (const seg of map.segments) strokeLine(ctx, v, seg.a, seg.b, COLOURS.walk, 2 * map.sidewalk);
@@ -97,15 +106,17 @@ function drawDriving(canvas, map, frame, focus) {
     ctx.stroke();
   }
   for (const p of w.pedestrians || []) {
-    const [x, y] = v.p(p.x, p.y);
+    const [x, y] = v.p(p.x, p.y), r = Math.max(3, 0.8 * v.s);
     ctx.fillStyle = p.mode === "down" ? COLOURS.down : COLOURS.ped;
     ctx.beginPath();
-    ctx.arc(x, y, Math.max(3, 0.8 * v.s), 0, 2 * Math.PI);
+    ctx.arc(x, y, r, 0, 2 * Math.PI);
     ctx.fill();
+    if (named.has(p.id)) ring(ctx, x, y, r + 4, p.id);
   }
   for (const c of w.cars || []) {
     const colour = c.kind !== "agent" ? COLOURS.traffic : c.id === focus ? COLOURS.me : COLOURS.agent;
     box(ctx, v, c.x, c.y, c.heading, 4.6, 2.0, colour, 11);
+    if (named.has(c.id) && c.id !== focus) ring(ctx, ...v.p(c.x, c.y), 10, c.id);
     if (c.kind === "agent") {
       ctx.fillStyle = "#111";
       const [x, y] = v.p(c.x, c.y);
@@ -114,12 +125,23 @@ function drawDriving(canvas, map, frame, focus) {
   }
 }
 
+function ring(ctx, x, y, r, label) {
+  // an object the beliefs panel names (why a goal is not satisfied): circled and labelled
+  ctx.strokeStyle = COLOURS.named;
+  ctx.lineWidth = 2;
+  ctx.beginPath();
+  ctx.arc(x, y, r, 0, 2 * Math.PI);
+  ctx.stroke();
+  ctx.fillStyle = COLOURS.named;
+  ctx.fillText(label, x, y + r + 11);  // below: a car's label is above it
+}
+
 function drawBlocks(canvas, map, frame, focus) {
   const ctx = canvas.getContext("2d"), t = map.table, w = frame.world;
   const lo = -t.pitch / 2, hi = (t.columns - 0.5) * t.pitch;
   const top = Math.max(t.height + 8, ...(w.blocks || []).map((b) => b.y + b.height),
     ...(w.hands || []).map((h) => h.y + 2));
-  const v = fitView(canvas, lo - 3, -1, hi + 3, top + 1);
+  const v = fitCanvas(canvas, lo - 3, -1, hi + 3, top + 1);
   ctx.fillStyle = "#fff";
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.fillStyle = COLOURS.floor;
@@ -151,11 +173,12 @@ function drawBlocks(canvas, map, frame, focus) {
 
 const DRAWERS = { driving: drawDriving, blocks: drawBlocks };
 
-function drawWorld(canvas, img, map, frame, focus) {
-  // a domain the page knows is drawn here; any other is the domain's own PNG (server-side)
+function drawWorld(canvas, img, map, frame, focus, named = new Set()) {
+  // a domain the page knows is drawn here; any other is the domain's own PNG (server-side).
+  // `named`: ids of the objects the beliefs panel names, marked on the map
   const draw = map && DRAWERS[map.domain];
   canvas.hidden = !draw;
   img.hidden = !!draw;
-  if (draw) draw(canvas, map, frame, focus);
-  else if (frame) img.src = `/api/render.png?cycle=${frame.cycle}`;
+  if (draw) draw(canvas, map, frame, focus, named);
+  else if (frame) img.src = `/api/render.png?cycle=${frame.cycle}&agent=${encodeURIComponent(focus || "")}`;
 }
