@@ -34,9 +34,11 @@ def test_a_conjunction_is_read_and_checked_like_a_concepts_relations():
     assert str(goal) == "(and (on A B) (not (on B C)) (on ?x A) (< ?n 3) (ontable ?n T))"
     for text, message in [
             ("(and)", "column 1: a conjunctive goal needs at least one conjunct"),
-            ("(and (on A B) (and (on B C)))", "column 15: a conjunct cannot itself be a conjunction"),
-            ("(and (on A B) (< ?y 2))", "column 15: variable ?y of test (< ?y 2) in (and (on A B) "
-                                        "(< ?y 2)) is bound by no positive conjunct"),
+            ("(and (on A B) (and (on B C)))",
+             "column 15: a conjunct cannot itself be a conjunction"),
+            ("(and (on A B) (< ?y 2))",
+             "column 15: variable ?y of test (< ?y 2) in (and (on A B) (< ?y 2)) is bound by no "
+             "positive conjunct"),
             ("(and (on A B) (onn B C))", "undefined concept 'onn' (conjunct (onn B C))"),
             ("(and (on A))", "concept on takes 2 argument(s), got 1 (conjunct (on A))")]:
         with pytest.raises(GoalError, match=re.escape(message)):
