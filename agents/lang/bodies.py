@@ -9,9 +9,14 @@ from __future__ import annotations
 
 from typing import Protocol, runtime_checkable
 
+from .arith import evaluate
+from .errors import EvalError
 from .explanation import GoalReport
-from .paths import BodyRunner, PathFinder, PrimitiveBody, SubgoalBody, Walk
+from .goals import satisfied
+from .matcher import ground
+from .paths import BodyRunner, PathFinder, Walk
 from .scs.runner import ScsBody
+from .terms import Action
 
 
 @runtime_checkable
@@ -32,3 +37,39 @@ def cycle_hooks(runners: dict[str, BodyRunner], program_kinds: set[str]) -> list
     """The runners, of the kinds a program uses, that want to hear of every cycle."""
     return [r for kind, r in runners.items() if kind in program_kinds
             and isinstance(r, CycleHook)]
+
+
+class PrimitiveBody:
+    """A primitive skill: its actions, evaluated under the bindings, if their resources are
+    free (seed 000, Table 1: ``:actions ((*gas 6.25))``)."""
+
+    def expand(self, finder, walk, s, b, goal, prev_rest, depth, on_path, step, stored):
+        try:
+            actions = [Action(a.name, tuple(evaluate(x, b) for x in a.args)) for a in s.actions]
+        except EvalError as exc:
+            walk.passed(depth, str(goal), s.name, b, f"action cannot be evaluated: {exc}")
+            return None
+        clash = finder.conflict(walk, actions) or finder.undoes(walk, actions)
+        if clash:
+            walk.passed(depth, str(goal), s.name, b, clash)
+            return None
+        return [step], actions, [stored]
+
+
+class SubgoalBody:
+    """A nonprimitive skill: a path for its first unsatisfied subgoal (seed 000, Table 1:
+    ``:subgoals ((address-in-front ...) (at-address ...))``)."""
+
+    def expand(self, finder, walk, s, b, goal, prev_rest, depth, on_path, step, stored):
+        sub = next((g for g in (ground(x, b) for x in s.subgoals)
+                    if not satisfied(g, walk.store)), None)
+        if sub is None:
+            walk.passed(depth, str(goal), s.name, b,
+                        "every subgoal already holds (goal still false)")
+            return None
+        found = finder.achieve(walk, sub, prev_rest, depth + 1, on_path)
+        if found is None:
+            walk.passed(depth, str(goal), s.name, b, f"subgoal {sub} has no executable path")
+            return None
+        steps, actions, st = found
+        return [step, *steps], actions, [stored, *st]

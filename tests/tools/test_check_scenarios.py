@@ -188,6 +188,20 @@ def test_a_scripted_cancel_must_name_a_goal_the_scenario_has_posted_by_then(tmp_
     load_checked(scenario(tmp_path, DEMO + cancel.format("g2", 200), "later.toml"))
 
 
+def test_a_scenario_goal_may_be_a_conjunction_and_a_bad_one_is_refused(tmp_path):
+    """issue 22: [[goals]] goal = "(and ...)" is checked as teleo goal post checks it."""
+    blocks = (ROOT / "scenarios" / "blocks_figure3.toml").read_text().replace(
+        '"programs/blocks.tlp"', f'"{ROOT / "programs" / "blocks.tlp"}"')
+    good = scenario(tmp_path, blocks.replace('goal = "(clear A)"',
+                                             'goal = "(and (on C A) (on A B))"'), "c.toml")
+    loaded, _ = load_checked(good)
+    assert loaded.goals[0].goal == "(and (on C A) (on A B))"
+    bad = scenario(tmp_path, blocks.replace('goal = "(clear A)"',
+                                            'goal = "(and (on C A) (onn A B))"'), "d.toml")
+    with pytest.raises(ScenarioError, match=r"undefined concept 'onn' \(conjunct \(onn A B\)\)"):
+        load_checked(bad)
+
+
 # -- the 2026-12-02 trial's defects (issue 24, #2, #8, #9, #17) -------------------------------
 
 @pytest.mark.parametrize("name", ["../../etc/x y", "a/b", "x y", "", "a\nb", "a*b", "n" * 65])

@@ -103,11 +103,10 @@ def test_a_goal_the_solver_gives_up_fails_with_its_reason(tmp_path):
 def test_the_solvers_step_is_told_while_it_works(tmp_path):
     rec = recorded(tmp_path, ROOT / "scenarios" / "blocks_figure3.toml", 10)
     decision = rec.by_cycle("intention")[0]["decision"]
-    key, text = doing(decision, "p1")
+    key, text = doing(decision, "g1")
     assert text.startswith("problem solving: (unstackable B A) <- ") and text.endswith(
         "(depth 2)")
-    # (a program goal is never in the goal list: followed by its intentions)
-    lines = followed(rec, Follower("p1", 0), kinds=("intention",))
+    lines = followed(rec, Follower("g1", 0), kinds=("intention",))
     assert lines[0].split()[2:4] == ["impasse", "problem"]
     assert [line.split()[2] for line in lines][1:] == ["active", "achieved"]
 

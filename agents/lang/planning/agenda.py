@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
+from ..conjunction import Conjunction
 from ..goals import GoalEntry, ordered
 from ..solving.task import literal
 from .backchain import build, check, replan_note
@@ -71,7 +72,11 @@ def sync(ps: PlannerState, env: Env, goals: tuple[GoalEntry, ...], failed: dict[
         start = start or env.place()
         t = Task(e.id, e.text, e.priority, e.seq, env.cycle,
                  env.domain.knowledge(e.literal, env.pidx, env.store))
-        if e.literal.variables():
+        if isinstance(e.literal, Conjunction):
+            failed[e.id] = (f"{e.text}: the planner takes a request for one literal; post "
+                            "each conjunct as a request of its own")
+            done.append(_finish(t, env.cycle, "failed", failed[e.id]))
+        elif e.literal.variables():
             failed[e.id] = f"{e.text}: the planner takes requests without variables"
             done.append(_finish(t, env.cycle, "failed", failed[e.id]))
         elif env.holds(t.goal, t.knowledge):

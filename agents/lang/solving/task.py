@@ -10,7 +10,11 @@ from functools import lru_cache
 from itertools import islice
 
 from ..arith import evaluate
-from ..errors import EvalError, LangError
+from ..conjunction import Conjunction, conjunction_holds
+from ..effects import Effects
+from ..errors import EvalError, GoalError, LangError
+from ..goals import parse_goal
+from ..loops import situation
 from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
 from ..parser import Parser, Parts
 from ..paths import btuple, show
@@ -18,7 +22,8 @@ from ..program import ConceptClause, Program, Skill
 from ..sexpr import Atom, read
 from ..store import FactStore, PerceptIndex
 from ..terms import Literal, Test, Var, fmt
-from .state import CONCEPT, SKILL, Alternative
+from .filters import WayFilters
+from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
 MAX_PER_CLAUSE = 3     # alternatives kept per clause (the best-ranked bindings)
@@ -33,6 +38,18 @@ def condition(text: str) -> Literal | Test:
     if len(found) != 1 or parts.diags:
         raise ValueError(f"solver state: cannot read the condition {text!r}")
     return found[0]
+
+
+@lru_cache(maxsize=1024)
+def goal_of(text: str) -> Literal | Conjunction:
+    """A (sub)goal read back from its text: a literal, or the conjunction at the bottom of a
+    conjunctive goal's stack."""
+    if text.startswith("(and "):
+        try:
+            return parse_goal(text)
+        except GoalError as exc:
+            raise ValueError(f"solver state: cannot read the goal {text!r}: {exc}") from None
+    return literal(text)
 
 
 def literal(text: str) -> Literal:
@@ -72,18 +89,50 @@ def _writable(value: object) -> bool:
         forms[0].value == value
 
 
-class Task:
+class Task(WayFilters):
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
-    percepts and the beliefs."""
+    percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
+    that hold and come before the one solved for, which no way chained off may undo (seed 000,
+    "Adding Goal Priorities"), judged by ``effects`` (agents/lang/effects.py)."""
 
-    def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore):
+    def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore,
+                 protected: tuple | list = (), effects: Effects | None = None,
+                 shared: dict | None = None):
         self.program = program
         self.pidx = pidx
         self.store = store
+        self.protected = tuple(protected)
+        self.effects = effects if effects is not None else Effects(program)
+        self.refused: list[str] = []   # ways left out because they undo a protected goal,
+        self.conflicts: dict[str, str] = {}   # and those goals (id -> text)
+        self.memo: dict = {}           # per-cycle results (agents/lang/solving/ordering.py)
+        self.shared = shared if shared is not None else {}  # the same, across cycles, by
+        #                                                     situation (``situation``)
+        self._holds: dict = {}
+        self._alternatives: dict = {}
+        self._situation = ""
+
+    @property
+    def situation(self) -> str:
+        """The digest of this cycle's percepts and beliefs (agents/lang/loops.py), for
+        results kept across cycles."""
+        if not self._situation:
+            self._situation = situation(self.pidx, self.store)
+        return self._situation
 
     # -- what holds ------------------------------------------------------------------------
-    def holds(self, cond: str | Literal | Test) -> bool:
+    def holds(self, cond: str | Literal | Test | Conjunction) -> bool:
         """True if the condition holds now (variables in a literal are existential)."""
+        hit = self._holds.get(cond)
+        if hit is None:
+            hit = self._holds[cond] = self._holds_now(cond)
+        return hit
+
+    def _holds_now(self, cond: str | Literal | Test | Conjunction) -> bool:
+        if isinstance(cond, str) and cond.startswith("(and "):
+            cond = goal_of(cond)
+        if isinstance(cond, Conjunction):
+            return conjunction_holds(cond, self.store, self.pidx)
         c = condition(cond) if isinstance(cond, str) else cond
         if isinstance(c, Test):
             return not c.variables() and test_holds(c, {})
@@ -106,6 +155,11 @@ class Task:
     # -- ways to chain off a goal ----------------------------------------------------------
     def nothing_to_chain(self, goal: str) -> str:
         """Why ``goal`` has no way to chain off, for the failure's reason."""
+        refused = f"; {'; '.join(dict.fromkeys(self.refused))}" if self.refused else ""
+        if goal.startswith("(and "):
+            return ("nothing to chain off: its conjuncts cannot be bound to objects here, or "
+                    "one that does not hold cannot become a subgoal (a negation or a test)"
+                    + refused)
         pred = literal(goal).pred
         skills = f"no primitive skill achieves {pred}" if not any(
             s.kind == "primitive" for s in self.program.skills_for(pred)) else \
@@ -114,9 +168,9 @@ class Task:
         concept = "its definition cannot be decomposed here" \
             if any(c.relations for c in self.program.concepts.get(pred, ())) else \
             f"{pred} is a primitive concept, with no subconcepts to decompose into"
-        return f"nothing to chain off: {skills}; {concept}"
+        return f"nothing to chain off: {skills}; {concept}{refused}"
 
-    def alternatives(self, goal: Literal, applicable: bool = False,
+    def alternatives(self, goal: Literal | Conjunction, applicable: bool = False,
                      concepts: bool = True) -> tuple[Alternative, ...]:
         """Skill chaining first, then concept chaining (seed 000: "chaining backwards off
         either conceptual clauses or primitive skills, with a priority on the latter"): the
@@ -127,12 +181,22 @@ class Task:
         ``applicable``: also the skills whose conditions all hold already (a planner that
         projects operators ahead of execution applies them; the solver never needs them, the
         executive would have executed such a skill); ``concepts``: concept chaining too
-        (PRODIGY's back-chainer, agents/lang/planning, chains on operators only)."""
-        out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
-               for a in self._by_skill(s, goal, applicable)]
-        for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
-            out += self._by_concept(clause, goal)
-        return tuple(out)
+        (PRODIGY's back-chainer, agents/lang/planning, chains on operators only).
+        A conjunction has one way per binding of its variables, like a concept clause without
+        a head (concept chaining on its conjuncts)."""
+        key = (goal, applicable, concepts)
+        hit = self._alternatives.get(key)
+        if hit is not None:
+            return hit
+        if isinstance(goal, Conjunction):
+            out = self._by_conjunction(goal)
+        else:
+            out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
+                   for a in self._by_skill(s, goal, applicable)]
+            for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
+                out += self._by_concept(clause, goal)
+        self._alternatives[key] = hit = tuple(out)
+        return hit
 
     def _by_skill(self, s: Skill, goal: Literal, applicable: bool = False
                   ) -> list[Alternative]:
@@ -144,10 +208,13 @@ class Task:
         for b in self._candidates(list(s.percepts), conds, b0):
             ground = _ground(conds, b)
             if ground is not None and self._chainable(ground, applicable) \
-                    and self.admits(s, b, goal):
-                ranked.append((self.rank(ground), binding_key(b), b, ground))
+                    and self.admits(s, b, goal) and not self.undoes_skill(s, b) and \
+                    (applicable or not self._circular(goal, ground)):
+                ready = applicable and all(self.holds(c) for c in ground)
+                ranked.append(((not ready, *self.rank(ground)), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
-                            self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
+                            self._shows(s, b))
+                for _, _, b, ground in self._best(ranked, not applicable)]
 
     def admits(self, s: Skill, b: dict, goal: Literal) -> bool:
         """Whether skill ``s`` under bindings ``b`` may be chained on for ``goal`` at all
@@ -171,6 +238,15 @@ class Task:
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
                             f"concept {name}") for _, _, b, ground in self._best(ranked)]
 
+    def _by_conjunction(self, conj: Conjunction) -> list[Alternative]:
+        ranked = []
+        for b in self._candidates([], list(conj.literals), {}):
+            ground = _ground(list(conj.conds), b)
+            if ground is not None and self._chainable(ground):
+                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
+                            "the conjunction") for _, _, b, ground in self._best(ranked)]
+
     def _chainable(self, ground: list, applicable: bool = False) -> bool:
         """Something is left to achieve (or, ``applicable``, nothing), and all of it can
         become a subgoal."""
@@ -179,9 +255,14 @@ class Task:
 
     per_clause = MAX_PER_CLAUSE   # bindings kept per clause (the planner keeps more)
 
-    def _best(self, ranked: list) -> list:
+    def _best(self, ranked: list, closest: bool = True) -> list:
+        """The best-ranked bindings of a clause, at most ``per_clause``; with ``closest``
+        (the solver's chaining), none that holds fewer of the conditions than the best one
+        (a block not on B3 is no way to clear B3: it would first have to be put there). The
+        planner, which projects its operators, keeps them all."""
         ranked.sort(key=lambda r: (r[0], r[1]))
-        return ranked[:self.per_clause]
+        best = ranked[:self.per_clause]
+        return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
 
     def rank(self, conds: list) -> tuple:
         """Sort key of a way to chain off (smaller first): the most conditions holding,

@@ -12,16 +12,17 @@ from agents.lang.solving.state import CONCEPT, Alternative, StackEntry
 from agents.lang.solving.task import Task
 from agents.lang.store import PerceptIndex, store_of
 
-from ..conftest import ROOT
+from ..conftest import BLOCKS, ROOT, figure3_program
 from ..test_blocks import TOWER, percepts, run
 
+BLOCKS_TEXT = BLOCKS.read_text()
 UNSTACKABLE = Alternative(CONCEPT, 1, "unstackable#1", (("b", "B"), ("from", "A")),
                           ("(on B A)", "(clear B)", "(hand-empty)"), "concept unstackable#1")
 
 
 @pytest.fixture(scope="module")
 def blocks():
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    return Engine(figure3_program())
 
 
 def _task(engine, support, holding=None) -> Task:
@@ -95,3 +96,45 @@ def test_generalise_names_variables_by_percept_type_and_keeps_other_constants(bl
     assert [str(p) for p in skill.percepts] == ["(block ?b1)", "(block ?b2)", "(table ?t1)"]
     assert [str(g) for g in skill.subgoals] == ["(on ?b1 4)"]   # 4 is no percept's id
     assert [str(c) for c in skill.start] == ["(ontable ?b2 ?t1)"]
+
+
+GOAL_STATE = """
+(concepts
+  ((goal-state) :relations ((on B2 B1) (on B1 B3))))
+"""
+
+
+def test_an_object_the_head_does_not_name_stays_a_constant():
+    """Issue 22: from a goal without arguments, concept chaining used to learn
+    ((goal-state) :percepts ((block ?b1) (block ?b2)) :subgoals ((on ?b1 ?b2))), whose
+    variables no start ties to anything, so it "applied" to any two blocks. Now a learned
+    skill's variables are the goal's constants and what a positive :start literal ties to
+    them; here the goal has none, so B2 and B1 stay as written."""
+    from agents.lang import load_program_text
+
+    program = load_program_text(BLOCKS_TEXT + GOAL_STATE, "goal-state.tlp")
+    engine = Engine(program)
+    state = engine.add_goal(engine.initial_state(), "(goal-state)", 1, "g1")
+    trace, support, _, state = run(engine, state, {"B1": "T", "B2": "T", "B3": "T"}, cycles=20)
+    assert support == {"B1": "B3", "B2": "B1", "B3": "T"}
+    learned = Engine(program).executive_for(engine.initial_state(learned=state.learned))
+    skills = learned.program.skills[len(program.skills):]
+    assert skills
+    for s in skills:
+        tied = set(s.head.variables())
+        for c in s.start:
+            if isinstance(c, Literal) and not c.negated and c.variables() & tied:
+                tied |= c.variables()
+        used = {v for g in (*s.subgoals, *s.start) for v in g.variables()}
+        assert used <= tied, str(s.head)
+    heads = [str(s.head) for s in skills]
+    assert "(goal-state)" in heads
+    goal_skill = skills[heads.index("(goal-state)")]
+    assert [str(g) for g in goal_skill.subgoals] == ["(on B1 B3)", "(on B2 B1)"]
+    again = Engine(program)
+    fresh = again.add_goal(again.initial_state(learned=state.learned), "(goal-state)", 1, "g1")
+    trace, support, *_ = run(again, fresh, {"B1": "T", "B2": "T", "B3": "T"}, cycles=20)
+    assert support == {"B1": "B3", "B2": "B1", "B3": "T"}
+    other = again.add_goal(again.initial_state(learned=state.learned), "(on B3 B2)", 1, "g1")
+    trace, support, *_ = run(again, other, {"B1": "T", "B2": "T", "B3": "T"}, cycles=20)
+    assert support["B3"] == "B2"

@@ -19,7 +19,7 @@ def test_step_shows_the_stack_and_goes_on_from_a_saved_state(tmp_path):
     program, state = str(ROOT / "programs" / "blocks.tlp"), str(tmp_path / "state.json")
     runner = CliRunner()
     first = runner.invoke(cli, ["step", program, "--percepts", str(seen), "--json",
-                                "--save-state", state])
+                                "--goal", "(clear A)", "--save-state", state])
     assert first.exit_code == 0, first.output
     solver = json.loads(first.output)["decision"]["solver"]
     assert [e["goal"] for e in solver["stacks"][0]["entries"]] == ["(clear A)",
@@ -31,3 +31,20 @@ def test_step_shows_the_stack_and_goes_on_from_a_saved_state(tmp_path):
     assert "  3 (clear B)  <- decomposed (unstackable B A) through concept unstackable#1" in \
         second.output
     assert "actions: (*unstack C B)" in second.output
+
+
+def test_step_takes_a_conjunctive_goal_and_shows_it_as_written(tmp_path):
+    seen = tmp_path / "sussman.json"
+    seen.write_text(json.dumps(percepts({"A": "T", "C": "A", "B": "T"})))
+    program = str(ROOT / "programs" / "blocks.tlp")
+    done = CliRunner().invoke(cli, ["step", program, "--percepts", str(seen), "--json",
+                                    "--goal", "(and (on A B) (on B C)):3"])
+    assert done.exit_code == 0, done.output
+    goal = json.loads(done.output)["decision"]["goals"][0]
+    assert (goal["goal"], goal["priority"], goal["status"], goal["instance"]) == (
+        "(and (on A B) (on B C))", 3, "active", "(clear A)")
+    assert json.loads(done.output)["decision"]["actions"] == [["*unstack", "C", "A"]]
+    bad = CliRunner().invoke(cli, ["step", program, "--percepts", str(seen),
+                                   "--goal", "(and (on A B) (on B))"])
+    assert bad.exit_code != 0 and "concept on takes 2 argument(s), got 1 (conjunct (on B))" \
+        in bad.output
