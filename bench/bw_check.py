@@ -1,9 +1,11 @@
-"""The independent check of a teleo run (bench/bw_teleo.py) and its figures: the actions it
-sent are replayed under STRIPS rules (bench/bw_strips.py) from the start state; the goal is
-checked on the result; every goal the run's summary calls achieved must hold there; and the
-world's final state must be the replayed one (a block the physics let fall, an action the
-world refused, would part them). A run that fails any of these is not solved, whatever it says.
-"""
+"""The independent check of a teleo run (bench/bw_teleo.py) and its figures: the actions the
+world carried out are replayed under STRIPS rules (bench/bw_strips.py) from the start state;
+the goal is checked on the result; every goal the run's summary calls achieved must hold
+there; and the world's final state must be the replayed one (a block the physics let fall
+would part them). A run that fails any of these is not solved, whatever it says. An action
+the world refused changed nothing and is left out of the replay; it is counted, and so is a
+refused action that STRIPS would have allowed (the world's own reasons, a block still
+settling, say)."""
 
 from __future__ import annotations
 
@@ -24,7 +26,8 @@ class Verdict:
     goal first held, the limit when it never did); ``actions`` (actions sent, all cycles);
     ``solving`` (cycles in which problem solving ran); ``idle`` (cycles before the goal held
     in which nothing was done); ``pushes`` and ``backtracks`` (the solver's chaining decisions
-    and backtracks); ``ended``: per goal of the summary, (goal, status, note)."""
+    and backtracks); ``refused`` (actions the world refused) and ``refused_legal`` (those
+    of them STRIPS allows); ``ended``: per goal of the summary, (goal, status, note)."""
 
     solved: bool
     invalid: str
@@ -36,6 +39,8 @@ class Verdict:
     backtracks: int
     wall_s: float
     ended: tuple[tuple[str, str, str], ...] = field(default_factory=tuple)
+    refused: int = 0
+    refused_legal: int = 0
 
     @property
     def unfinished(self) -> list[str]:
@@ -78,16 +83,16 @@ def check(p: Problem, run: TeleoRun, posted: int) -> Verdict:
         problems.append(run.error)
     if not bw_strips.holds(state, goal):
         first = 0
+    refused = [0, 0]
     for cycle, actions in enumerate(run.actions):
         seen = state
         if first is None and not actions:
             idle += 1
-        for action in actions:
+        cut = len(actions) - (run.refused[cycle] if cycle < len(run.refused) else 0)
+        for k, action in enumerate(actions):
             try:
-                step = bw_strips.from_teleo(action)
-                if step is not None:
-                    steps += 1
-                    state = bw_strips.apply(state, step)
+                state, done = _replay(state, action, k >= cut, refused)
+                steps += done
             except bw_strips.Illegal as exc:
                 problems.append(f"cycle {cycle}: {exc}")
                 break
@@ -113,4 +118,23 @@ def check(p: Problem, run: TeleoRun, posted: int) -> Verdict:
     return Verdict(not missing and not invalid, invalid,
                    first if first is not None and not invalid else limit, steps,
                    sum(run.solving), idle, run.pushes, run.backtracks, run.wall_s,
-                   tuple((g["goal"], g["status"], g.get("note", "")) for g in run.summary_goals))
+                   tuple((g["goal"], g["status"], g.get("note", "")) for g in run.summary_goals),
+                   *refused)
+
+
+def _replay(state: bw_strips.State, action: list, was_refused: bool,
+            refused: list[int]) -> tuple[bw_strips.State, int]:
+    """(the state after ``action``, 1 if it was done); a refused action changes nothing and
+    is counted in ``refused`` (the count, and the count of those STRIPS allows)."""
+    step = bw_strips.from_teleo(action)
+    if step is None:
+        return state, 0
+    if not was_refused:
+        return bw_strips.apply(state, step), 1
+    refused[0] += 1
+    try:
+        bw_strips.apply(state, step)
+        refused[1] += 1
+    except bw_strips.Illegal:
+        pass
+    return state, 0

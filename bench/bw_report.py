@@ -10,9 +10,10 @@ from dataclasses import dataclass, field
 from bench.bw_check import Verdict
 from bench.bw_pyperplan import PlanResult
 from bench.bw_tasks import CurveStep, Key
-from bench.bw_teleo import cycle_limit
+from bench.bw_teleo import ORDERS, cycle_limit
 
-ORDERS = ("listed", "bottom-up")
+MAIN = "conjunction-listed"
+"""The goal as the benchmark states it: one conjunction, in the order IPC lists it."""
 
 
 @dataclass
@@ -81,7 +82,7 @@ def table(title: str, header: list[str], rows: list[list[str]]) -> list[str]:
 
 
 def conjunction_table(res: Results) -> list[str]:
-    runs = mode_runs(res, "conjunction")
+    runs = mode_runs(res, MAIN)
     rows = []
     for n in res.sizes:
         keys, vs = res.keys(n), [runs[k] for k in res.keys(n) if k in runs]
@@ -95,10 +96,11 @@ def conjunction_table(res: Results) -> list[str]:
                      ratio(*against(res, runs, "astar-lmcut", keys)),
                      ratio(*against(res, runs, "gbf-hff", keys)),
                      mean([v.wall_s for v in vs], 2), ratio(t_teleo, t_gbf)])
-    return table("conjunction (one goal for the whole goal) against pyperplan; per n, over the "
-                 "seeds; solved k/S!j: j runs failed the check; cycles: mean over the solved "
-                 "runs, idle (cycles without an action before the goal held), solving (cycles "
-                 "of problem solving), pushes (chaining decisions), backtracks: means over all",
+    return table("conjunction (one goal for the whole goal, its literals as IPC lists them) "
+                 "against pyperplan; per n, over the seeds; solved k/S!j: j runs failed the "
+                 "check; cycles: mean over the solved runs, idle (cycles without an action "
+                 "before the goal held), solving (cycles of problem solving), pushes "
+                 "(chaining decisions), backtracks: means over all",
                  ["n", "limit", "gbf", "A*", "teleo", "cycles", "idle", "solving", "pushes",
                   "backtr", "len/opt", "len/gbf", "teleo s", "s/gbf"], rows)
 
@@ -110,12 +112,13 @@ def _times(res: Results, runs: dict[Key, Verdict], keys: list[Key]) -> tuple[flo
             sum(res.plans[(k, "gbf-hff")].wall_s for k in both))
 
 
-def list_table(res: Results) -> list[str]:
+def orders_table(res: Results, form: str) -> list[str]:
+    """Both orders of one goal form side by side."""
     rows = []
     for n in res.sizes:
         row = [str(n)]
         for order in ORDERS:
-            runs = mode_runs(res, order)
+            runs = mode_runs(res, f"{form}-{order}")
             keys = res.keys(n)
             vs = [runs[k] for k in keys if k in runs]
             row += [solved_text(vs), mean([v.cycles for v in vs if v.solved]),
@@ -125,14 +128,16 @@ def list_table(res: Results) -> list[str]:
                     str(sum(len(v.unfinished) for v in vs))]
         rows.append(row)
     head = ["solved", "cycles", "len/opt", "len/gbf", "ended", "open"]
-    return table("priority list, one user goal per literal: listed (each tower top-down, as "
-                 "IPC lists them) | bottom-up; ended: runs whose every goal ended achieved or "
-                 "failed with a reason; open: goals still pending/active/impasse at the limit",
+    what = {"conjunction": "conjunction, one user goal",
+            "list": "priority list, one user goal per literal"}[form]
+    return table(f"{what}: listed (each tower top-down, as IPC lists them) | bottom-up' (each "
+                 f"tower from its base); ended: runs whose every goal ended achieved or failed "
+                 f"with a reason; open: goals still pending/active/impasse at the limit",
                  ["n", *head, *(f"{h}'" for h in head)], rows)
 
 
 def curve_table(res: Results) -> list[str]:
-    fresh = mode_runs(res, "conjunction")
+    fresh = mode_runs(res, MAIN)
     rows = []
     for n in res.sizes:
         steps = [s for s in res.curve if s.key[0] == n]
@@ -183,7 +188,7 @@ def detail(v: Verdict) -> str:
     """Why a run is not solved, in one line."""
     if v.invalid:
         return f"CHECK FAILED: {v.invalid}"
-    notes = [f"{g} {s}" + (f" ({note[:160]})" if note else "") for g, s, note in v.ended
+    notes = [f"{g} {s}" + (f" ({note[:240]})" if note else "") for g, s, note in v.ended
              if s != "achieved"]
     return f"{v.actions} actions; " + ("; ".join(notes[:2]) or "no goal open")
 

@@ -4,7 +4,8 @@ miss it, so that whoever tunes the solver knows where to look."""
 
 from __future__ import annotations
 
-from bench.bw_report import ORDERS, Results, against, detail, listing, mode_runs, name
+from bench.bw_report import MAIN, Results, against, detail, listing, mode_runs, name
+from bench.bw_teleo import ORDERS
 
 
 def _line(ok: bool, text: str) -> str:
@@ -12,19 +13,22 @@ def _line(ok: bool, text: str) -> str:
 
 
 def conjunction_target(res: Results) -> list[str]:
-    runs = mode_runs(res, "conjunction")
+    runs = mode_runs(res, MAIN)
+    other = mode_runs(res, "conjunction-bottom-up")
     missed = sorted(k for k, v in runs.items() if not v.solved)
     out = [_line(not missed and bool(runs), f"conjunction solved in 100% of problems within "
-                 f"10n + 20 cycles: {len(runs) - len(missed)}/{len(runs)}")]
+                 f"10n + 20 cycles: {len(runs) - len(missed)}/{len(runs)} (its literals "
+                 f"given bottom-up instead: {sum(v.solved for v in other.values())}/"
+                 f"{len(other)})")]
     return out + listing(missed, lambda k: detail(runs[k]))
 
 
 def length_targets(res: Results) -> list[str]:
-    runs = mode_runs(res, "conjunction")
-    keys = sorted(runs)
     out = []
     for planner, bound, text in (("astar-lmcut", 1.3, "within 1.3x the optimum (A* LM-cut's)"),
                                  ("gbf-hff", 1.0, "no longer than greedy h_FF's")):
+        runs = mode_runs(res, MAIN)
+        keys = sorted(runs)
         mine, theirs = against(res, runs, planner, keys)
         over = sorted({k[0] for k in keys
                        if (r := _size_ratio(res, runs, planner, k[0])) is not None
@@ -32,9 +36,12 @@ def length_targets(res: Results) -> list[str]:
         both = sum(1 for k in keys if runs[k].solved and res.length(k, planner) is not None)
         ok = bool(theirs) and mine <= bound * theirs
         shown = f"{mine / theirs:.2f}x" if theirs else "nothing to compare"
+        up = mode_runs(res, "conjunction-bottom-up")
+        a, b = against(res, up, planner, sorted(up))
         out.append(_line(ok, f"mean plan length {text}: {shown} over the {both} problems "
                              f"both solved" + (f"; above it at n = {', '.join(map(str, over))}"
-                                               if over else "")))
+                                               if over else "")
+                         + (f" (given bottom-up: {a / b:.2f}x)" if b else "")))
     return out
 
 
@@ -46,7 +53,7 @@ def _size_ratio(res: Results, runs, planner: str, n: int) -> float | None:
 def list_targets(res: Results) -> list[str]:
     out = []
     for order in ORDERS:
-        runs = mode_runs(res, order)
+        runs = mode_runs(res, f"list-{order}")
         open_ = sorted(k for k, v in runs.items() if v.unfinished)
         out.append(_line(not open_ and bool(runs),
                          f"priority list ({order}): every goal ends achieved or failed with its "
@@ -60,7 +67,7 @@ def list_targets(res: Results) -> list[str]:
 def learning_targets(res: Results) -> list[str]:
     keys = sorted(res.fresh)
     lost = [k for k in keys if res.fresh[k].solved and not res.skilled[k].solved]
-    fresh = mode_runs(res, "conjunction")
+    fresh = mode_runs(res, MAIN)
     lost_curve = [s.key for s in res.curve if s.key in fresh and fresh[s.key].solved
                   and not s.verdict.solved]
     out = [_line(not lost and not lost_curve,
@@ -81,23 +88,38 @@ def learning_targets(res: Results) -> list[str]:
     return out
 
 
+STALE = "(it held when the last cycle's decision was taken; that cycle's action undid it)"
+
+
 def invalid_runs(res: Results) -> list[str]:
-    """Every teleo run whose check failed: it counts as not solved."""
-    out = []
-    for (key, mode), v in sorted(res.teleo.items()):
-        if v.invalid:
-            out.append(f"    {name(key)} {mode}: {v.invalid}")
-    for label, runs in (("held out fresh", res.fresh), ("held out with skills", res.skilled)):
-        out += [f"    {name(k)} {label}: {v.invalid}" for k, v in sorted(runs.items())
-                if v.invalid]
-    out += [f"    {name(s.key)} curve: {s.verdict.invalid}" for s in res.curve
-            if s.verdict.invalid]
-    for (key, planner), r in sorted(res.plans.items()):
-        if r.status == "error":
-            out.append(f"    {name(key)} {planner}: {r.detail}")
-    head = "runs whose check failed (counted as not solved): " + (str(len(out)) if out
-                                                                   else "none")
-    return ["", head, *out]
+    """Every teleo run whose check failed (it counts as not solved); the runs whose summary
+    is one cycle behind the world (a goal the last cycle's action undid still shown
+    achieved) on one line."""
+    found = [(f"{name(k)} {m}", v) for (k, m), v in sorted(res.teleo.items())]
+    found += [(f"{name(k)} held out fresh", v) for k, v in sorted(res.fresh.items())]
+    found += [(f"{name(k)} held out with skills", v) for k, v in sorted(res.skilled.items())]
+    found += [(f"{name(s.key)} curve", s.verdict) for s in res.curve]
+    bad = [(who, v.invalid) for who, v in found if v.invalid]
+    stale = [who for who, why in bad if why.startswith("the summary says")
+             and why.count("the summary says") == 1 and why.endswith(STALE)]
+    out = [f"    {who}: {why}" for who, why in bad if who not in stale]
+    out += [f"    {name(k)} {p}: {r.detail}" for (k, p), r in sorted(res.plans.items())
+            if r.status == "error"]
+    if stale:
+        out.append(f"    {len(stale)} runs whose summary calls a goal achieved that the last "
+                   f"cycle's action undid (a goal given up and redone every cycle): "
+                   + ", ".join(stale))
+    refused = [(who, v) for who, v in found if v.refused]
+    notes = ["", f"runs in which the world refused actions (left out of the replay): "
+                 f"{len(refused)}; refused though STRIPS allows them: "
+                 f"{sum(v.refused_legal for _, v in refused)}"]
+    notes += [f"    {who}: {v.refused} refused, {v.refused_legal} of them allowed by STRIPS"
+              for who, v in refused[:12]]
+    if len(refused) > 12:
+        notes.append(f"    ... and {len(refused) - 12} more")
+    head = "runs whose check failed (counted as not solved): " + (str(len(bad) + len(
+        [1 for r in res.plans.values() if r.status == "error"])) if out else "none")
+    return ["", head, *out, *notes]
 
 
 def targets(res: Results) -> list[str]:

@@ -3,13 +3,13 @@ a scenario for the pymunk Blocks World (world/blocks), run by `teleo simulate`'s
 (tools.simulate.simulate, in this process), and the run's figures: its actions, when the goal
 first held, the problem solver's effort, the goal statuses its summary reports.
 
-Goal forms (``mode``):
+Goal forms (``mode``, a form and an order: "conjunction-listed", ...):
   conjunction  one user goal for the whole goal: ``(and (on ..) ...)`` once teleo reads it
                (CONJUNCTION_SYNTAX), until then a concept of the program whose :relations are
                the goal's `on` literals, ``(goal-state)``;
-  listed       one user goal per literal, a priority list in the IPC order (each tower
-               top-down), priorities 1, 2, ...;
-  bottom-up    the same, each tower from its base.
+  list         one user goal per literal, a priority list, priorities 1, 2, ...;
+and the literals in the order IPC lists them (``listed``: each tower top-down) or each tower
+from its base (``bottom-up``).
 The program is programs/blocks.tlp (its primitive skills; its own goal (clear A) left out).
 """
 
@@ -25,7 +25,9 @@ from bench.bw_problems import Problem
 
 ROOT = Path(__file__).resolve().parent.parent
 PROGRAM = ROOT / "programs" / "blocks.tlp"
-MODES = ("conjunction", "listed", "bottom-up")
+FORMS = ("conjunction", "list")
+ORDERS = ("listed", "bottom-up")
+MODES = tuple(f"{f}-{o}" for f in FORMS for o in ORDERS)
 GOAL_CONCEPT = "goal-state"
 CONJUNCTION_SYNTAX = False
 """True once a goal may be written (and L1 L2 ...) (issue 22); then the conjunction is posted
@@ -37,9 +39,9 @@ def cycle_limit(n: int) -> int:
     return 10 * n + 20
 
 
-def conjunction_goal(p: Problem) -> tuple[str, str]:
+def conjunction_goal(p: Problem, order: str = "listed") -> tuple[str, str]:
     """(concepts to add to the program, the goal to post) for the whole goal as one goal."""
-    literals = " ".join(f"(on {a} {b})" for a, b in p.goal("listed"))
+    literals = " ".join(f"(on {a} {b})" for a, b in p.goal(order))
     if CONJUNCTION_SYNTAX:
         return "", f"(and {literals})"
     return (f"  ((goal-state)\n   :relations ({literals}))\n", f"({GOAL_CONCEPT})")
@@ -47,12 +49,13 @@ def conjunction_goal(p: Problem) -> tuple[str, str]:
 
 def goals_of(p: Problem, mode: str) -> tuple[str, list[str]]:
     """(concepts to add, the user goals in priority order) of ``mode``."""
-    if mode == "conjunction":
-        extra, goal = conjunction_goal(p)
-        return extra, [goal]
     if mode not in MODES:
         raise ValueError(f"goals_of: mode {mode!r}: expected one of {', '.join(MODES)}")
-    return "", [f"(on {a} {b})" for a, b in p.goal(mode)]
+    form, order = mode.split("-", 1)
+    if form == "conjunction":
+        extra, goal = conjunction_goal(p, order)
+        return extra, [goal]
+    return "", [f"(on {a} {b})" for a, b in p.goal(order)]
 
 
 def program_text(extra_concepts: str = "") -> str:
@@ -96,11 +99,13 @@ def scenario_text(p: Problem, program: Path, goals: list[str], cycles: int) -> s
 
 @dataclass
 class TeleoRun:
-    """What one run did: per cycle its actions; the goal records of its summary; per cycle
-    whether problem solving ran, and its chaining decisions and backtracks; the skills it
-    ended with; wall time [s]; world counters at the end; the final snapshot."""
+    """What one run did: per cycle its actions, and how many of them the world refused
+    (the run's trace counts them); the goal records of its summary; per cycle whether
+    problem solving ran, and its chaining decisions and backtracks; the skills it ended
+    with; wall time [s]; world counters at the end; the final snapshot."""
 
     actions: list[list[list]] = field(default_factory=list)
+    refused: list[int] = field(default_factory=list)
     summary_goals: list[dict] = field(default_factory=list)
     solving: list[bool] = field(default_factory=list)
     pushes: int = 0
@@ -155,11 +160,22 @@ def run_teleo(p: Problem, mode: str, folder: Path, learned: Path | None = None) 
         events = section.get("events", [])
         out.pushes += sum(": pushed " in e for e in events)
         out.backtracks += sum(": backtracked" in e for e in events)
+    out.refused = refusals(run.trace, run.final)
     out.summary_goals = sim_summary.build(run, scenario, 0, cycles)["goals"]
     out.learned = run.learned["ME"]
     out.counters = run.final.get("counters", {}).get("ME", {})
     out.final = run.final
     return out
+
+
+def refusals(trace: list[str], final: dict) -> list[int]:
+    """Per cycle, how many of the agent's actions the world refused: the growth of its
+    actions_failed counter from that cycle's trace line to the next (the last to the final
+    snapshot's)."""
+    failed = [json.loads(line)["counters"].get("ME", {}).get("actions_failed", 0)
+              for line in trace]
+    failed.append(final.get("counters", {}).get("ME", {}).get("actions_failed", 0))
+    return [b - a for a, b in zip(failed, failed[1:], strict=False)]
 
 
 def carried(skills: tuple[str, ...]) -> tuple[tuple[str, ...], int]:

@@ -42,6 +42,7 @@ sys.path.insert(0, str(ROOT))
 
 from bench import bw_report, bw_targets, bw_tasks, bw_teleo  # noqa: E402
 from bench.bw_pyperplan import PLANNERS  # noqa: E402
+from bench.bw_report import MAIN  # noqa: E402
 
 MAX_N = 30
 
@@ -93,14 +94,19 @@ def run_all(opts: dict, folder: str) -> bw_report.Results:
     given_up: dict[str, int] = {}
 
     def release(s: Scheduler) -> None:
-        n = sizes.popleft()
-        for planner in PLANNERS:
-            if planner in given_up and not opts["no_skip"]:
-                res.skipped[(n, planner)] = f"timed out on every seed at n = {given_up[planner]}"
-                continue
-            for key in res.keys(n):
-                s.add(("plan", key, planner), bw_tasks.plan, key, planner, folder,
-                      limits[planner], urgent=True)
+        """The pyperplan tasks of the next size that has any (every planner may be skipped)."""
+        while sizes:
+            n = sizes.popleft()
+            for planner in PLANNERS:
+                if planner in given_up and not opts["no_skip"]:
+                    res.skipped[(n, planner)] = (f"timed out on every seed at n = "
+                                                 f"{given_up[planner]}")
+                    continue
+                for key in res.keys(n):
+                    s.add(("plan", key, planner), bw_tasks.plan, key, planner, folder,
+                          limits[planner], urgent=True)
+            if any((n, p) not in res.skipped for p in PLANNERS):
+                return
 
     def done(tag: tuple, result, s: Scheduler) -> None:
         kind = tag[0]
@@ -113,14 +119,13 @@ def run_all(opts: dict, folder: str) -> bw_report.Results:
                     if (n, p) not in res.skipped and p not in given_up and all(
                             res.plans[(k, p)].status == "timeout" for k in res.keys(n)):
                         given_up[p] = n
-                if sizes:
-                    release(s)
+                release(s)
         elif kind == "teleo":
             res.teleo[(tag[1], tag[2])] = result
         elif kind == "curve":
             res.curve, learned = result
             for key in heldout:
-                s.add(("skilled", key), bw_tasks.teleo, key, "conjunction", folder, learned)
+                s.add(("skilled", key), bw_tasks.teleo, key, MAIN, folder, learned)
         else:
             (res.fresh if kind == "fresh" else res.skilled)[tag[1]] = result
         progress[0] += 1
@@ -132,13 +137,13 @@ def run_all(opts: dict, folder: str) -> bw_report.Results:
     progress = [0]
     with ProcessPoolExecutor(max_workers=opts["jobs"]) as pool:
         s = Scheduler(pool, opts["jobs"])
-        s.add(("curve",), bw_tasks.curve, training, "conjunction", folder)
+        s.add(("curve",), bw_tasks.curve, training, MAIN, folder)
         release(s)
         for key in training:
             for mode in bw_teleo.MODES:
                 s.add(("teleo", key, mode), bw_tasks.teleo, key, mode, folder)
         for key in heldout:
-            s.add(("fresh", key), bw_tasks.teleo, key, "conjunction", folder)
+            s.add(("fresh", key), bw_tasks.teleo, key, MAIN, folder)
         s.run(done)
     return res
 
@@ -201,7 +206,8 @@ def main(sizes: str, seeds: str, held_out: str, gbf_limit: float, astar_limit: f
     else:
         with tempfile.TemporaryDirectory(prefix="teleo-planning-") as folder:
             res = run_all(opts, folder)
-    out = [*bw_report.conjunction_table(res), *bw_report.list_table(res),
+    out = [*bw_report.conjunction_table(res), *bw_report.orders_table(res, "conjunction"),
+           *bw_report.orders_table(res, "list"),
            *bw_report.curve_table(res), *bw_report.held_out_table(res)]
     if res.skipped:
         out += ["", "pyperplan not run: " + "; ".join(

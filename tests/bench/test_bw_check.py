@@ -106,3 +106,26 @@ def test_a_world_that_is_not_the_replayed_state_fails_the_check():
     run.final = world_after(P, [])                            # as if no action had been done
     v = check(P, run, 1)
     assert not v.solved and "the world's final state differs" in v.invalid
+
+
+def test_an_action_the_world_refused_is_left_out_of_the_replay_and_counted():
+    plan = bw_strips.shortest_plan(P.start, P.goal())
+    assert plan[0] == ("unstack", "B2", "B1")                # then the hand holds B2
+    run = run_of(P, plan, [("(goal-state)", "achieved")])
+    run.actions[1:1] = [[["*pickup", "B3", "T"]],             # STRIPS: the hand is not empty
+                        [["*stack", "B2", "B1"]]]             # STRIPS allows it
+    run.solving += [False, False]
+    run.refused = [0, 1, 1] + [0] * (len(run.actions) - 3)    # the world refused both
+    v = check(P, run, 1)
+    assert (v.solved, v.invalid, v.actions, v.refused, v.refused_legal) == (
+        True, "", len(plan), 2, 1)
+    run.refused = [0] * len(run.actions)                      # had the world done them
+    assert "cycle 1: (pick-up B3): precondition" in check(P, run, 1).invalid
+
+
+def test_refusals_are_read_from_the_growth_of_the_failed_counter_along_the_trace():
+    from bench.bw_teleo import refusals
+
+    lines = [f'{{"cycle": {c}, "counters": {{"ME": {{"actions_failed": {f}}}}}}}'
+             for c, f in enumerate([0, 0, 1, 1])]
+    assert refusals(lines, {"counters": {"ME": {"actions_failed": 2}}}) == [0, 1, 0, 1]
