@@ -128,7 +128,7 @@ def problems(n: int, seed: int) -> list[Problem]:
 def solve(engine: Engine, world_kind: type, problem: Problem, learned: tuple[str, ...]
           ) -> tuple[bool, int, int, tuple[str, ...]]:
     """(solved, cycles, problem-solving cycles, learned skills after) for one problem."""
-    state = engine.remove_goal(engine.initial_state(learned=learned), "p1")
+    state = engine.initial_state(learned=learned)
     state = engine.add_goal(state, problem.goal, goal_id="g1")
     world = world_kind(problem.towers)
     solving = 0

@@ -16,7 +16,7 @@ from agents.lang import (
     load_program,
     parse_percepts,
 )
-from agents.lang.limits import read_json
+from agents.lang.limits import MAX_STATE_CHARS, MAX_STATE_STRING, read_json
 from agents.lang.loader import read_text
 from agents.lang.outcomes import as_outcomes
 from agents.lang.terms import sort_key
@@ -141,8 +141,7 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     percepts = _percepts(percepts_file)
     outcomes = _outcomes(outcomes_file) if outcomes_file else ()
     try:
-        state = (EngineState.from_dict(read_json(read_text(state_file), state_file))
-                 if state_file else engine.initial_state())
+        state = read_state(state_file) if state_file else engine.initial_state()
         for g in goals:
             text, priority = _goal_option(g)
             _ranked(engine, text, priority, force)
@@ -164,6 +163,13 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     for b in beliefs:
         click.echo(f"  {b}")
     click.echo(result.decision.explain())
+
+
+def read_state(path: str) -> EngineState:
+    """The engine state ``teleo step --save-state`` wrote to ``path`` (within the bounds of a
+    state file: limits.MAX_STATE_CHARS, MAX_STATE_STRING); raises LangError naming the file."""
+    text = read_text(path, MAX_STATE_CHARS)
+    return EngineState.from_dict(read_json(text, path, MAX_STATE_CHARS, MAX_STATE_STRING))
 
 
 commands = [infer, step]

@@ -7,6 +7,7 @@ import difflib
 from collections.abc import Collection
 from dataclasses import replace
 
+from .conjunction import goal_literals
 from .errors import Diagnostic, ProgramError
 from .parser import Parts
 from .program import ConceptClause, Program, Skill
@@ -72,7 +73,8 @@ class Checker:
             skills.append(s)
             self.check_skill(s)
         for g in self.parts.goals:
-            self.use(g.literal, "goal")
+            for lit in goal_literals(g.literal):
+                self.use(lit, "goal" if lit is g.literal else f"conjunct of goal {g.literal}")
         self.check_goal_variables(concepts)
         self.check_resources(skills)
         for item in sections:
@@ -169,7 +171,7 @@ class Checker:
 
         view = Program({k: tuple(v) for k, v in concepts.items()}, {}, (), ())
         for g in self.parts.goals:
-            if g.literal.pred in concepts:
+            if isinstance(g.literal, Literal) and g.literal.pred in concepts:
                 why = enumerable(g.literal, view)
                 if why:
                     self.err(g.literal.loc, f"goal {g.literal}: {why}")

@@ -3,11 +3,17 @@
 Each cycle it walks the prioritized goal list; the first unsatisfied goal gets a skill path
 (agents/lang/paths.py: how a path is chosen). Achieved goals are rechecked every cycle and a
 violated higher goal suspends the current one, which later resumes its remembered path if
-every skill on it could be started now, and chooses afresh otherwise. With a (resources ...)
-section, lower goals may also act through free resources. When the first unsatisfied goal
-has no executable path (an impasse), the impasse handler (the means-ends problem solver,
-agents/lang/solving) is asked; a goal it gives up on is failed, with the reason, and no
-longer blocks the goals after it, until a skill path for it is executable again.
+every skill on it could be started now, and chooses afresh otherwise. A path never takes an
+action that the program says undoes a higher goal that holds (agents/lang/effects.py). A
+conjunctive goal is pursued one conjunct at a time, in the order of the impasse handler's
+``agenda`` (agents/lang/conjunction.py). With a (resources ...) section, lower goals may also
+act through free resources. When the first unsatisfied goal has no executable path (an
+impasse), the impasse handler (the means-ends problem solver, agents/lang/solving) is asked; a
+goal it gives up on is failed, with the reason, and blocks the goals after it as an impasse
+does (seed 000: "the agent considers a goal only when all more important goals are
+satisfied"); it is looked at again every cycle and is worked on as soon as a skill path for it
+is executable. A goal that comes back to a situation it was in without progress is made to
+try something else, and fails after MAX_LOOPS such circles (agents/lang/loops.py).
 """
 
 from __future__ import annotations
@@ -16,8 +22,12 @@ from dataclasses import dataclass, replace
 from typing import Protocol
 
 from .bodies import body_runners, cycle_hooks
+from .circles import Watcher
+from .conjunction import Conjunction, first_binding
 from .explanation import Decision, GoalPath, GoalReport, GoalStatus
 from .goals import GoalEntry, instances, ordered, satisfied
+from .loops import MAX_LOOPS, intention
+from .matcher import ground
 from .outcomes import Outcome
 from .paths import NOTHING, Found, PathFinder, Remembered, Walk
 from .program import Program
@@ -39,12 +49,14 @@ class Impasse:
 
 class ImpasseHandler(Protocol):
     """What the executive asks when a goal has no executable skill path (seed 000, "Problem
-    Solving and Skill Learning"). ``begin`` runs once per cycle before the goal walk."""
+    Solving and Skill Learning"). ``begin`` runs once per cycle before the goal walk. A handler
+    may also offer ``agenda(finder, walk, entry, conj, current)`` (the conjuncts to pursue, best
+    first) and ``loop(finder, walk, entry, reason)`` (back off after a circle; True if it did)."""
 
     def begin(self, finder: PathFinder, walk: Walk) -> None: ...
 
     def solve(self, finder: PathFinder, walk: Walk, entry: GoalEntry,
-              unsatisfied: list[Literal]) -> Impasse: ...
+              unsatisfied: list) -> Impasse: ...
 
 
 class Executive:
@@ -64,47 +76,71 @@ class Executive:
             hook.begin(self.finder, walk)
         if self.solver is not None:
             self.solver.begin(self.finder, walk)
-        reports, paths, idle = [], [], []
+        reports, paths, idle, seen = [], [], [], []
         remembered = dict(state.paths)
         failed = dict(walk.current("failed"))
-        stop = ""  # id of the goal in impasse that blocks the rest
-        for e in ordered(state.goals):
+        goals = ordered(state.goals)
+        watcher = Watcher(state.loops, pidx, store, state.cycle,
+                          {e.id: e.text for e in goals}, {e.id: k for k, e in enumerate(goals)},
+                          intention(state.paths, state.active, state.scs.threads,
+                                    state.scs.choices, len(state.learned)))
+        stop = ""  # id of the goal in impasse (or failed) that blocks the rest
+        for e in goals:
             walk.goal_id = e.id
             unsat = [i for i in instances(e.literal, self.program, pidx) if not satisfied(i, store)]
             prev = remembered.get(e.id, ())
+            seen.append((e.id, not unsat))
             if not unsat:
                 reports.append(GoalReport(e.id, e.text, e.priority, GoalStatus.SATISFIED))
                 remembered.pop(e.id, None)
                 failed.pop(e.id, None)
+                walk.protected.append((e.id, e.text, _held(e, self.program, pidx, store)))
                 continue
             waiting = GoalStatus.SUSPENDED if prev else GoalStatus.PENDING
             blocker = stop or walk.exclusive or (paths[0].goal_id if paths and
                                                  self.program.resources is None else "")
-            if e.id in failed:
-                # given up, so it blocks no one; but a goal is worked on again as soon as a
-                # skill path for it is executable (seed 000: the goal list is rechecked
-                # every cycle), without asking the problem solver again
-                inst, found = (unsat[0], None) if blocker else \
-                    self._first_path(walk, unsat, prev, False)
-                if found is None:
-                    reports.append(_report(e, GoalStatus.FAILED, unsat[0], failed[e.id]))
-                    continue
-                del failed[e.id]
-            elif blocker:
+            if blocker and e.id in failed:
+                reports.append(_report(e, GoalStatus.FAILED, unsat[0], failed[e.id]))
+                continue
+            if blocker:
                 reports.append(_report(e, waiting, unsat[0], f"waits: {blocker} comes first"))
                 continue
+            watcher.pursued.add(e.id)
+            watcher.check(e.id)
+            circle = watcher.take(e.id)
+            if circle:
+                why = self._circle(walk, e, prev, circle, watcher)
+                remembered.pop(e.id, None)
+                prev = ()
+                if why:
+                    failed[e.id] = why
+            walk.banned = watcher.banned(e.id)
+            if e.id in failed:
+                # given up: it blocks the goals after it, and is worked on again as soon as a
+                # skill path for it is executable (seed 000: the goal list is rechecked every
+                # cycle), without asking the problem solver again
+                inst, found = self._first_path(walk, e, unsat, prev, False)
+                if found is None:
+                    reports.append(_report(e, GoalStatus.FAILED, inst, failed[e.id]))
+                    stop = e.id
+                    continue
+                del failed[e.id]
             else:
                 resume = bool(prev) and e.id not in state.active
-                inst, found = self._first_path(walk, unsat, prev, resume)
+                inst, found = self._first_path(walk, e, unsat, prev, resume)
             if found is None and paths:
                 reports.append(_report(e, waiting, unsat[0], "no path with free resources"))
                 continue
             if found is None:
                 remembered.pop(e.id, None)   # a broken path with no alternative is forgotten
-                inst, answer = unsat[0], self._impasse(walk, e, unsat)
+                answer = self._impasse(walk, e, unsat)
                 if answer.failed:
-                    failed[e.id] = answer.failed
-                    reports.append(_report(e, GoalStatus.FAILED, inst, answer.failed))
+                    circle = watcher.circle(e.id)
+                    why = f"{e.text} cannot be achieved without going round in a circle " \
+                          f"({circle}); {answer.failed}" if circle else answer.failed
+                    failed[e.id] = why
+                    reports.append(_report(e, GoalStatus.FAILED, inst, why))
+                    stop = e.id   # a failed goal blocks lower ones as an impasse does
                     continue
                 if answer.found is None:
                     reports.append(_report(e, GoalStatus.IMPASSE, inst,
@@ -129,18 +165,27 @@ class Executive:
             hook.end(self.finder, walk, reports)
         live = {e.id for e in state.goals}
         walk.updates["failed"] = tuple(sorted((g, why) for g, why in failed.items() if g in live))
+        achieved = self.finder.effects.of_actions([a for p in paths for a in p.actions])[0]
+        loops = watcher.state(seen, paths[0].goal_id if paths else "",
+                              tuple((x.pred, *x.args) for x in achieved), dict(remembered))
         new_state = replace(
             state, paths=tuple(sorted((k, v) for k, v in remembered.items() if k in live)),
             cycle=state.cycle + 1, active=tuple(p.goal_id for p in paths) + tuple(idle),
-            **walk.updates)
+            loops=loops, **walk.updates)
         return Decision(state.cycle, tuple(reports), tuple(paths), tuple(walk.why),
                         tuple(walk.sections)), new_state
 
-    def _first_path(self, walk: Walk, unsat: list[Literal], prev: tuple,
+    def _first_path(self, walk: Walk, e: GoalEntry, unsat: list, prev: tuple,
                     resume: bool) -> tuple[Literal, Found | None]:
-        """The first unsatisfied instance with an executable path (the one the remembered
-        path was for first), and that path."""
-        unsat = sorted(unsat, key=lambda i: not prev or str(i) != prev[0].goal)
+        """The first unsatisfied instance (for a conjunction: the first conjunct of its
+        agenda) with an executable path, the one the remembered path was for first, and
+        that path."""
+        if isinstance(e.literal, Conjunction):   # the agenda's order is the preference
+            unsat = self._agenda(walk, e, e.literal, prev[0].goal if prev else "")
+            if not unsat:
+                return e.literal, None
+        else:
+            unsat = sorted(unsat, key=lambda i: not prev or str(i) != prev[0].goal)
         for inst in unsat:
             memory = Remembered(prev, resume) if prev and prev[0].goal == str(inst) else NOTHING
             found = self.finder.achieve(walk, inst, memory, 0, frozenset())
@@ -148,13 +193,53 @@ class Executive:
                 return inst, found
         return unsat[0], None
 
-    def _impasse(self, walk: Walk, e: GoalEntry, unsat: list[Literal]) -> Impasse:
+    def _agenda(self, walk: Walk, e: GoalEntry, conj: Conjunction, current: str) -> list:
+        """The conjuncts of ``conj`` to pursue, best first: the impasse handler's agenda, or
+        without one the unsatisfied literal conjuncts in written order (bound as the first
+        binding of the positive ones allows)."""
+        agenda = getattr(self.solver, "agenda", None)
+        if agenda is not None:
+            return agenda(self.finder, walk, e, conj, current)
+        return [c for c in conj.literals if not c.negated and not c.variables()
+                and not satisfied(c, walk.store)]
+
+    def _circle(self, walk: Walk, e: GoalEntry, prev: tuple, why: str,
+                watcher: Watcher) -> str:
+        """Back off after a circle (``why``): the skill the goal's last path began with is not
+        used for it again in the episode, and the impasse handler backtracks; returns the
+        reason to fail the goal ("" to go on): after MAX_LOOPS circles, or when there is
+        nothing to back off from."""
+        step = (prev[0].goal, prev[0].skill, prev[0].bindings) if prev else \
+            watcher.watch(e.id).last
+        if step:
+            watcher.ban(e.id, step)
+        if watcher.loops(e.id) > MAX_LOOPS:
+            return f"{e.text} cannot be achieved without going round in a circle " \
+                   f"({MAX_LOOPS + 1} returns); last: {why}"
+        back = getattr(self.solver, "loop", None)
+        backed = back is not None and back(self.finder, walk, e, why)
+        return "" if step or backed else f"{e.text} cannot be achieved: {why}"
+
+    def _impasse(self, walk: Walk, e: GoalEntry, unsat: list) -> Impasse:
         if self.solver is None:
             return Impasse()
         return self.solver.solve(self.finder, walk, e, unsat)
 
 
-def _report(e: GoalEntry, status: GoalStatus, inst: Literal, note: str = "") -> GoalReport:
-    bindings = tuple((g.name, a) for g, a in zip(e.literal.args, inst.args, strict=True)
-                     if isinstance(g, Var) and not isinstance(a, Var))
+def _held(e: GoalEntry, program: Program, pidx: PerceptIndex, store: FactStore) -> tuple:
+    """The ground literals by which the satisfied goal ``e`` holds (protected from lower goals'
+    actions): its ground instances, or a conjunction's conjuncts under its first binding."""
+    if isinstance(e.literal, Conjunction):
+        b = first_binding(e.literal, store, pidx) or {}
+        lits = [ground(c, b) for c in e.literal.literals]
+    else:
+        lits = instances(e.literal, program, pidx)
+    return tuple(x for x in lits if not x.variables())
+
+
+def _report(e: GoalEntry, status: GoalStatus, inst, note: str = "") -> GoalReport:
+    bindings = () if not isinstance(e.literal, Literal) or not isinstance(inst, Literal) \
+        or inst.pred != e.literal.pred else \
+        tuple((g.name, a) for g, a in zip(e.literal.args, inst.args, strict=True)
+              if isinstance(g, Var) and not isinstance(a, Var))
     return GoalReport(e.id, e.text, e.priority, status, bindings, str(inst), note)

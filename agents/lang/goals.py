@@ -21,9 +21,18 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
+from .conjunction import (
+    Conjunction,
+    Goal,
+    conjunction_holds,
+    goal_literals,
+    is_conjunction,
+    read_conjunction,
+)
 from .errors import GoalError
 from .limits import MAX_GOAL_CHARS, shorten
 from .matcher import binding_key, holds, solve, unify_head
+from .parser import Parser, Parts
 from .program import Program
 from .sexpr import Atom, SList, read
 from .store import FactStore, PerceptIndex
@@ -35,7 +44,7 @@ class GoalEntry:
     """One goal in the list: ``origin`` is "program" or "user"."""
 
     id: str
-    literal: Literal
+    literal: Goal
     priority: int
     seq: int
     origin: str = "user"
@@ -50,10 +59,10 @@ def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
     return sorted(entries, key=lambda e: (e.priority, e.seq))
 
 
-def parse_goal(text: str, program: Program | None = None) -> Literal:
-    """Read a goal such as ``(package-delivered PACKET2)``; check concept and arity if given a
-    program. Raises GoalError with the reason (and line:col for a reading error); a text over
-    MAX_GOAL_CHARS is refused before it is read."""
+def parse_goal(text: str, program: Program | None = None) -> Goal:
+    """Read a goal such as ``(package-delivered PACKET2)`` or ``(and (on A B) (on B C))``;
+    check concepts and arities if given a program. Raises GoalError with the reason (and
+    line:col for a reading error); a text over MAX_GOAL_CHARS is refused before it is read."""
     if len(text) > MAX_GOAL_CHARS:
         raise GoalError(f"goal {shorten(text)!r}: longer than {MAX_GOAL_CHARS} characters")
     forms, diags = read(text, "<goal>")
@@ -61,22 +70,44 @@ def parse_goal(text: str, program: Program | None = None) -> Literal:
     if errors:
         raise GoalError(f"goal {text!r}: {errors[0].line}:{errors[0].col}: {errors[0].message}")
     if len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:
-        raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)")
-    items = forms[0].items
-    if not all(isinstance(x, Atom) for x in items) or not isinstance(items[0].value, str):
-        raise GoalError(f"goal {text!r}: expected (concept arg ...) with constants or variables")
-    lit = Literal(items[0].value, tuple(x.value for x in items[1:]))
+        raise GoalError(f"goal {text!r}: expected one list such as (package-delivered PACKET2)"
+                        " or (and (on A B) (on B C))")
+    goal = _conjunction(text, forms[0]) if is_conjunction(forms[0]) else _literal(text, forms[0])
     if program is not None:
-        if lit.pred not in program.arity:
-            raise GoalError(f"goal {text}: undefined concept '{lit.pred}'")
-        if program.arity[lit.pred] != len(lit.args):
-            raise GoalError(f"goal {text}: concept {lit.pred} takes "
-                            f"{program.arity[lit.pred]} argument(s), got {len(lit.args)}")
-    return lit
+        for lit in goal_literals(goal):
+            what = "" if lit is goal else f" (conjunct {lit})"
+            if lit.pred not in program.arity:
+                raise GoalError(f"goal {text}: undefined concept '{lit.pred}'{what}")
+            if program.arity[lit.pred] != len(lit.args):
+                raise GoalError(f"goal {text}: concept {lit.pred} takes "
+                                f"{program.arity[lit.pred]} argument(s), got {len(lit.args)}"
+                                f"{what}")
+    return goal
 
 
-def instances(goal: Literal, program: Program, pidx: PerceptIndex) -> list[Literal]:
-    """The instances of ``goal`` this cycle, sorted (see module docstring)."""
+def _literal(text: str, form: SList) -> Literal:
+    items = form.items
+    if not all(isinstance(x, Atom) for x in items) or not isinstance(items[0].value, str):
+        raise GoalError(f"goal {text!r}: expected (concept arg ...) with constants or "
+                        "variables, or (and ...) of such literals, (not ...) and tests")
+    return Literal(items[0].value, tuple(x.value for x in items[1:]))
+
+
+def _conjunction(text: str, form: SList) -> Conjunction:
+    parts = Parts()
+    conj = read_conjunction(Parser("<goal>", parts), form)
+    problems = [d for d in parts.diags if d.severity == "error"]
+    if conj is None or problems:
+        d = problems[0]
+        raise GoalError(f"goal {text!r}: {d.line}:{d.col}: {d.message}")
+    return conj
+
+
+def instances(goal: Goal, program: Program, pidx: PerceptIndex) -> list[Literal]:
+    """The instances of ``goal`` this cycle, sorted (see module docstring); a conjunction is
+    its own one instance (its variables are existential)."""
+    if isinstance(goal, Conjunction):
+        return [goal]
     gvars = goal.variables()
     if not gvars:
         return [goal]
@@ -107,9 +138,12 @@ def _kinds(patterns: tuple[PerceptPattern, ...]) -> tuple[PerceptPattern, ...]:
                  for p in patterns)
 
 
-def enumerable(goal: Literal, program: Program) -> str:
+def enumerable(goal: Goal, program: Program) -> str:
     """"" if every instance of ``goal`` can be found from percepts (see the module doc), else
-    why not: a goal variable that a clause of its concept binds only through :relations."""
+    why not: a goal variable that a clause of its concept binds only through :relations.
+    A conjunction's variables are existential: always ""."""
+    if isinstance(goal, Conjunction):
+        return ""
     for i, arg in enumerate(goal.args):
         if not isinstance(arg, Var):
             continue
@@ -125,8 +159,11 @@ def enumerable(goal: Literal, program: Program) -> str:
     return ""
 
 
-def satisfied(inst: Literal, store: FactStore) -> bool:
-    """True if a belief matches the instance (remaining variables existential)."""
+def satisfied(inst: Goal, store: FactStore) -> bool:
+    """True if a belief matches the instance (remaining variables existential), or, for a
+    conjunction, if one binding makes every conjunct hold."""
+    if isinstance(inst, Conjunction):
+        return conjunction_holds(inst, store)
     return holds(inst, {}, store)
 
 

@@ -118,6 +118,16 @@ class PerceptIndex:
             groups.setdefault(p.type, []).append(p.to_list())
         return Frame(groups, checked=True)
 
+    def rows(self) -> Iterator[list | tuple]:
+        """Every percept as a neutral row, in no particular order (without making Percepts
+        of rows that have none yet)."""
+        if self._groups is not None:
+            for rows in self._groups.values():
+                yield from rows
+        else:
+            for p in self._percepts:
+                yield p.to_list()
+
     @property
     def by_type(self) -> Mapping[str, list[Percept]]:
         """type -> its percepts."""

@@ -28,10 +28,17 @@ INT_MIN, INT_MAX = -(2**63), 2**63 - 1
 """Integers are signed 64-bit: what msgpack carries on the bus."""
 MAX_DIAGNOSTICS = 100
 """Errors reported per source; reading stops after the first MAX_DIAGNOSTICS."""
-MAX_GOAL_CHARS = 512
-"""[characters] of one goal's text, e.g. ``(package-delivered PACKET2)`` has 27."""
+MAX_GOAL_CHARS = 4096
+"""[characters] of one goal's text, e.g. ``(package-delivered PACKET2)`` has 27; a
+conjunction of the 29 (on X Y) literals of a 30-block tower, about 400."""
 MAX_EVENT_CHARS = 64 * 1024
 """[characters] of one world event's JSON text."""
+MAX_STATE_CHARS = 64 * 1024 * 1024
+"""[bytes] of an engine state file (``teleo step --save-state``): learned skills, goal
+stacks and loop watches grow with a run."""
+MAX_STATE_STRING = 1024 * 1024
+"""[characters] of one string in an engine state file: a failure reason naming the whole
+chain of subgoals tried, a learned skill clause, a conjunctive goal (MAX_GOAL_CHARS)."""
 
 
 def number_problem(value: int | float) -> str:

@@ -14,25 +14,24 @@ from .sexpr import Atom, SList, read, to_text
 from .terms import Percept, is_const
 
 
-def read_text(path: str | Path) -> str:
+def read_text(path: str | Path, limit: int = MAX_TEXT_CHARS) -> str:
     """Contents of ``path``; raises ProgramError naming the file if it cannot be read, is over
-    MAX_TEXT_CHARS bytes, or is not UTF-8 (``decode_text``)."""
+    ``limit`` bytes, or is not UTF-8 (``decode_text``)."""
     try:
         with open(path, "rb") as f:
-            data = f.read(MAX_TEXT_CHARS + 1)
+            data = f.read(limit + 1)
     except OSError as exc:
         raise ProgramError([Diagnostic(str(path), 0, 0, f"cannot read file: {exc.strerror}")]) \
             from None
-    return decode_text(data, str(path))
+    return decode_text(data, str(path), limit)
 
 
-def decode_text(data: bytes, source: str) -> str:
+def decode_text(data: bytes, source: str, limit: int = MAX_TEXT_CHARS) -> str:
     """``data`` as UTF-8 text (a leading byte-order mark skipped); raises ProgramError when it
-    is over MAX_TEXT_CHARS bytes or holds a byte that is not UTF-8 (with that byte's
-    line:col)."""
-    if len(data) > MAX_TEXT_CHARS:
+    is over ``limit`` bytes or holds a byte that is not UTF-8 (with that byte's line:col)."""
+    if len(data) > limit:
         raise ProgramError([Diagnostic(source, 0, 0, f"file is larger than the limit of "
-                                                     f"{MAX_TEXT_CHARS} bytes")])
+                                                     f"{limit} bytes")])
     if data.startswith(codecs.BOM_UTF8):
         data = data[len(codecs.BOM_UTF8):]
     try:

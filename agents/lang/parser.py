@@ -9,6 +9,7 @@ bare clauses ``((head ...) :key value ...)`` as printed in seed 000's tables (a 
 from __future__ import annotations
 
 from .arith import OPS
+from .conjunction import Goal, is_conjunction, read_conjunction
 from .errors import Diagnostic
 from .limits import MAX_DIAGNOSTICS
 from .pieces import PieceParser, items_of, op_name, suggest
@@ -84,9 +85,15 @@ class Parser(PieceParser):
 
     def goals_section(self, node: SList) -> None:
         for item in node.items[1:]:
-            lit = self.literal(item, "goal", allow_not=False)
-            if lit is not None:
-                self.parts.goals.append(GoalSpec(lit, self.loc(item)))
+            goal = self.goal(item)
+            if goal is not None:
+                self.parts.goals.append(GoalSpec(goal, self.loc(item)))
+
+    def goal(self, node: object) -> Goal | None:
+        """A goal: one literal, or ``(and ...)`` of conditions (agents/lang/conjunction.py)."""
+        if is_conjunction(node):
+            return read_conjunction(self, node)
+        return self.literal(node, "goal", allow_not=False)
 
     def resources_section(self, node: SList) -> None:
         table = self.parts.resources if self.parts.resources is not None else {}

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from .arith import evaluate
+from .effects import Effects, undoing
 from .errors import EvalError
 from .explanation import PassOver, PathStep
 from .goals import satisfied
@@ -29,7 +30,8 @@ from .state import EngineState, StoredStep
 from .store import FactStore, PerceptIndex
 from .terms import Action, Expr, Literal, PerceptPattern, Test, Var, fmt
 
-MAX_DEPTH = 32       # deepest skill path [skills]
+MAX_DEPTH = 64       # deepest skill path [skills] (a learned skill recurses twice per block
+                     # of a tower: 30 blocks need 60)
 MAX_BINDINGS = 512   # alternative bindings considered per skill clause
 MAX_WHY = 400        # explanation entries kept per cycle
 _EVERY = " (for every match of the conditions before it)"
@@ -71,6 +73,10 @@ class Walk:
     why: list = field(default_factory=list)
     sections: list = field(default_factory=list)  # Section values for the Decision
     updates: dict[str, Any] = field(default_factory=dict)  # EngineState field -> new value
+    protected: list = field(default_factory=list)  # (goal id, text, ground literals) of the
+    #                                                satisfied goals before the current one
+    banned: frozenset = frozenset()  # (goal text, skill number, bindings) not to be used for
+    #                                  the current goal (agents/lang/loops.py)
 
     def passed(self, depth: int, goal: str, skill: str, b: dict, reason: str) -> None:
         """Record why a skill (or goal) was passed over."""
@@ -98,6 +104,13 @@ class PathFinder:
         self.program = program
         self.res = program.resources
         self.bodies = bodies
+        self.effects = Effects(program)
+
+    # -- higher goals ------------------------------------------------------------------------
+    def undoes(self, walk: Walk, actions) -> str:
+        """Why ``actions`` may not run for the current goal ("" if they may): the program says
+        they undo a literal by which a more important goal holds (agents/lang/effects.py)."""
+        return undoing(self.effects, walk.protected, actions)
 
     # -- resources -------------------------------------------------------------------------
     def resources(self, actions) -> frozenset[str] | None:
@@ -215,6 +228,10 @@ class PathFinder:
                         f"{_EVERY if several else ''}")
             return None
         for b in sols:
+            if walk.banned and (text, s.number, btuple(b)) in walk.banned:
+                walk.passed(depth, text, s.name, b, "not used again for this goal: it led "
+                            "back to an earlier situation (loop)")
+                continue
             found = self.expand(walk, s, b, goal, NOTHING, depth, on_path, "entered")
             if found:
                 return found
@@ -254,7 +271,7 @@ class PrimitiveBody:
         except EvalError as exc:
             walk.passed(depth, str(goal), s.name, b, f"action cannot be evaluated: {exc}")
             return None
-        clash = finder.conflict(walk, actions)
+        clash = finder.conflict(walk, actions) or finder.undoes(walk, actions)
         if clash:
             walk.passed(depth, str(goal), s.name, b, clash)
             return None

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from .conjunction import Goal
 from .errors import Diagnostic
 from .terms import ActionTemplate, Literal, Loc, PerceptPattern, Test, Var
 
@@ -67,9 +68,9 @@ class Skill:
 
 @dataclass(frozen=True, slots=True)
 class GoalSpec:
-    """A goal as written in a program's (goals ...) section."""
+    """A goal as written in a program's (goals ...) section: a literal or a conjunction."""
 
-    literal: Literal
+    literal: Goal
     loc: Loc | None = None
 
 

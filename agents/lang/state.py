@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from .errors import GoalError, LangError, StateError
 from .goals import GoalEntry, parse_goal
+from .loops import LoopState
 from .planning.state import PlannerState
 from .scs.state import ScsState
 from .solving.state import SolverState
@@ -46,7 +47,8 @@ class EngineState:
     ``active``: ids of the goals whose path acted last cycle (a goal not among them resumes
     its remembered path only if every skill on it could be started now); ``failed``: goals
     given up on, with the reason; ``seed``: the agent's seed for nondeterministic choices;
-    ``learned``: skill clauses learned at run time, in program syntax (seed 000)."""
+    ``learned``: skill clauses learned at run time, in program syntax (seed 000); ``loops``:
+    the loop watch of every unsatisfied goal (agents/lang/loops.py)."""
 
     goals: tuple[GoalEntry, ...] = ()
     paths: tuple[tuple[str, tuple[StoredStep, ...]], ...] = ()
@@ -59,6 +61,7 @@ class EngineState:
     solver: SolverState = SolverState()
     scs: ScsState = ScsState()
     planner: PlannerState = PlannerState()
+    loops: LoopState = LoopState()
 
     def rng(self, tag: str) -> random.Random:
         """A random generator for this cycle and purpose, derived from the agent's seed (the
@@ -93,7 +96,8 @@ class EngineState:
                 "paths": {gid: [s.to_dict() for s in steps] for gid, steps in self.paths},
                 "active": list(self.active), "failed": {g: why for g, why in self.failed},
                 "learned": list(self.learned), "solver": self.solver.to_dict(),
-                "scs": self.scs.to_dict(), "planner": self.planner.to_dict()}
+                "scs": self.scs.to_dict(), "planner": self.planner.to_dict(),
+                "loops": self.loops.to_dict()}
 
     @classmethod
     def from_dict(cls, d: dict) -> EngineState:
@@ -117,7 +121,8 @@ class EngineState:
                        tuple(str(t) for t in d.get("learned", ())),
                        SolverState.from_dict(d.get("solver", {})),
                        ScsState.from_dict(d.get("scs", {})),
-                       PlannerState.from_dict(d.get("planner", {})))
+                       PlannerState.from_dict(d.get("planner", {})),
+                       LoopState.from_dict(d.get("loops", {})))
         except StateError:
             raise
         except (KeyError, TypeError, ValueError, AttributeError, LangError) as exc:

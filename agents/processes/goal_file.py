@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from agents.lang import ProgramError
-from agents.lang.limits import MAX_GOAL_CHARS, read_json
+from agents.lang.limits import MAX_STATE_STRING, read_json
 from agents.processes.goal_store import GoalStore, GoalStoreError
 
 BACKUP_SUFFIX = ".bak"
@@ -66,7 +66,7 @@ def read_store(path: Path) -> GoalStore:
         raise GoalStoreError(f"not UTF-8 text (byte 0x{data[exc.start]:02x} at offset "
                              f"{exc.start})") from None
     try:
-        doc = read_json(text, str(path), MAX_STORE_BYTES, max_string=16 * MAX_GOAL_CHARS)
+        doc = read_json(text, str(path), MAX_STORE_BYTES, max_string=MAX_STATE_STRING)  # notes
     except ProgramError as exc:
         where = exc.diagnostics[0]
         raise GoalStoreError(f"not valid JSON at {where.line}:{where.col}: {where.message}") \

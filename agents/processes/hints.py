@@ -12,14 +12,30 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
+from agents.lang.sexpr import Atom, SList, read
+
 _UNMET = frozenset({"pending", "impasse", "failed"})
 
 
 def goal_names(goal: str) -> list[str]:
-    """The constant symbols among a goal's arguments: `(on A ?x)` -> ['A'] (not the
-    concept, not variables, not numbers)."""
-    tokens = goal.replace("(", " ").replace(")", " ").split()
-    return [t for t in tokens[1:] if not t.startswith("?") and not _is_number(t)]
+    """The constant symbols among a goal's arguments: `(on A ?x)` -> ['A'], `(and (on A B)
+    (not (on B C)))` -> ['A', 'B', 'C'] (not concepts, `and`, `not` or test operators, not
+    variables, not numbers), each once."""
+    forms, diags = read(goal, "<goal>")
+    if diags or len(forms) != 1:
+        return []
+    out: list[str] = []
+
+    def walk(node: object) -> None:
+        if isinstance(node, SList):
+            for item in node.items[1:]:
+                walk(item)
+        elif isinstance(node, Atom) and isinstance(node.value, str) and \
+                not _is_number(node.value):
+            out.append(node.value)
+
+    walk(forms[0])
+    return list(dict.fromkeys(out))
 
 
 def _is_number(token: str) -> bool:

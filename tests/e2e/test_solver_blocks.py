@@ -93,9 +93,8 @@ def test_simulate_figure3_stack_per_cycle_and_the_seeds_skills(teleo, tmp_path):
         r["actions"] for r in records[:4]]
     assert [r["actions"] for r in records[:4]] == [
         [["*unstack", "Z", "Y"]], [["*putdown", "Z", "T"]], [["*unstack", "Y", "X"]], []]
-    # (clear X) is g1; the program's own goal p1, (clear A), names no block here: it fails at
-    # once ("nothing to chain off") and no longer blocks g1
-    assert [dict(r["goals"])["p1"] for r in records] == ["failed"] * len(records)
+    # (clear X) is g1, the only goal (programs/blocks.tlp has no standing goal)
+    assert [list(dict(r["goals"])) for r in records] == [["g1"]] * len(records)
     for r in records:   # no impasse on any cycle: the learned skills carry it all
         assert dict(r["goals"])["g1"] in ("active", "satisfied")
         solver = r.get("solver", {"solving": [], "stacks": []})
@@ -148,8 +147,11 @@ def test_an_impossible_goal_is_failed_with_its_reason_in_teleo_goal_list(teleo):
             rows = teleo("goal", "list").stdout.splitlines()
             return next((r for r in rows if "(on A A)" in r and " failed " in r), "")
         assert wait_for(lambda: bool(failed()), 90), teleo.launch_output()
-        assert "-- (on A A) cannot be achieved: every alternative failed ((stack A A): its " \
-               "subgoal (stackable A A) cannot be achieved" in failed()
+        # g1, Figure 3's (clear A), holds and comes first: stacking anything on A would undo
+        # it (issue 22), and the reason says so before the chain of subgoals tried
+        assert "-- (on A A) cannot be achieved without undoing g1 (clear A)" in failed()
+        assert failed().endswith("(stack A A) would undo (clear A) of goal g1 (clear A), which "
+                                 "holds and comes first")
     finally:
         # a goal that could not be kept fails the run (docs/faults.md): exit 1, and says why
         assert interrupt(launcher) == 1, teleo.launch_output()
@@ -173,7 +175,7 @@ def test_an_executive_killed_mid_problem_keeps_its_goal_stack_and_skills(teleo, 
     finally:
         if launcher.poll() is None:
             interrupt(launcher)
-    assert before["state"]["solver"]["stacks"][0]["goal_id"] == "p1"   # (clear A)
+    assert before["state"]["solver"]["stacks"][0]["goal_id"] == "g1"   # (clear A)
     assert len(before["state"]["solver"]["stacks"][0]["entries"]) >= 3   # mid-problem
     assert "ME.executive exited with code -9: restarted (1)" in teleo.launch_output()
     summary = json.loads((teleo.run_dir / "s.json").read_text())

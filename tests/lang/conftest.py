@@ -41,3 +41,14 @@ def minidrive_res():
 def me(speed=15.0, limit=25, heading=0.0, position=0):
     """The ego car as a neutral percept list."""
     return ["self", "ME", "speed", speed, "limit", limit, "heading", heading, "position", position]
+
+
+BLOCKS = ROOT / "programs" / "blocks.tlp"
+
+
+def figure3_program():
+    """programs/blocks.tlp with seed 000's Figure 3 problem, (clear A), as its goal p1 (the
+    program itself has no standing goal: a Blocks World problem is a user's goal)."""
+    from agents.lang import load_program_text
+
+    return load_program_text(BLOCKS.read_text() + "\n(goals\n  (clear A))\n", str(BLOCKS))

@@ -22,7 +22,7 @@ import pytest
 from agents.lang import Engine, GoalStatus, load_program
 from agents.lang.solving.learner import canonical
 
-from .conftest import FIX, ROOT
+from .conftest import FIX, figure3_program
 
 TOWER = {"A": "T", "B": "A", "C": "B"}   # C on B on A on the table T
 
@@ -74,7 +74,7 @@ def run(engine, state, support, holding=None, cycles=10):
 @pytest.fixture(scope="module")
 def primitive():
     """programs/blocks.tlp (primitive skills only) with the problem solver (the default)."""
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    return Engine(figure3_program())
 
 
 @pytest.fixture(scope="module")
@@ -139,7 +139,7 @@ def test_figure3_learns_the_seeds_two_skills(figure3):
     (clear ?b) then (hand-empty), started when (on ?b ?from)."""
     state = figure3[3]
     assert len(state.learned) == 2
-    learned = Engine(load_program(ROOT / "programs" / "blocks.tlp")).executive_for(state)
+    learned = Engine(figure3_program()).executive_for(state)
     new = learned.program.skills[-2:]
     seed = load_program(FIX / "blocks_handwritten.tlp")
     want = [next(s for s in seed.skills if s.name == name)

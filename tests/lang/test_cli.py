@@ -21,7 +21,7 @@ def invoke(*args):
 def test_check_accepts_valid_programs():
     result = invoke("check", ROOT / "programs" / "blocks.tlp", PROGRAMS / "minidrive.tlp")
     assert result.exit_code == 0
-    assert "blocks.tlp: ok (11 concepts, 7 skills, 1 goals)" in result.output
+    assert "blocks.tlp: ok (11 concepts, 7 skills, 0 goals)" in result.output
 
 
 def test_check_reports_all_errors_and_exits_1(tmp_path):

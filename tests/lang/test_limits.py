@@ -116,9 +116,9 @@ def test_an_empty_program_loads_with_a_warning():
 
 @pytest.mark.parametrize("goal, message", [
     ("(" * 100, "1:65: lists nested deeper than 64 levels"),
-    ("(package-delivered " + "P" * 600 + ")", "longer than 512 characters"),
+    ("(package-delivered " + "P" * 4100 + ")", "longer than 4096 characters"),
     ("(package-delivered 1e999)", "1:20: 1e999: number inf is not finite"),
-    ("(package-delivered " + "7" * 5000 + ")", "longer than 512 characters"),
+    ("(package-delivered " + "7" * 5000 + ")", "longer than 4096 characters"),
 ])
 def test_goals_within_the_limits(goal, message):
     with pytest.raises(GoalError, match=message):

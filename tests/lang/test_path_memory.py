@@ -87,7 +87,10 @@ class _GiveUp:
         return Impasse(failed=f"no way to achieve {unsatisfied[0]}")
 
 
-def test_a_failed_goal_says_why_and_no_longer_blocks_the_goals_after_it(minidrive):
+def test_a_failed_goal_says_why_and_blocks_the_goals_after_it_until_withdrawn(minidrive):
+    """Seed 000: "the agent considers a goal only when all more important goals are
+    satisfied": a goal given up on still blocks the goals after it (issue 22); the goal-entry
+    process withdraws a user's failed goal, and then they go on."""
     engine = Engine(minidrive.program, solver=_GiveUp())
     state = engine.add_goal(engine.initial_state(), "(package-delivered PACKET1)", 0, "g1")
     far_behind = ["package", "PACKET1", "address", -5, "delivered", "NIL"]
@@ -96,9 +99,12 @@ def test_a_failed_goal_says_why_and_no_longer_blocks_the_goals_after_it(minidriv
         report = decision.goals[0]
         assert (report.id, report.status) == ("g1", GoalStatus.FAILED)
         assert report.note == "no way to achieve (package-delivered PACKET1)"
-        assert decision.status_of("p2") is GoalStatus.ACTIVE       # too fast: brake
-        assert _actions(decision) == [["*brake", 20]]
+        assert decision.status_of("p2") is GoalStatus.PENDING      # too fast, but waits
+        assert [g.note for g in decision.goals if g.id == "p2"] == ["waits: g1 comes first"]
+        assert _actions(decision) == []
     assert state.failure_of("g1") == "no way to achieve (package-delivered PACKET1)"
+    d, state = _run(engine, engine.remove_goal(state, "g1"), [[me(speed=30), far_behind]])
+    assert d[0].status_of("p2") is GoalStatus.ACTIVE and _actions(d[0]) == [["*brake", 20]]
 
 
 def test_outcomes_of_the_last_cycle_are_read_and_checked(minidrive):

@@ -24,12 +24,15 @@ TOWER = [["table", "T", "xpos", 0, "ypos", 0, "height", 2], ["hand", "H1", "stat
          ["block", "C", "xpos", 0, "ypos", 6, "height", 2]]
 
 
+FIGURE3 = ({"id": "g1", "goal": "(clear A)", "priority": 1, "status": "pending"},)
+
+
 def _inputs(cycle: int, percepts: list) -> dict:
     env = Envelope.now("r", cycle, "test")
     beliefs = tuple(b.to_list() for b in Engine(load_program(PROGRAM)).infer(percepts))
     return {keys.percepts("r", "ME"): Percepts(env, "ME", tuple(percepts)),
             keys.beliefs("r", "ME"): Beliefs(env, "ME", beliefs),
-            keys.goal_list("r", "ME"): GoalList(env, "ME", ())}
+            keys.goal_list("r", "ME"): GoalList(env, "ME", FIGURE3)}
 
 
 def _decision(outs) -> dict:

@@ -134,15 +134,15 @@ def test_plot_of_a_blocks_run_and_explain_of_its_goals(tmp_path, monkeypatch) ->
     drawn = runner.invoke(cli, ["plot", out["record"], "--out", str(tmp_path / "p.png")])
     assert drawn.exit_code == 0, drawn.output
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
-    told = runner.invoke(cli, ["explain", out["record"], "--goal", "p1"])
+    told = runner.invoke(cli, ["explain", out["record"], "--goal", "g1"])
     assert told.exit_code == 0, told.output
     lines = told.output.splitlines()
-    assert lines[0].startswith("goal p1 of ME: (clear A), priority 1")
+    assert lines[0].startswith("goal g1 of ME: (clear A), priority 1")
     rows = [(int(ln.split()[1]), ln.split()[2]) for ln in lines[1:]]  # "cycle N status"
     intentions = RunRecord(locate(out["record"])).by_cycle("intention", "ME")
     for cycle, status in rows:  # each change is the status the decision of that cycle gave
         assert status == next(g["status"] for g in intentions[cycle]["decision"]["goals"]
-                              if g["id"] == "p1")
+                              if g["id"] == "g1")
     assert rows[0][0] == 0 and rows[-1][1] == "satisfied" and len(rows) >= 2
     wrong = runner.invoke(cli, ["explain", out["record"], "--agent", "YOU"])
     assert wrong.exit_code == 2 and "no agent 'YOU'; agents: ME" in wrong.output

@@ -1,9 +1,15 @@
 """Skill learning from the goal stack (seed 000, "Problem Solving and Skill Learning"): when
 an entry of a goal stack is achieved, a new skill is made from the decision recorded for it.
 
-* The head is the entry's goal, generalised: every constant that is the id of a percept
-  becomes a variable (the same constant the same variable), bound by a :percepts pattern of
-  that percept's type. Other constants (numbers, names no percept carries) stay as written.
+* The head is the entry's goal, generalised (seed 000: "a generalized version of the goal in
+  which constants are replaced by variables"): every constant of the goal that is the id of a
+  percept becomes a variable (the same constant the same variable), bound by a :percepts
+  pattern of that percept's type. An object the body names and the goal does not becomes a
+  variable only when a positive :start literal ties it to one that is (``(clear ?b1)`` with
+  ``:start ((on ?b2 ?b1))``: ?b2 is the block on ?b1, whichever it is); otherwise it stays a
+  constant, so the skill never applies to objects its start does not determine (issue 22: a
+  variable bound by a type pattern alone would make the skill "apply" to any block). Other
+  constants (numbers, names no percept carries) stay as written.
 * Skill chaining (off skill S, whose start was false): the subgoals are the start conditions
   of S that had to be achieved, in the order achieved (in the seed, the head of the skill that
   achieved S's start), then S's head (the goal); the start is the start of the skill that
@@ -17,6 +23,8 @@ an entry of a goal stack is achieved, a new skill is made from the decision reco
   ``(unstackable ?b ?from)`` skill has ``(hand-empty)`` as its last subgoal).
 * An entry achieved by executing an existing skill directly (no decision) teaches nothing;
   a skill equal to one the program has (up to variable names, :percepts aside) is not added.
+* A conjunctive goal teaches nothing itself (no skill has a conjunction as its head): the
+  skills are learned for the conjuncts and subgoals below it.
 """
 
 from __future__ import annotations
@@ -25,7 +33,7 @@ from dataclasses import dataclass
 
 from ..program import Skill
 from ..terms import Expr, Literal, PerceptPattern, Test, Var
-from .state import CONCEPT, StackEntry
+from .state import CONCEPT, CONJUNCTION, StackEntry
 from .task import Task, condition, literal
 
 
@@ -49,8 +57,8 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     definition than the one chained on).
     ``known``: canonical key -> skill name of every skill known (extended with this one)."""
     way = entry.decision
-    if way is None or (way.kind == CONCEPT and not all(task.holds(c)
-                                                       for c in way.conditions)):
+    if way is None or way.kind == CONJUNCTION or (
+            way.kind == CONCEPT and not all(task.holds(c) for c in way.conditions)):
         return None   # (a skill's start may well be false once the skill has run)
     achieved = [c for c in entry.order if c in way.conditions]
     if not achieved:
@@ -72,18 +80,29 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
 
 
 def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) -> Skill:
-    """A skill with every percept id among the constants replaced by a variable named after
-    its percept type (``?b1`` for the first block), consistently."""
+    """A skill with the percept ids of ``head`` replaced by variables named after their
+    percept type (``?b1`` for the first block), consistently, and with them every percept id
+    that a positive :start literal ties to one replaced (see the module docstring)."""
     names: dict[object, Var] = {}
     taken = {v.name for c in (head, *start, *subgoals) for v in c.variables()}
     types: list[tuple[Var, str]] = []
+    ids = {x for x in head.args if isinstance(x, str) and task.type_of(x) is not None}
+    ties = [c for c in start if isinstance(c, Literal) and not c.negated]
+    grown = True
+    while grown:
+        grown = False
+        for c in ties:
+            mine = {x for x in c.args if isinstance(x, str) and task.type_of(x) is not None}
+            if mine & ids and not mine <= ids:
+                ids |= mine
+                grown = True
 
     def var(x: object) -> object:
         if isinstance(x, Var) or x in names:
             return names.get(x, x)
-        kind = task.type_of(x) if isinstance(x, str) else None
-        if kind is None:
+        if x not in ids:
             return x
+        kind = task.type_of(x)
         n = 1
         while f"{kind[0]}{n}" in taken:
             n += 1

@@ -19,10 +19,12 @@ from dataclasses import dataclass, replace
 
 from ..paths import Found
 from ..terms import Literal
-from .state import SKILL, Alternative, GoalStack, StackEntry
-from .task import Task, condition, literal, pushable
+from .ordering import agenda
+from .state import CONJUNCTION, SKILL, Alternative, GoalStack, StackEntry
+from .task import Task, condition, goal_of, literal, pushable
 
-MAX_STACK = 24      # deepest goal stack [entries]
+MAX_STACK = 64      # deepest goal stack [entries] (clearing the bottom of a tower of 30
+                    # blocks pushes two entries per block above it)
 MAX_EXECUTE = 50    # cycles a subgoal's path may run without achieving it [cycles]
 MAX_PUSHES = 2      # times one condition of a way may be pushed (achieved, undone, again)
 
@@ -89,7 +91,7 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
     planner's back-chainer, agents/lang/planning/backchain.py), a chosen way whose
     conditions all hold is answered (entry, None, ""): apply it."""
     if not entry.alternatives and entry.chosen == -1 and entry.tried == 0:
-        entry = replace(entry, alternatives=task.alternatives(literal(entry.goal)))
+        entry = replace(entry, alternatives=task.alternatives(goal_of(entry.goal)))
         if not entry.alternatives:
             return entry, None, task.nothing_to_chain(entry.goal)
     while True:
@@ -110,8 +112,15 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
 
 def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
           ) -> tuple[StackEntry | None, str]:
-    """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none."""
-    cond = next((c for c in way.conditions if not task.holds(c)), None)
+    """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none;
+    for a conjunction, the first of its agenda (agents/lang/solving/ordering.py)."""
+    if way.kind == CONJUNCTION:   # a conjunct given up after a circle is not pushed again
+        items = [c for c in agenda(task, way.conditions) if c not in on_stack
+                 and entry.pushes.count(c) < MAX_PUSHES]
+        cond = items[0] if items else next((c for c in way.conditions
+                                            if not task.holds(c)), None)
+    else:
+        cond = next((c for c in way.conditions if not task.holds(c)), None)
     if cond is None:
         return None, ("its start holds but it is still not executable" if way.kind == SKILL
                       else "every subconcept holds but the goal does not")
@@ -127,6 +136,10 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
         return None, f"depth bound: the goal stack already holds {MAX_STACK} (sub)goals"
     if way.kind == SKILL:
         why = f"chained off skill {way.shows} because its start {cond} is false"
+    elif way.kind == CONJUNCTION:
+        part = "a conjunct" if cond in way.conditions else \
+            "needed first by the plan of a conjunct that another would otherwise undo"
+        why = f"decomposed the conjunction; {cond} does not hold ({part})"
     else:
         why = (f"decomposed {entry.goal} through {way.shows} into "
                f"{' '.join(way.conditions)}; {cond} does not hold")

@@ -20,26 +20,104 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from ..conjunction import Conjunction
 from ..executive import Impasse
 from ..goals import GoalEntry
 from ..paths import NOTHING, PathFinder, Remembered, Walk
 from ..terms import Literal
 from .learner import canonical, learn
-from .search import advance
+from .ordering import agenda, one_step
+from .search import MAX_PUSHES, advance
 from .section import SolverSection
-from .state import GoalStack, SolverState, StackEntry
-from .task import Task
+from .state import CONJUNCTION, GoalStack, SolverState, StackEntry
+from .task import Task, literal
 
 
 class MeansEndsSolver:
     """Stateless: everything it keeps between cycles is in EngineState.solver (goal stacks)
-    and EngineState.learned (learned skills), so one instance serves every agent."""
+    and EngineState.learned (learned skills), so one instance serves every agent (within a
+    cycle it keeps the Task of each goal, so that the executive's agenda and the search share
+    their regressions)."""
+
+    def __init__(self) -> None:
+        self._walk: Walk | None = None
+        self._tasks: dict[str, Task] = {}
+        self._shared: dict = {}   # agendas by situation (agents/lang/solving/ordering.py)
+
+    def task(self, finder: PathFinder, walk: Walk, goal_id: str = "") -> Task:
+        """This cycle's Task for goal ``goal_id`` (the goals before it protected)."""
+        if self._walk is not walk:
+            self._walk, self._tasks = walk, {}
+        task = self._tasks.get(goal_id)
+        if task is None or task.program is not finder.program:
+            task = Task(finder.program, walk.pidx, walk.store, tuple(walk.protected),
+                        finder.effects, self._shared)
+            self._tasks[goal_id] = task
+        return task
+
+    def agenda(self, finder: PathFinder, walk: Walk, entry: GoalEntry, conj: Conjunction,
+               current: str) -> list[Literal]:
+        """The conjuncts of ``conj`` the executive may pursue now, best first: those one
+        action achieves now, then the one this goal's stack works on (or, without a stack,
+        the one its path was for: ``current``) while the agenda still has it; otherwise the
+        whole agenda (agents/lang/solving/ordering.py). A conjunct the stack works on that
+        the agenda no longer has (another conjunct's plan needs what it would undo) is
+        dropped from the stack, to be chosen afresh."""
+        task = self.task(finder, walk, entry.id)
+        ways = task.alternatives(conj)
+        if not ways:
+            return []
+        stack = walk.current("solver").stack_of(entry.id)
+        mine = stack is not None and stack.entries[0].goal == str(conj)
+        if mine:
+            current = stack.entries[1].goal if len(stack.entries) > 1 else ""
+        items = agenda(task, ways[0].conditions, current)
+        if current and current in items:
+            items = list(dict.fromkeys([c for c in items if one_step(task, c)] + [current]))
+        elif current and mine:
+            self._refocus(walk, stack, current)
+        return [literal(c) for c in items]
+
+    def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
+        """Back off after a circle (agents/lang/loops.py): the top of the goal's stack fails
+        with ``reason``, its parent's way given up as after any failed subgoal (under a
+        conjunction: that conjunct is not pushed again). False when there is no stack."""
+        state: SolverState = walk.current("solver")
+        stack = state.stack_of(entry.id)
+        if stack is None:
+            return False
+        entries = list(stack.entries)
+        top = entries.pop() if len(entries) > 1 else entries[0]
+        if not entries:
+            entries = [top.give_up(reason)]
+        elif entries[-1].decision is not None and entries[-1].decision.kind == CONJUNCTION:
+            parent = entries[-1]
+            entries[-1] = replace(parent, pushes=parent.pushes + (top.goal,) * MAX_PUSHES)
+        else:
+            entries[-1] = entries[-1].give_up(f"its subgoal {top.goal}: {reason}")
+        stacks = tuple(replace(stack, entries=tuple(entries)) if s.goal_id == entry.id else s
+                       for s in state.stacks)
+        _publish(walk, stacks, (f"{entry.id}: backtracked from {top.goal}: {reason}",), (), ())
+        return True
+
+    @staticmethod
+    def _refocus(walk: Walk, stack: GoalStack, current: str) -> None:
+        """Drop what the stack ``stack`` of a conjunction does for its conjunct ``current``."""
+        bottom = stack.entries[0]
+        pushes = list(bottom.pushes)
+        if current in pushes:
+            del pushes[len(pushes) - 1 - pushes[::-1].index(current)]
+        kept = replace(stack, entries=(replace(bottom, pushes=tuple(pushes)),))
+        state: SolverState = walk.current("solver")
+        stacks = tuple(kept if s.goal_id == stack.goal_id else s for s in state.stacks)
+        _publish(walk, stacks, (f"{stack.goal_id}: dropped {current}: achieving it now would "
+                                "undo what another conjunct's plan needs",), (), ())
 
     def begin(self, finder: PathFinder, walk: Walk) -> None:
         state: SolverState = walk.current("solver")
         if not state.stacks:
             return
-        task = Task(finder.program, walk.pidx, walk.store)
+        task = self.task(finder, walk)
         live = {e.id for e in walk.state.goals}
         known = _known(finder)
         stacks, events, learned = [], [], []
@@ -65,7 +143,7 @@ class MeansEndsSolver:
             stack = GoalStack(entry.id, (StackEntry(insts[0], f"goal {entry.id} in impasse"),),
                               walk.state.cycle)
             events.append(f"{entry.id}: impasse on {insts[0]}: problem solving begins")
-        task = Task(finder.program, walk.pidx, walk.store)
+        task = self.task(finder, walk, entry.id)
         prev = walk.state.path_of(entry.id)
 
         def probe(goal: Literal):
@@ -75,13 +153,21 @@ class MeansEndsSolver:
 
         step = advance(task, stack, probe)
         events += [f"{entry.id}: {e}" for e in step.events]
+        conflicts = tuple(dict.fromkeys(stack.conflicts + tuple(
+            f"{g} {text}" for g, text in task.conflicts.items())))
         others = tuple(s for s in state.stacks if s.goal_id != entry.id)
-        stacks = tuple(sorted(others + ((step.stack,) if step.stack else ()),
-                              key=lambda s: s.goal_id))
-        if step.failed:
-            events.append(f"{entry.id}: failed: {step.failed}")
+        mine = (replace(step.stack, conflicts=conflicts),) if step.stack else ()
+        stacks = tuple(sorted(others + mine, key=lambda s: s.goal_id))
+        failed = step.failed
+        if failed and conflicts:   # seed 000: a lower goal may not undo a higher one
+            failed = (f"{insts[0]} cannot be achieved without undoing "
+                      f"{' and '.join(conflicts)}, which "
+                      f"{'holds' if len(conflicts) == 1 else 'hold'} and come"
+                      f"{'s' if len(conflicts) == 1 else ''} first; {failed}")
+        if failed:
+            events.append(f"{entry.id}: failed: {failed}")
         _publish(walk, stacks, tuple(events), (entry.id,), ())
-        return Impasse(step.found, step.failed, step.note)
+        return Impasse(step.found, failed, step.note)
 
 
 def _observe(task: Task, e: StackEntry) -> StackEntry:

@@ -12,6 +12,7 @@ from typing import Any
 
 SKILL = "skill"       # skill chaining: achieve the start of a skill whose head is the goal
 CONCEPT = "concept"   # concept chaining: achieve the subconcepts of the goal's definition
+CONJUNCTION = "conjunction"   # concept chaining on a conjunctive goal's conjuncts
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,11 +117,14 @@ class StackEntry:
 @dataclass(frozen=True, slots=True)
 class GoalStack:
     """The goal stack of one goal of the goal list (``goal_id``), bottom (the goal instance in
-    impasse) first; ``started``: the cycle problem solving on it began."""
+    impasse) first; ``started``: the cycle problem solving on it began; ``conflicts``: the
+    goals of higher priority that a way was left out for, since it would undo them ("g1 (on
+    B1 B4)"), named when the goal fails."""
 
     goal_id: str
     entries: tuple[StackEntry, ...]
     started: int = 0
+    conflicts: tuple[str, ...] = ()
 
     @property
     def top(self) -> StackEntry:
@@ -132,12 +136,13 @@ class GoalStack:
 
     def to_dict(self) -> dict[str, Any]:
         return {"goal_id": self.goal_id, "started": self.started,
-                "entries": [e.to_dict() for e in self.entries]}
+                "entries": [e.to_dict() for e in self.entries],
+                **({"conflicts": list(self.conflicts)} if self.conflicts else {})}
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> GoalStack:
         return cls(str(d["goal_id"]), tuple(StackEntry.from_dict(e) for e in d["entries"]),
-                   int(d.get("started", 0)))
+                   int(d.get("started", 0)), _texts(d.get("conflicts")))
 
 
 @dataclass(frozen=True, slots=True)

@@ -10,15 +10,21 @@ from functools import lru_cache
 from itertools import islice
 
 from ..arith import evaluate
-from ..errors import EvalError
+from ..conjunction import Conjunction, conjunction_holds
+from ..effects import Effects, undone_goal
+from ..errors import EvalError, GoalError
+from ..goals import parse_goal
+from ..loops import situation
 from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
+from ..matcher import ground as ground_literal
 from ..parser import Parser, Parts
 from ..paths import btuple, show
 from ..program import ConceptClause, Program, Skill
 from ..sexpr import read
 from ..store import FactStore, PerceptIndex
-from ..terms import Literal, Test, Var, fmt
-from .state import CONCEPT, SKILL, Alternative
+from ..terms import Action, Literal, Test, Var, fmt
+from .landmarks import key, landmarks
+from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
 MAX_PER_CLAUSE = 3     # alternatives kept per clause (the best-ranked bindings)
@@ -33,6 +39,18 @@ def condition(text: str) -> Literal | Test:
     if len(found) != 1 or parts.diags:
         raise ValueError(f"solver state: cannot read the condition {text!r}")
     return found[0]
+
+
+@lru_cache(maxsize=1024)
+def goal_of(text: str) -> Literal | Conjunction:
+    """A (sub)goal read back from its text: a literal, or the conjunction at the bottom of a
+    conjunctive goal's stack."""
+    if text.startswith("(and "):
+        try:
+            return parse_goal(text)
+        except GoalError as exc:
+            raise ValueError(f"solver state: cannot read the goal {text!r}: {exc}") from None
+    return literal(text)
 
 
 def literal(text: str) -> Literal:
@@ -51,16 +69,48 @@ def pushable(cond: Literal | Test) -> bool:
 
 class Task:
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
-    percepts and the beliefs."""
+    percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
+    that hold and come before the one solved for, which no way chained off may undo (seed 000,
+    "Adding Goal Priorities"), judged by ``effects`` (agents/lang/effects.py)."""
 
-    def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore):
+    def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore,
+                 protected: tuple | list = (), effects: Effects | None = None,
+                 shared: dict | None = None):
         self.program = program
         self.pidx = pidx
         self.store = store
+        self.protected = tuple(protected)
+        self.effects = effects if effects is not None else Effects(program)
+        self.refused: list[str] = []   # ways left out because they undo a protected goal,
+        self.conflicts: dict[str, str] = {}   # and those goals (id -> text)
+        self.memo: dict = {}           # per-cycle results (agents/lang/solving/ordering.py)
+        self.shared = shared if shared is not None else {}  # the same, across cycles, by
+        #                                                     situation (``situation``)
+        self._holds: dict = {}
+        self._alternatives: dict = {}
+        self._situation = ""
+
+    @property
+    def situation(self) -> str:
+        """The digest of this cycle's percepts and beliefs (agents/lang/loops.py), for
+        results kept across cycles."""
+        if not self._situation:
+            self._situation = situation(self.pidx, self.store)
+        return self._situation
 
     # -- what holds ------------------------------------------------------------------------
-    def holds(self, cond: str | Literal | Test) -> bool:
+    def holds(self, cond: str | Literal | Test | Conjunction) -> bool:
         """True if the condition holds now (variables in a literal are existential)."""
+        hit = self._holds.get(cond)
+        if hit is None:
+            hit = self._holds[cond] = self._holds_now(cond)
+        return hit
+
+    def _holds_now(self, cond: str | Literal | Test | Conjunction) -> bool:
+        if isinstance(cond, str) and cond.startswith("(and "):
+            cond = goal_of(cond)
+        if isinstance(cond, Conjunction):
+            return conjunction_holds(cond, self.store, self.pidx)
         c = condition(cond) if isinstance(cond, str) else cond
         if isinstance(c, Test):
             return not c.variables() and test_holds(c, {})
@@ -83,6 +133,11 @@ class Task:
     # -- ways to chain off a goal ----------------------------------------------------------
     def nothing_to_chain(self, goal: str) -> str:
         """Why ``goal`` has no way to chain off, for the failure's reason."""
+        refused = f"; {'; '.join(dict.fromkeys(self.refused))}" if self.refused else ""
+        if goal.startswith("(and "):
+            return ("nothing to chain off: its conjuncts cannot be bound to objects here, or "
+                    "one that does not hold cannot become a subgoal (a negation or a test)"
+                    + refused)
         pred = literal(goal).pred
         skills = f"no primitive skill achieves {pred}" if not any(
             s.kind == "primitive" for s in self.program.skills_for(pred)) else \
@@ -91,9 +146,9 @@ class Task:
         concept = "its definition cannot be decomposed here" \
             if any(c.relations for c in self.program.concepts.get(pred, ())) else \
             f"{pred} is a primitive concept, with no subconcepts to decompose into"
-        return f"nothing to chain off: {skills}; {concept}"
+        return f"nothing to chain off: {skills}; {concept}{refused}"
 
-    def alternatives(self, goal: Literal, applicable: bool = False,
+    def alternatives(self, goal: Literal | Conjunction, applicable: bool = False,
                      concepts: bool = True) -> tuple[Alternative, ...]:
         """Skill chaining first, then concept chaining (seed 000: "chaining backwards off
         either conceptual clauses or primitive skills, with a priority on the latter"): the
@@ -104,12 +159,22 @@ class Task:
         ``applicable``: also the skills whose conditions all hold already (a planner that
         projects operators ahead of execution applies them; the solver never needs them, the
         executive would have executed such a skill); ``concepts``: concept chaining too
-        (PRODIGY's back-chainer, agents/lang/planning, chains on operators only)."""
-        out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
-               for a in self._by_skill(s, goal, applicable)]
-        for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
-            out += self._by_concept(clause, goal)
-        return tuple(out)
+        (PRODIGY's back-chainer, agents/lang/planning, chains on operators only).
+        A conjunction has one way per binding of its variables, like a concept clause without
+        a head (concept chaining on its conjuncts)."""
+        key = (goal, applicable, concepts)
+        hit = self._alternatives.get(key)
+        if hit is not None:
+            return hit
+        if isinstance(goal, Conjunction):
+            out = self._by_conjunction(goal)
+        else:
+            out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
+                   for a in self._by_skill(s, goal, applicable)]
+            for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
+                out += self._by_concept(clause, goal)
+        self._alternatives[key] = hit = tuple(out)
+        return hit
 
     def _by_skill(self, s: Skill, goal: Literal, applicable: bool = False
                   ) -> list[Alternative]:
@@ -120,10 +185,13 @@ class Task:
         ranked = []
         for b in self._candidates(list(s.percepts), conds, b0):
             ground = [condition(show(c, b)) for c in conds]
-            if self._chainable(ground, applicable):
-                ranked.append((self.rank(ground), binding_key(b), b, ground))
+            if self._chainable(ground, applicable) and not self.undoes_skill(s, b) and \
+                    (applicable or not self._circular(goal, ground)):
+                ready = applicable and all(self.holds(c) for c in ground)
+                ranked.append(((not ready, *self.rank(ground)), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
-                            self._shows(s, b)) for _, _, b, ground in self._best(ranked)]
+                            self._shows(s, b))
+                for _, _, b, ground in self._best(ranked, not applicable)]
 
     def _by_concept(self, clause: ConceptClause, goal: Literal) -> list[Alternative]:
         b0 = unify_head(clause.head, goal, {})
@@ -141,6 +209,56 @@ class Task:
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
                             f"concept {name}") for _, _, b, ground in self._best(ranked)]
 
+    def _by_conjunction(self, conj: Conjunction) -> list[Alternative]:
+        ranked = []
+        for b in self._candidates([], list(conj.literals), {}):
+            ground = [condition(show(c, b)) for c in conj.conds]
+            if self._chainable(ground):
+                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
+                            "the conjunction") for _, _, b, ground in self._best(ranked)]
+
+    def undoes_skill(self, s: Skill, b: dict) -> bool:
+        """True when skill ``s`` under ``b`` would act to undo a protected goal (recorded in
+        ``refused``, for the failure's reason)."""
+        if not self.protected or s.kind != "primitive":
+            return False
+        try:
+            actions = [Action(a.name, tuple(evaluate(x, b) for x in a.args)) for a in s.actions]
+        except EvalError:
+            return False
+        hit = undone_goal(self.effects, self.protected, actions)
+        if hit is not None:
+            gid, text, lit = hit
+            self.conflicts[gid] = text
+            self.refused.append(f"{self._shows(s, b)} would undo {lit} of goal {gid} {text}, "
+                                "which holds and comes first")
+        return hit is not None
+
+    def _circular(self, goal: Literal, ground: list) -> bool:
+        """True when a false condition of a way (or a false part of its definition) can only be
+        achieved through ``goal`` itself, a landmark of it (agents/lang/solving/landmarks.py):
+        clearing B3 by lifting B6 off it, when B6 is not on B3, would first need B6 put there,
+        which needs (clear B3). Such a way is not chained off."""
+        goal_key = key(goal)
+        for c in ground:
+            if not isinstance(c, Literal) or c.negated or self.holds(c):
+                continue
+            for r in (c, *self._definition(c)):
+                if not r.variables() and not self.holds(r) and \
+                        goal_key in landmarks(self, r):
+                    return True
+        return False
+
+    def _definition(self, lit: Literal) -> list[Literal]:
+        """The positive relations of ``lit``'s single defining clause, bound by its head."""
+        clauses = self.program.concepts.get(lit.pred, ())
+        if len(clauses) != 1:
+            return []
+        b = unify_head(clauses[0].head, lit, {})
+        return [] if b is None else [ground_literal(r, b) for r in clauses[0].relations
+                                     if not r.negated]
+
     def _chainable(self, ground: list, applicable: bool = False) -> bool:
         """Something is left to achieve (or, ``applicable``, nothing), and all of it can
         become a subgoal."""
@@ -148,9 +266,14 @@ class Task:
         return (applicable or bool(unsat)) and all(pushable(c) for c in unsat)
 
     @staticmethod
-    def _best(ranked: list) -> list:
+    def _best(ranked: list, closest: bool = True) -> list:
+        """The best-ranked bindings of a clause, at most MAX_PER_CLAUSE; with ``closest``
+        (the solver's chaining), none that holds fewer of the conditions than the best one
+        (a block not on B3 is no way to clear B3: it would first have to be put there). The
+        planner, which projects its operators, keeps them all."""
         ranked.sort(key=lambda r: (r[0], r[1]))
-        return ranked[:MAX_PER_CLAUSE]
+        best = ranked[:MAX_PER_CLAUSE]
+        return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
 
     def rank(self, conds: list) -> tuple:
         """Sort key of a way to chain off (smaller first): the most conditions holding,

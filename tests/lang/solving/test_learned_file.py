@@ -14,7 +14,7 @@ from agents.lang import Engine, ProgramError, load_program
 from agents.lang.solving.learned import clause_heads, learned_text, read_learned
 from tools.cli import cli
 
-from ..conftest import PROGRAMS, ROOT
+from ..conftest import PROGRAMS, ROOT, figure3_program
 from ..test_blocks import TOWER, run
 
 BLOCKS = ROOT / "programs" / "blocks.tlp"
@@ -22,7 +22,7 @@ BLOCKS = ROOT / "programs" / "blocks.tlp"
 
 @pytest.fixture(scope="module")
 def learned() -> tuple[str, ...]:
-    engine = Engine(load_program(BLOCKS))
+    engine = Engine(figure3_program())
     return run(engine, engine.initial_state(), TOWER, cycles=6)[3].learned
 
 

@@ -12,7 +12,7 @@ from agents.lang.solving.state import CONCEPT, Alternative, StackEntry
 from agents.lang.solving.task import Task
 from agents.lang.store import PerceptIndex, store_of
 
-from ..conftest import ROOT
+from ..conftest import ROOT, figure3_program
 from ..test_blocks import TOWER, percepts, run
 
 UNSTACKABLE = Alternative(CONCEPT, 1, "unstackable#1", (("b", "B"), ("from", "A")),
@@ -21,7 +21,7 @@ UNSTACKABLE = Alternative(CONCEPT, 1, "unstackable#1", (("b", "B"), ("from", "A"
 
 @pytest.fixture(scope="module")
 def blocks():
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    return Engine(figure3_program())
 
 
 def _task(engine, support, holding=None) -> Task:

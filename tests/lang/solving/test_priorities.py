@@ -8,15 +8,15 @@ from __future__ import annotations
 
 import pytest
 
-from agents.lang import Engine, GoalStatus, load_program, load_program_text
+from agents.lang import Engine, GoalStatus, load_program_text
 
-from ..conftest import ROOT
+from ..conftest import figure3_program
 from ..test_blocks import TOWER, act, percepts
 
 
 @pytest.fixture(scope="module")
 def blocks():
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    return Engine(figure3_program())
 
 
 def _cycles(engine, state, support, n, post=None):
@@ -94,15 +94,16 @@ LAW = """
 """
 
 
-def test_a_failed_law_acts_again_as_soon_as_a_skill_for_it_is_executable():
+def test_a_failed_law_blocks_the_errand_and_acts_again_as_soon_as_a_skill_for_it_is_executable():
     """Seed 000, Tables 1 and 2: "when the agent's vehicle is stopped, the agent should invoke
-    the action (*gas 6.25)". Too fast, nothing can slow the car: the solver gives the law up
-    and the errand goes on; once the car stands, Table 1's skill is executable and the law
-    takes the cycle again, before the errand (the goal list is rechecked every cycle)."""
+    the action (*gas 6.25)". Too fast, nothing can slow the car: the solver gives the law up,
+    and the errand still waits ("the agent considers a goal only when all more important goals
+    are satisfied"); once the car stands, Table 1's skill is executable and the law acts again
+    (the goal list is rechecked every cycle); then the errand goes on."""
     engine = Engine(load_program_text(LAW, "law.tlp"))
     state = engine.add_goal(engine.initial_state(), "(delivered ME)", priority=5, goal_id="g1")
     trace = []
-    for speed in (30.0, 30.0, 0.0, 20.0):
+    for speed in (30.0, 30.0, 30.0, 0.0, 20.0):
         result = engine.cycle(state, [["self", "ME", "speed", speed, "limit", 25,
                                        "parcel", "held"]])
         state = result.state
@@ -110,7 +111,8 @@ def test_a_failed_law_acts_again_as_soon_as_a_skill_for_it_is_executable():
                       [a.to_list() for a in result.decision.actions]))
     assert trace == [
         ([("p1", GoalStatus.IMPASSE), ("g1", GoalStatus.PENDING)], []),
-        ([("p1", GoalStatus.FAILED), ("g1", GoalStatus.ACTIVE)], [["*deliver"]]),
-        ([("p1", GoalStatus.ACTIVE), ("g1", GoalStatus.SUSPENDED)], [["*gas", 6.25]]),
+        ([("p1", GoalStatus.FAILED), ("g1", GoalStatus.PENDING)], []),
+        ([("p1", GoalStatus.FAILED), ("g1", GoalStatus.PENDING)], []),
+        ([("p1", GoalStatus.ACTIVE), ("g1", GoalStatus.PENDING)], [["*gas", 6.25]]),
         ([("p1", GoalStatus.SATISFIED), ("g1", GoalStatus.ACTIVE)], [["*deliver"]])]
     assert state.failure_of("p1") is None

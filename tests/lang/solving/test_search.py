@@ -64,45 +64,58 @@ def test_toy_task_depth_bound():
 
 @pytest.fixture(scope="module")
 def blocks():
-    from agents.lang import load_program
 
-    from ..conftest import ROOT
-    return Engine(load_program(ROOT / "programs" / "blocks.tlp"))
+    from ..conftest import figure3_program
+    return Engine(figure3_program())
 
 
 def _goal(engine, goal):
     return engine.add_goal(engine.remove_goal(engine.initial_state(), "p1"), goal, goal_id="g1")
 
 
-def test_backtrack_the_first_chain_fails_by_a_loop_the_second_succeeds(blocks):
-    """(holding A) with C on A on B: skill chaining tries (pickup A T) first (program order);
-    its start needs (ontable A T), which needs A put down, which needs (holding A): a loop.
-    The search backtracks to the second alternative, (unstack A B), and succeeds."""
-    trace, support, holding, state = run(blocks, _goal(blocks, "(holding A)"),
-                                         {"B": "T", "A": "B", "C": "A"}, cycles=8)
-    stacks = [d.section("solver").stack("g1") for d, _ in trace[:4]]
-    assert stacks == [
-        ["(holding A)", "(pickupable A T)"],
-        ["(holding A)", "(pickupable A T)", "(ontable A T)"],
-        ["(holding A)", "(pickupable A T)", "(ontable A T)", "(putdownable A T)"],
-        ["(holding A)", "(unstackable A B)"]]
-    events = trace[3][0].section("solver").events
-    assert events == (
-        "g1: backtracked: (putdownable A T) cannot be achieved: every alternative failed "
-        "(concept putdownable#1: loop: (holding A) is already on the goal stack)",
-        "g1: backtracked: (ontable A T) cannot be achieved: every alternative failed ((putdown A"
-        " T): its subgoal (putdownable A T) cannot be achieved: every alternative failed "
-        "(concept putdownable#1: loop: (holding A) is already on the goal stack))",
-        "g1: backtracked: (pickupable A T) cannot be achieved: every alternative failed "
-        "(concept pickupable#1: its subgoal (ontable A T) cannot be achieved: every alternative"
-        " failed ((putdown A T): its subgoal (putdownable A T) cannot be achieved: every "
-        "alternative failed (concept putdownable#1: loop: (holding A) is already on the goal "
-        "stack)))",
-        "g1: pushed (unstackable A B): chained off skill (unstack A B) because its start "
-        "(unstackable A B) is false")
-    entry = trace[3][0].section("solver").to_dict()["stacks"][0]["entries"][0]
+FALLBACK = """
+(concepts ((armed ?x) :percepts ((thing ?x armed yes)))
+          ((ready ?x) :percepts ((thing ?x ready yes)))
+          ((lit ?x) :percepts ((thing ?x lit yes)))
+          ((done ?x) :percepts ((thing ?x done yes))))
+(skills ((done ?x) :percepts ((thing ?x)) :start ((armed ?x)) :actions ((*fire ?x)))
+        ((done ?x) :percepts ((thing ?x)) :start ((lit ?x)) :actions ((*finish ?x)))
+        ((lit ?x) :percepts ((thing ?x)) :start ((ready ?x)) :actions ((*light ?x))))
+"""
+
+
+def test_backtrack_the_first_chain_fails_the_second_succeeds():
+    """(done A): skill chaining tries the first skill (program order), pushing its start
+    (armed A); nothing achieves it, so the search backtracks to the second skill, whose start
+    (lit A) has an executable path, and executes it in the same cycle."""
+    decisions, state = _solve(Engine(load_program_text(FALLBACK, "fallback.tlp")), "(done A)",
+                              [["thing", "A", "ready", "yes"]], 2)
+    stacks = [d.section("solver").stack("g1") for d in decisions]
+    assert stacks == [["(done A)", "(armed A)"], ["(done A)", "(lit A)"]]
+    assert decisions[1].section("solver").events == (
+        "g1: backtracked: (armed A) cannot be achieved: nothing to chain off: no primitive "
+        "skill achieves armed; armed is a primitive concept, with no subconcepts to decompose "
+        "into",
+        "g1: pushed (lit A): chained off skill (finish A) because its start (lit A) is false",
+        "g1: executing (lit A) by lit#1")
+    assert [a.to_list() for a in decisions[1].actions] == [["*light", "A"]]
+    entry = decisions[1].section("solver").to_dict()["stacks"][0]["entries"][0]
     assert entry["decision"]["alternative"] == 2 and entry["failures"][0].startswith(
-        "(pickup A T): its subgoal (pickupable A T) cannot be achieved")
+        "(fire A): its subgoal (armed A) cannot be achieved")
+
+
+def test_a_way_reachable_only_through_its_own_goal_is_not_chained_off(blocks):
+    """(holding A) with C on A on B: (pickup A T) comes first in program order, but its start
+    needs (ontable A T), and every way to that passes through (holding A) itself (put A
+    down): a landmark of it (agents/lang/solving/landmarks.py). The search leaves that way
+    out and chains off (unstack A B) at once, instead of discovering the loop three pushes
+    later."""
+    trace, support, holding, state = run(blocks, _goal(blocks, "(holding A)"),
+                                         {"B": "T", "A": "B", "C": "A"}, cycles=6)
+    assert [d.section("solver").stack("g1") for d, _ in trace[:1]] == [
+        ["(holding A)", "(unstackable A B)"]]
+    first = trace[0][0].section("solver").to_dict()["stacks"][0]["entries"][0]
+    assert first["decision"]["of"] == 1 and first["decision"]["shows"] == "(unstack A B)"
     assert [a for _, acts in trace for a in acts] == [
         ["*unstack", "C", "A"], ["*putdown", "C", "T"], ["*unstack", "A", "B"]]
     assert holding == "A" and trace[-1][0].status_of("g1") is GoalStatus.SATISFIED
@@ -125,15 +138,21 @@ def test_an_impossible_problem_ends_failed_with_the_reason(blocks):
     assert state.solver.stacks == () and all(acts == [] for _, acts in trace[first:])
 
 
-def test_a_failed_goal_no_longer_blocks_the_goals_after_it(blocks):
-    """An unknown block: nothing to chain off; the program's goal (clear A) is solved next."""
+def test_a_failed_goal_blocks_the_goals_after_it_until_withdrawn(blocks):
+    """An unknown block: nothing to chain off; the failed goal blocks the program's goal
+    (clear A) (issue 22) until it is withdrawn, as the goal-entry process withdraws a user's
+    failed goal; then (clear A) is solved."""
     state = blocks.add_goal(blocks.initial_state(), "(clear Q)", priority=0, goal_id="g1")
-    trace, *_ = run(blocks, state, {"A": "T", "B": "A", "C": "B"}, cycles=1)
+    trace, *_, state = run(blocks, state, {"A": "T", "B": "A", "C": "B"}, cycles=2)
+    for decision, actions in trace:
+        assert decision.status_of("g1") is GoalStatus.FAILED and actions == []
+        assert decision.goals[0].note == (
+            "(clear Q) cannot be achieved: nothing to chain off: no primitive skill for clear "
+            "applies here (its :percepts do not match, or its start could not become subgoals);"
+            " its definition cannot be decomposed here")
+        assert decision.status_of("p1") is GoalStatus.PENDING
+    trace, *_ = run(blocks, blocks.remove_goal(state, "g1"), {"A": "T", "B": "A", "C": "B"},
+                    cycles=1)
     decision = trace[0][0]
-    assert decision.status_of("g1") is GoalStatus.FAILED
-    assert decision.goals[0].note == (
-        "(clear Q) cannot be achieved: nothing to chain off: no primitive skill for clear "
-        "applies here (its :percepts do not match, or its start could not become subgoals); "
-        "its definition cannot be decomposed here")
     assert decision.status_of("p1") is GoalStatus.IMPASSE
     assert decision.section("solver").stack("p1") == ["(clear A)", "(unstackable B A)"]

@@ -19,7 +19,7 @@ def test_step_shows_the_stack_and_goes_on_from_a_saved_state(tmp_path):
     program, state = str(ROOT / "programs" / "blocks.tlp"), str(tmp_path / "state.json")
     runner = CliRunner()
     first = runner.invoke(cli, ["step", program, "--percepts", str(seen), "--json",
-                                "--save-state", state])
+                                "--goal", "(clear A)", "--save-state", state])
     assert first.exit_code == 0, first.output
     solver = json.loads(first.output)["decision"]["solver"]
     assert [e["goal"] for e in solver["stacks"][0]["entries"]] == ["(clear A)",

@@ -1,0 +1,160 @@
+"""The order in which a conjunctive goal's conjuncts are pursued (issue 22), by goal regression
+over the program: achieve first what achieving another conjunct would not undo.
+
+For each unsatisfied conjunct h, ``needs`` regresses the solver's own plan from the current
+situation (the first way ``Task.alternatives`` ranks at each level, as the search would choose
+it; for a subgoal that holds, what it holds by), and ``landmarks`` the conditions that every
+way of achieving h passes through. A conjunct g *threatens* h when achieving g would make one
+of h's needs false (agents/lang/effects.py: ``(on A B)`` makes ``(clear B)`` false). Then:
+
+1. a conjunct that threatens nobody may be pursued (building a tower from its base: ``(on B
+   C)`` before ``(on A B)``, since ``(on A B)`` would undo ``(clear B)``, which ``(on B C)``
+   needs to pick B up); among them, one that one executable action achieves now comes first
+   (a block in the hand goes straight to its place), then the one being worked on, then the
+   written order;
+2. if every one threatens another, and g's threats are to needs that are not landmarks (they
+   come from how the world happens to be, not from what h is), the part of h's plan that needs
+   the threatened condition is done first: the nearest unsatisfied goal above it in h's plan
+   (the Sussman anomaly: C on A, goal (and (on A B) (on B C)): (on B C) would cover C, which
+   (on A B)'s plan must clear to free A, so (clear A) comes first);
+3. otherwise the unsatisfied conjuncts in written order (the search may then undo a conjunct for
+   a while; the MAX_PUSHES rule and the loop watch keep that from going on for ever).
+
+A part of a plan to be done first (2.) that one action achieves now is done now even when some
+conjunct is free (B1 on B2, both to end on the table's side of things: lifting B1 off B2 first
+lets B3 go straight onto it later).
+
+Pure; regressions are kept for the cycle in ``Task.memo``, agendas across cycles by situation
+(a cycle spent deciding leaves the situation as it was) in ``Task.shared``."""
+
+from __future__ import annotations
+
+from ..effects import undone_by
+from ..matcher import solve, unify_head
+from ..terms import Literal, Test, Var
+from .landmarks import key as _key
+from .landmarks import landmarks
+from .task import Task, condition, literal, pushable
+
+MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
+MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]
+MAX_SHARED = 64    # agendas kept across cycles [agendas]
+
+
+def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
+    """The literals to pursue for a conjunction with ground ``conds``, best first (see the
+    module docstring); ``current``: the one being worked on. Empty when nothing can be
+    pushed (every conjunct holds, or one that does not is a negation or a test)."""
+    key = ("agenda", task.situation, conds, current, task.protected)
+    if key in task.shared:
+        return task.shared[key]
+    unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
+    plans = {h: needs(task, h) for h in unsat}
+    free, promote = [], []
+    for g in unsat:
+        threats = [(h, need, above) for h in unsat if h != g
+                   for need, above in plans[h].items() if _threatens(task, g, need)]
+        if not threats:
+            free.append(g)
+        elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
+            promote += [above for _, _, above in threats if above]
+    if free:
+        now = [g for g in free if one_step(task, g)]
+        now += [p for p in dict.fromkeys(promote) if p not in now and one_step(task, p)]
+        out = now + [g for g in free if g == current and g not in now] + \
+            [g for g in free if g not in now and g != current]
+    elif promote:
+        out = list(dict.fromkeys(promote))
+    else:
+        out = unsat
+    if len(task.shared) >= MAX_SHARED:
+        task.shared.clear()
+    task.shared[key] = out
+    return out
+
+
+def needs(task: Task, goal: str) -> dict[Literal, str]:
+    """What the solver's plan for ``goal`` needs to hold at some point, each with the nearest
+    unsatisfied goal above it in that plan ("" for ``goal`` itself)."""
+    key = ("needs", goal)
+    if key not in task.memo:
+        out: dict[Literal, str] = {}
+        _regress(task, literal(goal), "", 0, frozenset(), out)
+        task.memo[key] = out
+    return task.memo[key]
+
+
+def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozenset,
+             out: dict[Literal, str]) -> None:
+    out.setdefault(goal, above)
+    if depth >= MAX_PLAN or goal in on_path:
+        return
+    if task.holds(goal):
+        for r in _support(task, goal, MAX_SUPPORT):
+            out.setdefault(r, above)
+        return
+    ways = task.alternatives(goal, applicable=True)   # an executable skill is a way too,
+    ways = sorted(ways, key=lambda w: not all(task.holds(c) for c in w.conditions))  # first
+    if not ways:
+        return
+    here = str(goal)
+    for c in ways[0].conditions:
+        cond = condition(c)
+        if isinstance(cond, Test):
+            continue
+        if cond.negated or cond.variables():
+            out.setdefault(cond, here)
+        else:
+            _regress(task, cond, here, depth + 1, on_path | {goal}, out)
+
+
+def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
+    """What the holding literal ``goal`` holds by: the relations of its first clause that
+    holds, ground where its solution binds them (negations keep their open variables)."""
+    if depth <= 0:
+        return []
+    for clause in task.program.concepts.get(goal.pred, ()):
+        if not clause.relations:
+            continue
+        b0 = unify_head(clause.head, goal, {})
+        if b0 is None:
+            continue
+        sol = next(solve([*clause.percepts, *clause.relations, *clause.tests], b0, task.pidx,
+                         task.store), None)
+        if sol is None:
+            continue
+        out = []
+        for r in clause.relations:
+            g = Literal(r.pred, tuple(sol.get(a, a) if isinstance(a, Var) else a
+                                      for a in r.args), r.negated)
+            out.append(g)
+            if not g.negated and not g.variables():
+                out += _support(task, g, depth - 1)
+        return out
+    return []
+
+
+def _threatens(task: Task, g: str, need: Literal) -> bool:
+    """True when achieving the conjunct ``g`` makes ``need`` false."""
+    lit = literal(g)
+    if need.negated:
+        return undone_by(lit, (Literal(need.pred, need.args),))
+    return not need.variables() and undone_by(need, task.effects.undoes(lit))
+
+
+def one_step(task: Task, g: str) -> bool:
+    """True when one executable primitive skill achieves ``g`` now (its start holds and it
+    undoes no protected goal)."""
+    lit = literal(g)
+    for s in task.program.skills_for(lit.pred):
+        if s.kind != "primitive":
+            continue
+        b0 = unify_head(s.head, lit, {})
+        if b0 is None:
+            continue
+        for b in solve([*s.percepts, *s.start, *s.requires], b0, task.pidx, task.store):
+            if not task.undoes_skill(s, b):
+                return True
+    return False
+
+
