@@ -10,7 +10,7 @@ Goal forms (``mode``, a form and an order: "conjunction-listed", ...):
   list         one user goal per literal, a priority list, priorities 1, 2, ...;
 and the literals in the order IPC lists them (``listed``: each tower top-down) or each tower
 from its base (``bottom-up``).
-The program is programs/blocks.tlp (its primitive skills; its own goal (clear A) left out).
+The program is programs/blocks.tlp (its primitive skills; any goals section left out).
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ FORMS = ("conjunction", "list")
 ORDERS = ("listed", "bottom-up")
 MODES = tuple(f"{f}-{o}" for f in FORMS for o in ORDERS)
 GOAL_CONCEPT = "goal-state"
-CONJUNCTION_SYNTAX = False
+CONJUNCTION_SYNTAX = True
 """True once a goal may be written (and L1 L2 ...) (issue 22); then the conjunction is posted
 as written instead of through the program's goal-state concept."""
 
@@ -59,14 +59,12 @@ def goals_of(p: Problem, mode: str) -> tuple[str, list[str]]:
 
 
 def program_text(extra_concepts: str = "") -> str:
-    """programs/blocks.tlp without its goals section, with ``extra_concepts`` first among its
-    concepts."""
+    """programs/blocks.tlp without a goals section (it had the standing goal (clear A) until
+    issue 22), with ``extra_concepts`` first among its concepts."""
     text = PROGRAM.read_text()
     start = re.search(r"^\(goals\b", text, re.M)
-    if start is None:
-        raise ValueError(f"{PROGRAM}: expected a (goals ...) section to leave out")
-    end = _close(text, start.start())
-    text = text[:start.start()] + text[end:]
+    if start is not None:
+        text = text[:start.start()] + text[_close(text, start.start()):]
     return text.replace("(concepts\n", "(concepts\n" + extra_concepts, 1)
 
 
