@@ -20,7 +20,9 @@ def conjunction_target(res: Results) -> list[str]:
                  f"10n + 20 cycles: {len(runs) - len(missed)}/{len(runs)} (its literals "
                  f"given bottom-up instead: {sum(v.solved for v in other.values())}/"
                  f"{len(other)})")]
-    return out + listing(missed, lambda k: detail(runs[k]))
+    out += listing(missed, lambda k: detail(runs[k]))
+    up = sorted(k for k, v in other.items() if not v.solved)
+    return out + listing(up, lambda k: "given bottom-up: " + detail(other[k]))
 
 
 def length_targets(res: Results) -> list[str]:
