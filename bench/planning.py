@@ -212,10 +212,16 @@ def main(sizes: str, seeds: str, held_out: str, gbf_limit: float, astar_limit: f
     if res.skipped:
         out += ["", "pyperplan not run: " + "; ".join(
             f"{p} at n >= {n}: {why}" for (n, p), why in sorted(res.skipped.items())
-            if (n - 1, p) not in res.skipped)]
+            if not _prev(res.sizes, n) or (_prev(res.sizes, n), p) not in res.skipped)]
     out += [*bw_targets.invalid_runs(res), *bw_targets.targets(res), "",
             f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}"]
     click.echo("\n".join(out))
+
+
+def _prev(sizes: list[int], n: int) -> int:
+    """The size run before n (0 for the first)."""
+    k = sizes.index(n)
+    return sizes[k - 1] if k else 0
 
 
 if __name__ == "__main__":
