@@ -52,6 +52,16 @@ def envelope(run: str, cycle: int) -> dict:
     return {"v": 1, "run": run, "cycle": cycle, "sender": "stranger", "sent_ns": time.time_ns()}
 
 
+def _unpacked(payload: bytes) -> object:
+    """A payload as msgpack reads it, or None."""
+    import msgpack
+
+    try:
+        return msgpack.unpackb(payload, raw=False)
+    except (ValueError, msgpack.ExtraData, msgpack.FormatError, msgpack.StackError):
+        return None
+
+
 @click.command()
 @click.option("--scenario", type=click.Path(exists=True), required=True)
 @click.option("--events", "n", default=300)
@@ -102,9 +112,14 @@ def main(scenario: str, n: int, asked: int, seed: int) -> None:
             if stale is not None:
                 node.put_raw(key, stale)
                 sent["spoilt"] += 1
-        states = [r.payload for r in heard.drain() if r.key == keys.world_state(info.run)]
-        if states:   # the latest state, its snapshot spoilt, for cycles a little ahead
-            body = msgpack.unpackb(states[-1], raw=False)
+        # the world's latest state (not one of the stale copies spoilt above, which this
+        # session hears too), its snapshot spoilt, for cycles a little ahead
+        states = [body for r in heard.drain() if r.key == keys.world_state(info.run)
+                  for body in [_unpacked(r.payload)]
+                  if isinstance(body, dict) and isinstance(body.get("env"), dict)
+                  and body["env"].get("sender") == "world"]
+        if states:
+            body = max(states, key=lambda b: b["env"]["cycle"])
             body["snapshot"]["cars"][0]["x"] = "a"
             now = body["env"]["cycle"]
             for ahead in range(2, 40, 3):
