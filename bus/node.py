@@ -196,12 +196,27 @@ class Node:
         Raises NobodyServing if no queryable answers within `timeout` [s], QueryFailed on
         an error reply, CodecError if the reply cannot be decoded.
         """
-        replies = self.session.get(key, payload=encode(request), timeout=timeout)
+        deadline = time.monotonic() + timeout
+        self._await_queryable(key, deadline)
+        replies = self.session.get(key, payload=encode(request),
+                                   timeout=max(0.05, deadline - time.monotonic()))
         for reply in replies:
             if reply.ok is not None:
                 return decode(str(reply.ok.key_expr), reply.ok.payload.to_bytes())
             raise QueryFailed(key, reply.err.payload.to_bytes().decode(errors="replace"))
         raise NobodyServing(key, timeout)
+
+    def _await_queryable(self, key: str, deadline: float) -> None:
+        """Wait until a queryable on `key` is known here, or `deadline` [monotonic s]. A get
+        that no known queryable matches comes back at once with no reply: right after a
+        router restart a tool would ask before the serving process is routed again (the
+        request is never delivered, so waiting for the route cannot answer a request twice)."""
+        querier = self.session.declare_querier(key)
+        try:
+            while not querier.matching_status.matching and time.monotonic() < deadline:
+                time.sleep(0.02)
+        finally:
+            querier.undeclare()
 
     def close(self) -> None:
         """Undeclare the token first (so peers see us go at once), then everything else."""
