@@ -157,8 +157,14 @@ def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
         click.echo(percept_file(rec, agent, cycle, intention), nl=False)
         return
     cycle, intention = _of_cycle(rec, "intention", agent, cycle)
-    tree = decision_tree(intention["decision"], f"goals of {agent} at cycle {cycle} "
-                                                f"(run {rec.run})")
+    try:
+        tree = decision_tree(intention["decision"], f"goals of {agent} at cycle {cycle} "
+                                                    f"(run {rec.run})")
+    except (TypeError, KeyError, IndexError, AttributeError, ValueError) as exc:
+        # a record is only shape-checked (bus/record.py): a decision that does not read is
+        # said, never a traceback
+        raise click.ClickException(f"run {rec.run}: the decision of {agent} at cycle {cycle} "
+                                   f"does not read ({type(exc).__name__}: {exc})") from None
     tree = fold(tree) if brief else tree
     if as_json:
         click.echo(json.dumps({"run": rec.run, "agent": agent, "cycle": cycle,

@@ -239,3 +239,22 @@ def test_a_record_cut_at_any_byte_reads_as_far_as_it_goes(tmp_path) -> None:
             assert "not a readable run record" in str(exc)
             continue
         assert held == list(range(len(held))), (end, held)
+
+
+def test_explain_of_a_decision_that_does_not_read_says_so_in_one_line(tmp_path) -> None:
+    """A record is only shape-checked: a decision whose parts are of the wrong kind (here
+    `parallel: 3`) made `teleo explain` print a traceback (found by the view's own checks)."""
+    from tools.records import RecordWriter
+
+    path = tmp_path / "bad.mcap"
+    env = {"v": 1, "run": "bad-1", "cycle": 0, "sender": "ME.executive", "sent_ns": 0}
+    decision = {"cycle": 0, "goals": [{"id": "p1", "goal": "(x)", "priority": 1,
+                                       "status": "active", "bindings": {}}],
+                "path": [], "actions": [], "parallel": 3, "why": []}
+    with RecordWriter(path, "bad-1") as writer:
+        writer.add("teleo/bad-1/agent/ME/intention",
+                   {"kind": "Intention", "env": env, "agent": "ME", "decision": decision})
+    told = CliRunner().invoke(cli, ["explain", str(path), "--cycle", "0"])
+    assert told.exit_code == 1 and "Traceback" not in told.output, told.output
+    assert told.output.startswith("Error: run bad-1: the decision of ME at cycle 0 does not "
+                                  "read (TypeError"), told.output
