@@ -308,14 +308,19 @@ class SimRecorder:
         return Envelope.now(self.run, cycle, sender)
 
     def world(self, cycle: int, snap: dict[str, Any], outcomes: dict[str, list],
-              injected: list[dict[str, Any]]) -> None:
-        """The world state of `cycle` (outcomes: each agent's of the previous cycle)."""
+              injected: list[dict[str, Any]], memory: dict[str, dict] | None = None) -> None:
+        """The world state of `cycle` (outcomes: each agent's of the previous cycle; memory:
+        each agent's memory as its last actions sent it, handed back as a launch's world
+        does: docs/bus.md, "Agent memory")."""
         self._add(keys.world_state(self.run),
-                  WorldState(self._env(cycle, "world"), snap, outcomes, injected))
+                  WorldState(self._env(cycle, "world"), snap, outcomes, injected,
+                             dict(memory or {})))
 
-    def agent(self, cycle: int, agent: str, seen: Any) -> None:
+    def agent(self, cycle: int, agent: str, seen: Any, memory_in: dict | None = None,
+              memory_out: dict | None = None) -> None:
         """One agent's percepts, beliefs, intention, actions and stage stats of `cycle`;
-        `seen` has percepts, outcomes, beliefs, decision and ms (stage -> compute time)."""
+        `seen` has percepts, outcomes, beliefs, decision and ms (stage -> compute time);
+        `memory_in`: the memory its percepts carry, `memory_out`: what its actions send."""
         run = self.run
         for stage, ms in seen.ms.items():
             process = f"{agent}.{stage}"
@@ -323,14 +328,15 @@ class SimRecorder:
                       ProcessStats(self._env(cycle, process), process, ms, 0))
         self._add(keys.percepts(run, agent), Percepts(
             self._env(cycle, f"{agent}.perception"), agent, tuple(seen.percepts),
-            tuple(seen.outcomes)))
+            tuple(seen.outcomes), dict(memory_in or {})))
         self._add(keys.beliefs(run, agent), Beliefs(
             self._env(cycle, f"{agent}.inference"), agent,
             tuple(b.to_list() for b in seen.beliefs)))
         env = self._env(cycle, f"{agent}.executive")
         self._add(keys.intention(run, agent), Intention(env, agent, seen.decision.to_dict()))
         self._add(keys.actions(run, agent), Actions(
-            env, agent, tuple(a.to_list() for a in seen.decision.actions)))
+            env, agent, tuple(a.to_list() for a in seen.decision.actions),
+            dict(memory_out or {})))
 
     def goal_list(self, cycle: int, agent: str, goals: tuple[dict[str, Any], ...]) -> None:
         """The user goals `agent` is given at `cycle`, as the goal-entry process publishes

@@ -166,7 +166,8 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
         if recorder is not None:
-            recorder.world(cycle, snap, {a: outcomes.get(a, []) for a in agents}, injected)
+            recorder.world(cycle, snap, {a: outcomes.get(a, []) for a in agents}, injected,
+                           memory)
         world_ms = (time.perf_counter() - w0) * 1e3
         record: dict[str, Any] = {"cycle": cycle}
         for a in agents:
@@ -186,8 +187,8 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
                 section = seen.decision.section(name)
                 if section is not None:
                     record[a][name] = section.to_dict()
-            if recorder is not None:
-                recorder.agent(cycle, a, seen)
+            if recorder is not None:   # the memory a launch's messages carry
+                recorder.agent(cycle, a, seen, memory.get(a, {}), _memory(states[a]))
         run.records.append(record)
         now = {a: _memory(states[a]) for a in agents}
         changed = {a: m for a, m in now.items() if memory.get(a, {}) != m}

@@ -258,3 +258,25 @@ def test_explain_of_a_decision_that_does_not_read_says_so_in_one_line(tmp_path) 
     assert told.exit_code == 1 and "Traceback" not in told.output, told.output
     assert told.output.startswith("Error: run bad-1: the decision of ME at cycle 0 does not "
                                   "read (TypeError"), told.output
+
+
+def test_a_simulate_record_carries_the_agent_memory_as_a_launch_does(tmp_path) -> None:
+    """docs/records.md: simulate writes a launch's channels. Its Percepts and Actions carried
+    no memory (the view's program check had to take the world model from the decision);
+    now the actions of t send the memory and the world state and percepts of t + 1 hand it
+    back, as in a launch (docs/bus.md, "Agent memory")."""
+    from tools.recorder import SimRecorder
+    from tools.records import RecordWriter, RunRecord
+    from tools.scenario_check import load_checked
+    from tools.simulate import simulate
+
+    scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
+    path = tmp_path / "errands.mcap"
+    with RecordWriter(path, "errands-1") as writer:
+        simulate(scenario, cycles=80, recorder=SimRecorder(writer, "errands-1"))
+    rec = RunRecord(path)
+    sent = {r["env"]["cycle"]: r["memory"] for _, r in rec.kinds("actions")}
+    back = {r["env"]["cycle"]: r["memory"] for _, r in rec.kinds("percepts")}
+    states = {r["env"]["cycle"]: r["memory"].get("ME", {}) for _, r in rec.kinds("state")}
+    assert any(sent.values()), "the errands body's thread is in the memory"
+    assert all(back[t + 1] == sent[t] == states[t + 1] for t in range(79)), "handed back"
