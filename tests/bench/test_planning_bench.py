@@ -70,3 +70,18 @@ def test_each_goal_form_is_a_scenario_teleo_accepts(tmp_path, mode):
     assert [g.goal for g in sc.goals] == goals and [g.priority for g in sc.goals] == \
         list(range(1, len(goals) + 1))
     assert len(goals) == (1 if mode.startswith("conjunction") else len(p.goal()))
+
+
+@pytest.mark.parametrize("mode", bw_teleo.MODES)
+def test_a_goal_state_with_every_block_on_the_table_is_an_empty_goal_solved_at_once(
+        tmp_path, mode):
+    """bw-3-7's goal state has no `on` fact (a uniform draw gives it 1 time in 13 at n = 3):
+    its goal is empty, already held; the bench posted `(and )`, which teleo refuses, and
+    counted the run as failed."""
+    from bench.bw_tasks import teleo
+
+    p = problem(3, 7)
+    assert p.goal() == [] and all(len(t) == 1 for t in p.goal_state)
+    assert bw_teleo.goals_of(p, mode) == ("", [])
+    verdict = teleo((3, 7), mode, str(tmp_path))
+    assert verdict.solved and not verdict.invalid and verdict.actions == 0
