@@ -51,7 +51,7 @@ def bodies(memory: dict[str, Any]) -> dict[str, Any]:
 
 def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
     """Per agent: its learned-skills file and the head of each skill in it."""
-    from agents.lang.solving.learned import clause_heads
+    from agents.lang.registry import clause_heads
 
     out = {}
     for path in sorted(run_dir.glob("learned-*.tlp")):

@@ -8,7 +8,7 @@ action that the program says undoes a higher goal that holds (agents/lang/effect
 conjunctive goal is pursued one conjunct at a time, in the order of the impasse handler's
 ``agenda`` (agents/lang/conjunction.py). With a (resources ...) section, lower goals may also
 act through free resources. When the first unsatisfied goal has no executable path (an
-impasse), the impasse handler (the means-ends problem solver, agents/lang/solving) is asked; a
+impasse), the impasse handler (a mechanism's, agents/lang/mechanism.py) is asked; a
 goal it gives up on is failed, with the reason, and blocks the goals after it as an impasse
 does (seed 000: "the agent considers a goal only when all more important goals are
 satisfied"); it is looked at again every cycle and is worked on as soon as a skill path for it
@@ -64,7 +64,7 @@ class Executive:
 
     def __init__(self, program: Program, solver: ImpasseHandler | None = None):
         self.program = program
-        self.finder = PathFinder(program, body_runners())
+        self.finder = PathFinder(program, body_runners(program.mechanisms))
         self.hooks = cycle_hooks(self.finder.bodies, {s.kind for s in program.skills})
         self.solver = solver
 
@@ -82,8 +82,9 @@ class Executive:
         goals = ordered(state.goals)
         watcher = Watcher(state.loops, pidx, store, state.cycle,
                           {e.id: e.text for e in goals}, {e.id: k for k, e in enumerate(goals)},
-                          intention(state.paths, state.active, state.scs.threads,
-                                    state.scs.choices, len(state.learned)))
+                          intention(state.paths, state.active,
+                                    tuple(x for m in self.program.mechanisms
+                                          for x in m.intention(state)), len(state.learned)))
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
         for e in goals:
             walk.goal_id = e.id

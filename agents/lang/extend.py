@@ -16,7 +16,7 @@ def extend_program(program: Program, clauses: tuple[str, ...],
     Raises ProgramError with every problem found, located in ``source``."""
     if not clauses:
         return program
-    parts = Parts()
+    parts = Parts(program.mechanisms)
     parts.concepts = [c for group in program.concepts.values() for c in group]
     parts.skills = list(program.skills)
     parts.goals = list(program.goals)

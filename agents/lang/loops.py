@@ -207,12 +207,12 @@ class LoopState:
         return cls(tuple(Watch.from_dict(w) for w in d.get("watches", ())))
 
 
-def intention(paths: tuple, active: tuple, threads: tuple, choices: tuple,
-              learned: int) -> str:
+def intention(paths: tuple, active: tuple, parts: tuple, learned: int) -> str:
     """The part of EngineState that decides what the agent does next in a given world: the
-    goals' remembered paths, the goals that acted last, the SCS threads and choices, and how
-    many skills it has learned (a circle that taught a skill may not come round again)."""
-    return repr((paths, active, threads, choices, learned))
+    goals' remembered paths, the goals that acted last, the mechanisms' ``parts`` (the SCS
+    threads and choices: Mechanism.intention), and how many skills it has learned (a circle
+    that taught a skill may not come round again)."""
+    return repr((paths, active, *parts, learned))
 
 
 def _step(d: Any) -> tuple | None:
