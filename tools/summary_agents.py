@@ -124,7 +124,7 @@ def _echo_planner(summary: dict[str, Any]) -> None:
 def read_json_file(path: Path) -> Any:
     """The JSON in `path`, or None when it is absent or not bounded JSON (any bytes)."""
     from agents.lang import LangError
-    from agents.lang.limits import read_json
+    from agents.lang.core.limits import read_json
 
     try:
         text = path.read_bytes().decode("utf-8", errors="replace")

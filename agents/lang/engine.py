@@ -8,22 +8,22 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
-from .errors import GoalError, LangError
-from .executive import Executive, ImpasseHandler
-from .explanation import Decision
-from .extend import extend_program
-from .goals import GoalEntry, enumerable, parse_goal
-from .inference import Inference, InferStats
-from .intake import PerceptCache
-from .mechanism import slot_kinds
-from .outcomes import as_outcomes
-from .program import Program
+from .core.errors import GoalError, LangError
+from .core.explanation import Decision
+from .core.intake import PerceptCache
+from .core.mechanism import slot_kinds
+from .core.outcomes import as_outcomes
+from .core.program import Program
+from .core.store import BeliefSet, FactStore, PerceptIndex, store_of
+from .core.terms import Percept
+from .execution.executive import Executive, ImpasseHandler
+from .execution.state import EngineState
+from .inference.inference import Inference, InferStats
+from .inference.shared_rows import Framer, SharedPercepts, check_new_rows
+from .inference.tracker import check_frame
+from .reading.extend import extend_program
+from .reading.goals import GoalEntry, enumerable, parse_goal
 from .registry import MECHANISMS, handlers
-from .shared_rows import Framer, SharedPercepts, check_new_rows
-from .state import EngineState
-from .store import BeliefSet, FactStore, PerceptIndex, store_of
-from .terms import Percept
-from .tracker import check_frame
 
 
 @dataclass(frozen=True, slots=True)

@@ -7,14 +7,14 @@ from __future__ import annotations
 import codecs
 from pathlib import Path
 
-from .checks import build_program
-from .errors import Diagnostic, LangError, ProgramError
-from .limits import MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json, shorten
-from .parser import Parts, parse_forms
-from .program import Program
+from .core.errors import Diagnostic, LangError, ProgramError
+from .core.limits import MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json, shorten
+from .core.program import Program
+from .core.sexpr import Atom, SList, read, to_text
+from .core.terms import Percept, is_const
+from .reading.checks import build_program
+from .reading.parser import Parts, parse_forms
 from .registry import MECHANISMS
-from .sexpr import Atom, SList, read, to_text
-from .terms import Percept, is_const
 
 
 def read_text(path: str | Path, limit: int = MAX_TEXT_CHARS) -> str:
@@ -60,7 +60,7 @@ EMPTY_FILE = "the file holds no forms (the program's other files do)"
 def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str],
                       mechanisms: tuple = MECHANISMS) -> Program:
     """Parse and check program ``text`` (plus further (text, source) pairs forming one
-    program) with ``mechanisms`` (agents/lang/mechanism.py). A program whose files hold no
+    program) with ``mechanisms`` (agents/lang/core/mechanism.py). A program whose files hold no
     forms at all is an error (issue 24, #17); one empty file among others is a warning."""
     parts = Parts(mechanisms)
     sources = ((text, source), *more)

@@ -1,6 +1,6 @@
 """The registry: the one module outside the mechanism packages that imports them (issue 26).
 
-A mechanism (agents/lang/mechanism.py) is registered by one line in ``MECHANISMS``; the kernel
+A mechanism (agents/lang/core/mechanism.py) is registered by one line in ``MECHANISMS``; the kernel
 iterates over the mechanisms it is handed and never names one. Layering (docs/architecture.md,
 "Dependency rule"): kernel rooms < mechanism packages < this registry < the assembly
 (agents/lang/engine.py, agents/lang/loader.py) < agents/processes, tools.
@@ -17,7 +17,8 @@ from collections.abc import Iterable
 from dataclasses import replace
 from typing import Any
 
-from .mechanism import Mechanism, slot_kinds
+from .core.mechanism import Mechanism, slot_kinds
+from .execution.state import EngineState, use_slots
 from .planning.mechanism import Planning
 from .scs.mechanism import Scs
 from .solving.learned import (
@@ -28,7 +29,6 @@ from .solving.learned import (
     read_learned,
 )
 from .solving.mechanism import Solving
-from .state import EngineState, use_slots
 
 MECHANISMS: tuple[Mechanism, ...] = (Solving(), Scs(), Planning())
 """The shipped mechanisms: seed 000's means-ends solver, seed 002's SCS bodies, seed 003's

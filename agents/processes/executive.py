@@ -81,7 +81,7 @@ class Executive:
         """One executive step; returns the engine's Decision. A malformed outcome is logged
         and left out, never a crash (the world's outcomes are checked by the engine)."""
         from agents.lang import LangError, SharedRows
-        from agents.lang.outcomes import as_outcomes
+        from agents.lang.core.outcomes import as_outcomes
 
         beliefs = self.beliefs.read(belief_lists)
         good = []
@@ -118,7 +118,7 @@ class BeliefReader:
         return Belief.from_list(items)
 
     def read(self, lists: tuple) -> Any:
-        from agents.lang.store import BeliefSet
+        from agents.lang.core.store import BeliefSet
 
         if self.last is None or len(lists) != len(self.lists) \
                 or not all(map(is_, lists, self.lists)):

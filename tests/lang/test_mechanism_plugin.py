@@ -14,11 +14,11 @@ from typing import Any
 import pytest
 
 from agents.lang import Engine, EngineState, GoalStatus, ProgramError, load_program_text
-from agents.lang.executive import Impasse
-from agents.lang.mechanism import Mechanism, slot_kinds
+from agents.lang.core.mechanism import Mechanism, slot_kinds
+from agents.lang.core.sexpr import Atom, SList, to_text
+from agents.lang.core.terms import Loc
+from agents.lang.execution.executive import Impasse
 from agents.lang.registry import MECHANISMS
-from agents.lang.sexpr import Atom, SList, to_text
-from agents.lang.terms import Loc
 
 # -- the toy mechanism: counts the impasses of its agent, gives up after (toy (give-up-after N))
 

@@ -1,4 +1,4 @@
-"""ROGUE's planner as a mechanism (agents/lang/mechanism.py; seed 003): its program sections
+"""ROGUE's planner as a mechanism (agents/lang/core/mechanism.py; seed 003): its program sections
 (operators, requests, control-rules), the actions its operators can send, its impasse
 handler by name "rogue", and its state, the "planner" slot of EngineState."""
 
@@ -8,7 +8,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ..mechanism import Mechanism
+from ..core.mechanism import Mechanism
 from .reader import PLANNING_SECTIONS
 from .rogue import RoguePlanner
 from .state import PlannerState

@@ -1,4 +1,4 @@
-"""SCS skill bodies as a mechanism (agents/lang/mechanism.py; seed 002): it reads, checks and
+"""SCS skill bodies as a mechanism (agents/lang/core/mechanism.py; seed 002): it reads, checks and
 runs a skill's ``:body``, keeps its threads, choices and world model in the "scs" slot of
 EngineState, adds the world model to inference, and sends that state out with the actions as
 the agent memory (docs/bus.md, "Agent memory")."""
@@ -9,7 +9,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ..mechanism import Mechanism
+from ..core.mechanism import Mechanism
 from .checks import BodyChecks, known_actions, model_facts
 from .fitting import check_fits, check_model, model_arity
 from .reader import BodyReader

@@ -1,5 +1,5 @@
 """Reading a skill's ``:body`` into the step tree of agents/lang/scs/syntax.py, every problem
-reported through the program parser at file:line:col (agents/lang/parser.py calls
+reported through the program parser at file:line:col (agents/lang/reading/parser.py calls
 ``BodyReader``): unknown constructs (with "did you mean"), misplaced or unknown modifiers,
 alternatives of the wrong shape, a do-best alternative without ``:utility``, conditions of
 neither form.
@@ -14,8 +14,8 @@ from __future__ import annotations
 import difflib
 from typing import Protocol
 
-from ..sexpr import Atom, SList, to_text
-from ..terms import ActionTemplate, Literal, Loc
+from ..core.sexpr import Atom, SList, to_text
+from ..core.terms import ActionTemplate, Literal, Loc
 from .syntax import (
     CONSTRUCTS,
     MODIFIERS,
@@ -34,7 +34,7 @@ from .syntax import (
 
 
 class PieceReader(Protocol):
-    """What the body reader needs from the program parser (agents/lang/parser.py)."""
+    """What the body reader needs from the program parser (agents/lang/reading/parser.py)."""
 
     def err(self, node: object, msg: str, severity: str = "error") -> None: ...
 

@@ -1,4 +1,4 @@
-"""The means-ends problem solver and skill learner as a mechanism (agents/lang/mechanism.py;
+"""The means-ends problem solver and skill learner as a mechanism (agents/lang/core/mechanism.py;
 seed 000, "Problem Solving and Skill Learning"): its impasse handler, by name "means-ends",
 and its goal stacks, the "solver" slot of EngineState."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ..mechanism import Mechanism
+from ..core.mechanism import Mechanism
 from .solver import MeansEndsSolver
 from .state import SolverState
 

@@ -9,15 +9,15 @@ with the mechanisms the parts are read with (Mechanism.sections, Mechanism.read_
 
 from __future__ import annotations
 
-from .arith import OPS
-from .conjunction import Goal, is_conjunction, read_conjunction
-from .errors import Diagnostic
-from .limits import MAX_DIAGNOSTICS
-from .mechanism import body_reader
+from ..core.arith import OPS
+from ..core.conjunction import Goal, is_conjunction, read_conjunction
+from ..core.errors import Diagnostic
+from ..core.limits import MAX_DIAGNOSTICS
+from ..core.mechanism import body_reader
+from ..core.program import ConceptClause, GoalSpec, Skill
+from ..core.sexpr import Atom, SList, to_text
+from ..core.terms import Literal, Loc, Test
 from .pieces import PieceParser, op_name, suggest
-from .program import ConceptClause, GoalSpec, Skill
-from .sexpr import Atom, SList, to_text
-from .terms import Literal, Loc, Test
 
 CONCEPT_KEYS = (":percepts", ":relations", ":tests")
 SKILL_KEYS = (":percepts", ":start", ":requires", ":subgoals", ":actions", ":tests", ":body")
@@ -27,7 +27,7 @@ SKILL_MARKERS = {":start", ":requires", ":require", ":subgoals", ":actions", ":b
 
 class Parts:
     """Everything read from one or more files, before semantic checks; ``mechanisms``: those
-    that read their sections and skill bodies (agents/lang/mechanism.py)."""
+    that read their sections and skill bodies (agents/lang/core/mechanism.py)."""
 
     def __init__(self, mechanisms: tuple = ()) -> None:
         self.mechanisms = tuple(mechanisms)
@@ -39,7 +39,7 @@ class Parts:
         self.diags: list[Diagnostic] = []
         self.sources: list[str] = []
         # a mechanism's own sections (SECTIONS): name -> items, each with define(checker)
-        # and check(checker), called by agents/lang/checks.py
+        # and check(checker), called by agents/lang/reading/checks.py
         self.sections: dict[str, list] = {}
 
 
@@ -95,7 +95,7 @@ class Parser(PieceParser):
                 self.parts.goals.append(GoalSpec(goal, self.loc(item)))
 
     def goal(self, node: object) -> Goal | None:
-        """A goal: one literal, or ``(and ...)`` of conditions (agents/lang/conjunction.py)."""
+        """A goal: one literal, or ``(and ...)`` of conditions (agents/lang/core/conjunction.py)."""
         if is_conjunction(node):
             return read_conjunction(self, node)
         return self.literal(node, "goal", allow_not=False)

@@ -33,7 +33,7 @@ class Skill:
 
     Exactly one of ``actions`` (primitive), ``subgoals`` (nonprimitive) or ``body`` (a step tree
     of SCS constructs, seed 002, read by the mechanism that reads bodies) is given; the path
-    finder asks the runner of ``kind`` (agents/lang/bodies.py).
+    finder asks the runner of ``kind`` (agents/lang/execution/bodies.py).
     """
 
     head: Literal
@@ -74,7 +74,7 @@ class GoalSpec:
 @dataclass(frozen=True, eq=False)
 class Program:
     """A checked program. ``strata`` lists the concept SCCs bottom-up: (preds, recursive);
-    ``mechanisms``: those it was read with (agents/lang/mechanism.py), which run it."""
+    ``mechanisms``: those it was read with (agents/lang/core/mechanism.py), which run it."""
 
     concepts: dict[str, tuple[ConceptClause, ...]]
     arity: dict[str, int]

@@ -14,15 +14,15 @@ nothing, so a mechanism overrides only what it needs:
 - its state: ``slot`` (the EngineState key, also its key in the state file) and
   ``state_type`` (a frozen class with ``to_dict``/``from_dict`` whose ``()`` is the empty
   state);
-- running: ``runners`` (Skill.kind -> body runner, agents/lang/paths.py BodyRunner),
-  ``impasse_handlers`` (name -> factory of an ImpasseHandler, agents/lang/executive.py),
+- running: ``runners`` (Skill.kind -> body runner, agents/lang/execution/paths.py BodyRunner),
+  ``impasse_handlers`` (name -> factory of an ImpasseHandler, agents/lang/execution/executive.py),
   ``facts`` (base facts it adds to inference), ``model_reader`` (reads a world model handed
   to Engine.infer), ``intention`` (its part of what decides the next action, for the loop
-  watch, agents/lang/loops.py);
+  watch, agents/lang/execution/loops.py);
 - the executive process: ``memory`` / ``remember`` (what goes out with the actions and comes
   back with the world state, docs/bus.md "Agent memory").
 
-Its part of the decision and the explanation is a Section (agents/lang/explanation.py) that
+Its part of the decision and the explanation is a Section (agents/lang/core/explanation.py) that
 its runner or handler appends to ``walk.sections``; the run summary and ``teleo step --json``
 show a decision's sections and the state's slots by key.
 """
@@ -95,7 +95,7 @@ class Mechanism:
         return None
 
     def intention(self, state: Any) -> tuple:
-        """Its parts of what decides the agent's next action (agents/lang/loops.py)."""
+        """Its parts of what decides the agent's next action (agents/lang/execution/loops.py)."""
         return ()
 
     # -- the executive process -------------------------------------------------------------

@@ -4,10 +4,10 @@ it, and numbered after the program's own skills, so a remembered path stays vali
 
 from __future__ import annotations
 
+from ..core.program import Program
+from ..core.sexpr import read
 from .checks import build_program
 from .parser import Parts, parse_forms
-from .program import Program
-from .sexpr import read
 
 
 def extend_program(program: Program, clauses: tuple[str, ...],

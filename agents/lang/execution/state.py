@@ -1,7 +1,7 @@
 """EngineState: everything carried between cycles, as an explicit frozen value so a cycle is a
 pure function of (program, state, percepts, outcomes): the goal list, each goal's last skill
 path, which goals acted last cycle, failed goals, the agent's seed, learned skills, and one
-slot per mechanism (agents/lang/mechanism.py: its ``slot`` key and ``state_type``), each with
+slot per mechanism (agents/lang/core/mechanism.py: its ``slot`` key and ``state_type``), each with
 its own to_dict/from_dict, so a restarted executive loses none of them. The kernel names no
 mechanism: the slots kept by default are those the registry (agents/lang/registry.py) hands
 to ``use_slots``; a slot reads as an attribute (``state.scs``) and is replaced as a field
@@ -14,10 +14,10 @@ import random
 from dataclasses import dataclass
 from typing import Any
 
-from .errors import GoalError, LangError, StateError
-from .goals import GoalEntry, parse_goal
+from ..core.errors import GoalError, LangError, StateError
+from ..core.terms import is_const
+from ..reading.goals import GoalEntry, parse_goal
 from .loops import LoopState
-from .terms import is_const
 
 STATE_VERSION = 2
 
@@ -62,7 +62,8 @@ class EngineState:
     its remembered path only if every skill on it could be started now); ``failed``: goals
     given up on, with the reason; ``seed``: the agent's seed for nondeterministic choices;
     ``learned``: skill clauses learned at run time, in program syntax (seed 000); ``loops``:
-    the loop watch of every unsatisfied goal (agents/lang/loops.py); ``slots``: (key, state)
+    the loop watch of every unsatisfied goal (agents/lang/execution/loops.py); ``slots``: (key,
+    state)
     of each mechanism, every registered key present (its empty state by default), in
     registry order, then any other."""
 

@@ -10,13 +10,13 @@ from __future__ import annotations
 
 from typing import Protocol, runtime_checkable
 
-from .arith import evaluate
-from .errors import EvalError
-from .explanation import GoalReport
-from .goals import satisfied
-from .matcher import ground
+from ..core.arith import evaluate
+from ..core.errors import EvalError
+from ..core.explanation import GoalReport
+from ..core.matcher import ground
+from ..core.terms import Action
+from ..reading.goals import satisfied
 from .paths import BodyRunner, PathFinder, Walk
-from .terms import Action
 
 
 @runtime_checkable

@@ -1,7 +1,7 @@
 """Semantic checks that turn parsed parts into a Program, reporting every problem at once:
 undefined concepts, arity mismatches, unbound variables, unstratified negation (seed 000); a
 mechanism's facts, sections and skill bodies are checked through its hooks
-(agents/lang/mechanism.py)."""
+(agents/lang/core/mechanism.py)."""
 
 from __future__ import annotations
 
@@ -9,14 +9,14 @@ import difflib
 from collections.abc import Collection
 from dataclasses import replace
 
-from .conjunction import goal_literals
-from .errors import Diagnostic, ProgramError
+from ..core.conjunction import goal_literals
+from ..core.errors import Diagnostic, ProgramError
+from ..core.mechanism import body_reader
+from ..core.program import ConceptClause, Program, Skill
+from ..core.terms import Literal, Loc, Test, Var
 from .goals import enumerable
-from .mechanism import body_reader
 from .parser import Parts
-from .program import ConceptClause, Program, Skill
 from .stratify import dependency_graph, negative_cycle, sccs
-from .terms import Literal, Loc, Test, Var
 
 MAX_SUGGESTIONS = 20
 """'did you mean' is searched for the first MAX_SUGGESTIONS unknown names only, among at most
@@ -172,7 +172,7 @@ class Checker:
 
     def check_goal_variables(self, concepts: dict[str, list[ConceptClause]]) -> None:
         """A goal variable must mean "every instance", so its concept must take it from
-        percepts in every clause (agents/lang/goals.py, ``enumerable``)."""
+        percepts in every clause (agents/lang/reading/goals.py, ``enumerable``)."""
         view = Program({k: tuple(v) for k, v in concepts.items()}, {}, (), ())
         for g in self.parts.goals:
             if isinstance(g.literal, Literal) and g.literal.pred in concepts:
