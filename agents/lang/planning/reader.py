@@ -250,4 +250,4 @@ def _head(node: Any) -> Any:
 
 PLANNING_SECTIONS = {"operators": operators_section, "requests": requests_section,
                      "control-rules": control_section}
-"""Section name -> handler(parser, node), merged into agents.lang.reading.parser.SECTIONS."""
+"""Section name -> handler(parser, node), the parser's through Planning.sections."""

@@ -1,5 +1,5 @@
-"""The planner's program sections (seed 003; docs/language.md, "Planning"): registered in
-``agents.lang.reading.parser.SECTIONS`` and kept in ``Program.sections``.
+"""The planner's program sections (seed 003; docs/language.md, "Planning"): contributed to
+the parser by the planner's Mechanism (planning/mechanism.py) and kept in ``Program.sections``.
 
 ``(operators CLAUSE ...)``: PRODIGY's operators as skill clauses: the head is the primary
 effect, :start the preconditions, :actions the commands that execute it, plus
