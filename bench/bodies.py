@@ -29,7 +29,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from agents.lang import Engine, Percept, load_program_text  # noqa: E402
-from agents.lang.store import PerceptIndex  # noqa: E402
+from agents.lang.core.store import PerceptIndex  # noqa: E402
 
 COMMON = """(concepts
   ((done ?x) :percepts ((finished ?x)))

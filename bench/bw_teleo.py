@@ -182,7 +182,7 @@ def carried(skills: tuple[str, ...]) -> tuple[tuple[str, ...], int]:
     """The learned skills worth carrying to another problem, and how many were left out:
     those whose head is this bench's per-problem goal-state concept (it means another goal
     in every problem)."""
-    from agents.lang.solving.learned import clause_heads
+    from agents.lang.registry import clause_heads
 
     keep = tuple(s for s in skills
                  if not any(h == f"({GOAL_CONCEPT})" for h in clause_heads(s)))
@@ -191,7 +191,7 @@ def carried(skills: tuple[str, ...]) -> tuple[tuple[str, ...], int]:
 
 def write_skills(skills: tuple[str, ...], path: Path) -> Path:
     """A learned file of ``skills`` as `teleo simulate --learned-out` writes it."""
-    from agents.lang.solving.learned import learned_text
+    from agents.lang.registry import learned_text
 
     path.write_text(learned_text(skills, str(PROGRAM)))
     return path

@@ -223,7 +223,7 @@ def percept_reader() -> Reader:
 
 def goal_reader() -> Reader:
     from agents.lang import GoalError, load_program
-    from agents.lang.goals import parse_goal
+    from agents.lang.reading.goals import parse_goal
 
     program = load_program(ROOT / "programs" / "driving.tlp")
     bases = ["(package-delivered PACKET1)", "(at-desired-speed ?any)", "(in-right-lane ME)",

@@ -32,7 +32,7 @@ sys.path.insert(0, str(ROOT))
 
 from agents.lang import Engine, GoalStatus, load_program  # noqa: E402
 from agents.lang.loader import read_text  # noqa: E402
-from agents.lang.solving.learned import learned_text, read_learned  # noqa: E402
+from agents.lang.registry import learned_text, read_learned  # noqa: E402
 
 MAX_CYCLES = 120   # per problem [cycles]
 

@@ -25,9 +25,9 @@ from functools import lru_cache
 from pathlib import Path
 
 from agents.lang import load_program
+from agents.lang.core.store import PerceptIndex
 from agents.lang.engine import as_percepts
 from agents.lang.planning.domain import Domain, Metric
-from agents.lang.store import PerceptIndex
 from tools.simulate import SimRun, simulate
 from world.domain import get_domain
 from world.office.config import DEFAULT_NORTH, DEFAULT_PEOPLE, DEFAULT_SOUTH, OfficeConfig

@@ -30,7 +30,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from agents.lang import Program, load_program  # noqa: E402
-from agents.lang.printer import clause_text  # noqa: E402
+from agents.lang.reading.printer import clause_text  # noqa: E402
 from tools import law_programs as lp  # noqa: E402
 from tools.simulate import simulate  # noqa: E402
 from world.run_scenario import load_scenario  # noqa: E402

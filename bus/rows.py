@@ -4,7 +4,8 @@ The rows of `Percepts.percepts` and `Beliefs.beliefs` travel each as a msgpack b
 row's own msgpack bytes (a reader also takes plain arrays, and a mix). A reader decodes a row
 whose bytes equal one of the last message's on the same key to that very list, without reading
 it again; nobody mutates a decoded row, so the engine takes a row it has seen as unchanged
-(agents/lang/shared_rows.py). A writer packs a row that is the same object as one it sent last
+(agents/lang/inference/shared_rows.py). A writer packs a row that is the same object as one it sent
+last
 time in the same field to the same bytes without packing it again. Every check failure raises
 TypeError naming the row; the codec turns it into a CodecError naming the key and field.
 """

@@ -1,5 +1,8 @@
 """The import rules of docs/architecture.md ("Dependency rule"), enforced by reading every
-module's imports with ast (TYPE_CHECKING imports included), plus: no import cycles."""
+module's imports with ast (TYPE_CHECKING imports included), plus: no import cycles, and the
+package graph of agents/lang (issue 26): the kernel's rooms in order, the mechanisms above
+them, the registry the only module outside a mechanism that imports it, the assembly on top,
+no import inside a function."""
 
 from __future__ import annotations
 
@@ -34,6 +37,17 @@ def _imports(path: Path) -> set[str]:
                 mod = node.module or ""
             out.add(mod)
             out |= {f"{mod}.{a.name}" for a in node.names}
+    return out
+
+
+def _function_imports(path: Path) -> list[str]:
+    """``module:line`` of every import inside a function or class body."""
+    tree = ast.parse(path.read_text(), str(path))
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            out += [f"{_module(path)}:{n.lineno}" for n in ast.walk(node)
+                    if isinstance(n, ast.Import | ast.ImportFrom)]
     return out
 
 
@@ -111,3 +125,104 @@ def test_no_import_cycles_between_modules() -> None:
         if m not in state:
             visit(m, [m])
     assert cycles == []
+
+
+# -- agents/lang: kernel rooms < mechanisms < registry < assembly (docs/architecture.md) -------
+
+LANG = "agents.lang"
+ROOMS = {"core": 0, "reading": 1, "inference": 2, "execution": 2}
+"""The kernel's rooms by level: a room imports its own modules and lower levels only (the two
+of level 2 not each other)."""
+REGISTRY = "agents.lang.registry"
+ASSEMBLY = {"agents.lang", "agents.lang.engine", "agents.lang.loader"}
+MAX_MODULES = 15
+
+
+def _room(mod: str) -> str:
+    """The subpackage of agents.lang that ``mod`` is in or is ("" for none)."""
+    parts = mod.split(".")
+    if len(parts) >= 3 and parts[:2] == ["agents", "lang"] \
+            and ".".join(parts[:3]) in PACKAGES_OF_LANG:
+        return parts[2]
+    return ""
+
+
+def _on_top(mod: str) -> bool:
+    """True for the registry and the assembly (and what they hold)."""
+    return any(mod == t or mod.startswith(t + ".") for t in (REGISTRY, *ASSEMBLY - {LANG})) \
+        or mod == LANG
+
+
+PACKAGES_OF_LANG = {_module(p) for p in (ROOT / "agents/lang").glob("*/__init__.py")}
+MECHANISMS = {m.split(".")[2] for m in PACKAGES_OF_LANG} - set(ROOMS)
+
+
+def lang_violations(sources: dict[str, set[str]], mechanisms: set[str] = MECHANISMS
+                    ) -> list[str]:
+    """Every import of ``sources`` (module -> imported names) that breaks agents/lang's graph:
+    a kernel room importing a higher or sibling room, a mechanism, the registry or the
+    assembly; a mechanism importing the registry, the assembly, agents.processes or tools;
+    a module outside the mechanisms but the registry importing one. (A mechanism may build on
+    another: the planner's Back-Chainer runs on the solver's chaining code, seed 003.)"""
+    bad = []
+    for mod, imports in sorted(sources.items()):
+        here = _room(mod)
+        for i in sorted(imports):
+            there = _room(i)
+            if there in mechanisms and here not in mechanisms and mod != REGISTRY:
+                bad.append(f"{mod} imports mechanism {i} (only {REGISTRY} may)")
+            elif here in ROOMS and i.startswith(LANG):
+                if there not in ROOMS or not (there == here or ROOMS[there] < ROOMS[here]):
+                    bad.append(f"{mod} (room {here}) imports {i}")
+            elif here in mechanisms and (_top(i) == "tools" or i.startswith("agents.processes")
+                                         or _on_top(i)):
+                bad.append(f"{mod} (mechanism {here}) imports {i}")
+    return bad
+
+
+def test_agents_lang_keeps_its_package_graph() -> None:
+    assert lang_violations(SOURCES) == []
+
+
+def test_the_rule_checker_reports_a_kernel_module_importing_a_mechanism() -> None:
+    fabricated = {"agents.lang.execution.paths": {"agents.lang.scs.state",
+                                                   "agents.lang.scs.state.ScsState"},
+                  "agents.lang.core.terms": {"agents.lang.execution.state"},
+                  "agents.lang.inference.rules": {"agents.lang.execution.paths"},
+                  "agents.lang.scs.runner": {"agents.lang.registry", "tools.cli"},
+                  "agents.processes.persist": {"agents.lang.solving.learned"},
+                  "agents.lang.registry": {"agents.lang.scs.state"},
+                  "agents.lang.scs.syntax": {"agents.lang.core.terms"},
+                  "agents.lang.planning.backchain": {"agents.lang.solving.search"}}
+    assert lang_violations(fabricated, {"scs", "solving", "planning"}) == [
+        "agents.lang.core.terms (room core) imports agents.lang.execution.state",
+        "agents.lang.execution.paths imports mechanism agents.lang.scs.state (only "
+        "agents.lang.registry may)",
+        "agents.lang.execution.paths imports mechanism agents.lang.scs.state.ScsState (only "
+        "agents.lang.registry may)",
+        "agents.lang.inference.rules (room inference) imports agents.lang.execution.paths",
+        "agents.lang.scs.runner (mechanism scs) imports agents.lang.registry",
+        "agents.lang.scs.runner (mechanism scs) imports tools.cli",
+        "agents.processes.persist imports mechanism agents.lang.solving.learned (only "
+        "agents.lang.registry may)",
+    ]
+
+
+def test_outside_the_mechanisms_only_the_registry_imports_them() -> None:
+    users = {m for m, imports in SOURCES.items() for i in imports
+             if _room(i) in MECHANISMS and _room(m) not in MECHANISMS}
+    assert users == {REGISTRY}
+
+
+def test_no_function_level_imports_in_agents_lang() -> None:
+    assert [x for p in (ROOT / "agents/lang").rglob("*.py") for x in _function_imports(p)] \
+        == []
+
+
+def test_each_package_of_agents_lang_holds_at_most_fifteen_modules() -> None:
+    for pkg in [ROOT / "agents/lang", *(ROOT / "agents/lang").glob("*/")]:
+        if (pkg / "__init__.py").exists():
+            modules = [p for p in pkg.glob("*.py") if p.name != "__init__.py"]
+            assert len(modules) <= MAX_MODULES, (pkg.name, len(modules))
+    assert set(ROOMS) <= {m.split(".")[2] for m in PACKAGES_OF_LANG}
+    assert MECHANISMS == {"solving", "scs", "planning"}

@@ -20,7 +20,7 @@ import click
 
 from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
-from agents.lang.solving.learned import is_learned_text, program_named, read_learned
+from agents.lang.registry import is_learned_text, program_named, read_learned
 from tools.lang_commands import include_option
 from tools.scenario_check import override_option
 from tools.tree import shown_path

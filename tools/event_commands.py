@@ -62,7 +62,7 @@ def read_event(text: str) -> dict:
     """The event object in JSON `text`, read within the limits of docs/language.md ("Limits":
     size, depth, numbers, no NaN or Infinity); raises ClickException naming JSON:line:col."""
     from agents.lang import LangError
-    from agents.lang.limits import MAX_EVENT_CHARS, read_json, shorten
+    from agents.lang.core.limits import MAX_EVENT_CHARS, read_json, shorten
 
     try:
         body = read_json(text, "JSON", max_chars=MAX_EVENT_CHARS)

@@ -16,10 +16,10 @@ from agents.lang import (
     load_program,
     parse_percepts,
 )
-from agents.lang.limits import MAX_STATE_CHARS, MAX_STATE_STRING, read_json
+from agents.lang.core.limits import MAX_STATE_CHARS, MAX_STATE_STRING, read_json
+from agents.lang.core.outcomes import as_outcomes
+from agents.lang.core.terms import sort_key
 from agents.lang.loader import read_text
-from agents.lang.outcomes import as_outcomes
-from agents.lang.terms import sort_key
 from agents.processes.goal_store import MAX_PRIORITY, rank_problem
 from tools.paths import OutputPath
 

@@ -221,7 +221,7 @@ def check_learned(scenario: Scenario, learned: str) -> None:
     starts (the message names file:line:col, e.g. a concept the program does not define)."""
     from agents.lang import LangError, load_program
     from agents.lang.loader import read_text
-    from agents.lang.solving.learned import read_learned
+    from agents.lang.registry import read_learned
 
     try:
         text = read_text(learned)

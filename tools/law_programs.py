@@ -2,7 +2,7 @@
 
 Hand-written: programs/driving.tlp (the prioritized program with its two laws, the demo's) and
 programs/laws/*.tlp (a law that replaces one of them, for Table 8). Everything else is derived
-by the pure transformations of agents/lang/transform.py and printed to programs/tables/:
+by the pure transformations of agents/lang/reading/transform.py and printed to programs/tables/:
 
 | name | notation | laws (goal list or encoded) | made by |
 |---|---|---|---|
@@ -23,8 +23,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from agents.lang import Program, load_program
-from agents.lang.printer import program_text
-from agents.lang.transform import compile_laws, drop_laws, replace_law
+from agents.lang.reading.printer import program_text
+from agents.lang.reading.transform import compile_laws, drop_laws, replace_law
 
 ROOT = Path(__file__).resolve().parents[1]
 PROGRAMS = ROOT / "programs"

@@ -13,8 +13,8 @@ from typing import Any
 import click
 
 from agents.lang import Engine, GoalError, ProgramError, load_program
+from agents.lang.core.program import Program
 from agents.lang.engine import SOLVERS
-from agents.lang.program import Program
 from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
 from world.domain import get_domain
 from world.errors import WorldError

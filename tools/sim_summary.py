@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from agents.lang.solving.learned import clause_heads
+from agents.lang.registry import clause_heads
 from tools import records
 from tools.summary import finish_status, refused_events
 from tools.summary_agents import bodies, planner_section

@@ -21,7 +21,7 @@ import click
 
 from agents.lang import Engine, EngineState, LangError, load_program
 from agents.lang.loader import read_text
-from agents.lang.solving.learned import learned_text, read_learned
+from agents.lang.registry import learned_text, memory_of, read_learned
 from agents.processes.goal_store import GoalStore, GoalStoreError
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
@@ -122,7 +122,7 @@ def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str
     t0 = time.perf_counter()
     percepts = domain.perceive(snap, agent)
     t1 = time.perf_counter()
-    beliefs = engine.infer(percepts, state.scs.model)  # as Engine.cycle does
+    beliefs = engine.infer(percepts, engine.facts(state))  # as Engine.cycle does
     t2 = time.perf_counter()
     decision, state = engine.decide(state, percepts, beliefs, outcomes)
     t3 = time.perf_counter()
@@ -211,9 +211,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
 
 def _memory(state: EngineState) -> dict[str, Any]:
     """The agent memory an executive process would send last (docs/bus.md, "Agent memory")."""
-    from agents.lang.scs.state import ScsState, to_memory
-
-    return to_memory(state.scs) if state.scs != ScsState() else {}
+    return memory_of(state)
 
 
 def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:

@@ -51,7 +51,7 @@ def bodies(memory: dict[str, Any]) -> dict[str, Any]:
 
 def _learned(run_dir: Path) -> dict[str, dict[str, Any]]:
     """Per agent: its learned-skills file and the head of each skill in it."""
-    from agents.lang.solving.learned import clause_heads
+    from agents.lang.registry import clause_heads
 
     out = {}
     for path in sorted(run_dir.glob("learned-*.tlp")):
@@ -124,7 +124,7 @@ def _echo_planner(summary: dict[str, Any]) -> None:
 def read_json_file(path: Path) -> Any:
     """The JSON in `path`, or None when it is absent or not bounded JSON (any bytes)."""
     from agents.lang import LangError
-    from agents.lang.limits import read_json
+    from agents.lang.core.limits import read_json
 
     try:
         text = path.read_bytes().decode("utf-8", errors="replace")

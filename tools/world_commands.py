@@ -32,7 +32,7 @@ MAX_SNAPSHOT_CHARS = 256 << 20
 
 def _from_json(path: Path) -> list[dict[str, Any]]:
     from agents.lang import LangError
-    from agents.lang.limits import read_json
+    from agents.lang.core.limits import read_json
 
     text = path.read_bytes()[:MAX_SNAPSHOT_CHARS + 1].decode("utf-8", errors="replace")
     try:

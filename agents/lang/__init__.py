@@ -3,14 +3,10 @@
 Imports the standard library only; the only I/O is ``load_program`` reading a file.
 """
 
-from .engine import CycleResult, Engine, as_percepts
-from .errors import Diagnostic, EvalError, GoalError, LangError, ProgramError, StateError
-from .explanation import Decision, GoalPath, GoalReport, GoalStatus, PassOver, PathStep
-from .loader import load_program, load_program_text, parse_percepts
-from .program import ConceptClause, GoalSpec, Program, Skill
-from .shared_rows import SharedRows
-from .state import EngineState, StoredStep
-from .terms import (
+from .core.errors import Diagnostic, EvalError, GoalError, LangError, ProgramError, StateError
+from .core.explanation import Decision, GoalPath, GoalReport, GoalStatus, PassOver, PathStep
+from .core.program import ConceptClause, GoalSpec, Program, Skill
+from .core.terms import (
     Action,
     ActionTemplate,
     Belief,
@@ -21,6 +17,10 @@ from .terms import (
     Test,
     Var,
 )
+from .engine import CycleResult, Engine, as_percepts
+from .execution.state import EngineState, StoredStep
+from .inference.shared_rows import SharedRows
+from .loader import load_program, load_program_text, parse_percepts
 
 __all__ = [
     "Action", "ActionTemplate", "Belief", "ConceptClause", "CycleResult", "Decision",

@@ -1,29 +1,29 @@
 """The Engine: inference + executive for one program, as pure functions of explicit state
-(program, state, percepts, and the outcomes of the previous cycle's actions)."""
+(program, state, percepts, and the outcomes of the previous cycle's actions). Part of the
+assembly (docs/architecture.md): it runs the program's mechanisms (the registered ones,
+agents/lang/registry.py, for a program built by hand)."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
-from .errors import GoalError, LangError
-from .executive import Executive, ImpasseHandler
-from .explanation import Decision
-from .extend import extend_program
-from .goals import GoalEntry, enumerable, parse_goal
-from .inference import Inference, InferStats
-from .intake import PerceptCache
-from .outcomes import as_outcomes
-from .planning.rogue import RoguePlanner
-from .program import Program
-from .scs.fitting import check_model, model_arity
-from .scs.state import model_of
-from .shared_rows import Framer, SharedPercepts, check_new_rows
-from .solving.solver import MeansEndsSolver
-from .state import EngineState
-from .store import BeliefSet, FactStore, PerceptIndex, store_of
-from .terms import Percept
-from .tracker import check_frame
+from .core.errors import GoalError, LangError
+from .core.explanation import Decision
+from .core.intake import PerceptCache
+from .core.mechanism import slot_kinds
+from .core.outcomes import as_outcomes
+from .core.program import Program
+from .core.store import BeliefSet, FactStore, PerceptIndex, store_of
+from .core.terms import Percept
+from .execution.executive import Executive, ImpasseHandler
+from .execution.state import EngineState
+from .inference.inference import Inference, InferStats
+from .inference.shared_rows import Framer, SharedPercepts, check_new_rows
+from .inference.tracker import check_frame
+from .reading.extend import extend_program
+from .reading.goals import GoalEntry, enumerable, parse_goal
+from .registry import MECHANISMS, handlers
 
 
 @dataclass(frozen=True, slots=True)
@@ -40,11 +40,11 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
-SOLVERS: dict[str, type] = {"means-ends": MeansEndsSolver, "rogue": RoguePlanner}
-"""Impasse handlers by name: seed 000's means-ends problem solver and learner, seed 003's
-ROGUE planner (agents/lang/planning). A handler may also offer ``known(state, store)`` (its
-own facts, added to the beliefs the walk judges goals by) and ``finish(decision, state)``
-(its word on the decision, after the walk)."""
+SOLVERS: dict[str, type] = handlers(MECHANISMS)
+"""Impasse handlers by name, from the registered mechanisms: seed 000's means-ends problem
+solver and learner, seed 003's ROGUE planner (agents/lang/planning). A handler may also
+offer ``known(state, store)`` (its own facts, added to the beliefs the walk judges goals by)
+and ``finish(decision, state)`` (its word on the decision, after the walk)."""
 
 
 class Engine:
@@ -57,9 +57,13 @@ class Engine:
 
     def __init__(self, program: Program, solver: ImpasseHandler | str | None = "means-ends"):
         self.program = program
-        if isinstance(solver, str) and solver not in SOLVERS:
-            raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(SOLVERS)}")
-        self.solver = SOLVERS[solver]() if isinstance(solver, str) else solver
+        if not program.mechanisms:   # built by hand: run with the registered mechanisms
+            program = self.program = replace(program, mechanisms=MECHANISMS)
+        self.mechanisms = program.mechanisms
+        solvers = handlers(self.mechanisms)
+        if isinstance(solver, str) and solver not in solvers:
+            raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(solvers)}")
+        self.solver = solvers[solver]() if isinstance(solver, str) else solver
         self.inference = Inference(program)
         self.executive = Executive(program, self.solver)
         self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
@@ -67,7 +71,8 @@ class Engine:
         self._framer = Framer()  # last cycle's grouping, for SharedRows
         self._shared = SharedPercepts()  # and the Percepts of its rows
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
-        self._model_arity = model_arity(program)  # what a world model may hold
+        readers = [r for r in (m.model_reader(program) for m in self.mechanisms) if r]
+        self._read_model = readers[0] if readers else None  # what a world model may hold
 
     # -- goals ---------------------------------------------------------------------------
     def initial_state(self, seed: int = 0, learned: tuple[str, ...] = ()) -> EngineState:
@@ -75,7 +80,8 @@ class Engine:
         agent's nondeterministic choices; ``learned``: skill clauses (text) to start from."""
         goals = tuple(GoalEntry(f"p{i + 1}", g.literal, i + 1, i, "program")
                       for i, g in enumerate(self.program.goals))
-        state = EngineState(goals, (), len(goals), 0, seed=seed, learned=tuple(learned))
+        state = EngineState(goals, (), len(goals), 0, seed=seed, learned=tuple(learned),
+                            slots=tuple((k, t()) for k, t in slot_kinds(self.mechanisms)))
         self.executive_for(state)   # a bad learned clause is refused now, not mid-run
         return state
 
@@ -132,7 +138,9 @@ class Engine:
         bodies; in the processes they come back with the world state, docs/bus.md "Agent
         memory"; a fact of a predicate the program neither defines nor asserts, or of the
         wrong arity, is a StateError)."""
-        facts = check_model(model_of(model), self._model_arity) if model else ()
+        if model and self._read_model is None:
+            raise LangError("Engine.infer: no mechanism of this engine keeps a world model")
+        facts = self._read_model(model) if model else ()
         beliefs = self.inference.beliefs(percepts, facts)
         self.inference.frame = None  # hold no percept list past the call (fewer GC passes)
         return beliefs
@@ -147,10 +155,19 @@ class Engine:
               outcomes: Iterable = ()) -> CycleResult:
         """infer + decide on the same percepts; the state's world model (facts asserted by
         SCS bodies in earlier cycles) joins inference as base facts."""
-        beliefs = self.inference.beliefs(percepts, state.scs.model)
+        beliefs = self.inference.beliefs(percepts, self.facts(state))
         index, self.inference.frame = self.inference.frame.index, None
         decision, new_state = self._decide(state, index, beliefs.store, outcomes)
         return CycleResult(beliefs, decision, new_state)
+
+    def facts(self, state: EngineState) -> tuple:
+        """The base facts the mechanisms add to inference (the SCS world model: facts
+        asserted by bodies in earlier cycles)."""
+        facts: tuple = ()
+        for m in self.mechanisms:
+            more = m.facts(state)
+            facts = more if not facts else facts + tuple(more)
+        return facts
 
     def _index(self, percepts: Iterable) -> PerceptIndex:
         """The executive's index of ``percepts``, every value checked."""

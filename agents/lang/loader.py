@@ -1,17 +1,20 @@
-"""Loading programs and percepts from text; ``read_text`` is the only function touching files."""
+"""Loading programs and percepts from text; ``read_text`` is the only function touching files.
+Part of the assembly (docs/architecture.md): a program is read with the registered mechanisms
+(agents/lang/registry.py) unless told others."""
 
 from __future__ import annotations
 
 import codecs
 from pathlib import Path
 
-from .checks import build_program
-from .errors import Diagnostic, LangError, ProgramError
-from .limits import MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json, shorten
-from .parser import Parts, parse_forms
-from .program import Program
-from .sexpr import Atom, SList, read, to_text
-from .terms import Percept, is_const
+from .core.errors import Diagnostic, LangError, ProgramError
+from .core.limits import MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json, shorten
+from .core.program import Program
+from .core.sexpr import Atom, SList, read, to_text
+from .core.terms import Percept, is_const
+from .reading.checks import build_program
+from .reading.parser import Parts, parse_forms
+from .registry import MECHANISMS
 
 
 def read_text(path: str | Path, limit: int = MAX_TEXT_CHARS) -> str:
@@ -54,11 +57,12 @@ EMPTY_PROGRAM = ("the file holds no forms (an empty program): expected (concepts
 EMPTY_FILE = "the file holds no forms (the program's other files do)"
 
 
-def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str]) -> Program:
+def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str],
+                      mechanisms: tuple = MECHANISMS) -> Program:
     """Parse and check program ``text`` (plus further (text, source) pairs forming one
-    program). A program whose files hold no forms at all is an error (issue 24, #17); one
-    empty file among others is a warning."""
-    parts = Parts()
+    program) with ``mechanisms`` (agents/lang/core/mechanism.py). A program whose files hold no
+    forms at all is an error (issue 24, #17); one empty file among others is a warning."""
+    parts = Parts(mechanisms)
     sources = ((text, source), *more)
     read_all = [(read(t, src), src) for t, src in sources]
     empty = not any(forms for (forms, _), _ in read_all)
@@ -72,11 +76,11 @@ def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str])
     return build_program(parts)
 
 
-def load_program(path: str | Path, *more: str | Path) -> Program:
+def load_program(path: str | Path, *more: str | Path, mechanisms: tuple = MECHANISMS) -> Program:
     """Load a program file; further files are read into the same program (e.g. a table of skills
     plus the concepts it uses). Raises ProgramError with every diagnostic."""
     texts = [(read_text(p), str(p)) for p in (path, *more)]
-    return load_program_text(texts[0][0], texts[0][1], *texts[1:])
+    return load_program_text(texts[0][0], texts[0][1], *texts[1:], mechanisms=mechanisms)
 
 
 def parse_percepts(text: str, source: str = "<percepts>") -> tuple[Percept, ...]:

@@ -61,29 +61,27 @@ class Executive:
         """Take the SCS state from the memory the world handed back (a malformed one is
         logged and ignored: the executive goes on with its own)."""
         from agents.lang import LangError
-        from agents.lang.scs.fitting import check_fits
-        from agents.lang.scs.state import from_memory
+        from agents.lang.registry import remember
 
         if not memory:
             return
         try:
-            scs = check_fits(from_memory(memory), self.engine.program)
+            self.state = remember(self.state, memory, self.engine.program,
+                                  self.engine.mechanisms)
         except LangError as exc:
             self.log.warning("agent memory dropped: %s", exc)
-            return
-        self.state = replace(self.state, scs=scs)
 
     def memory(self) -> dict[str, Any]:
         """What goes out with the actions, for the world to hand back next cycle."""
-        from agents.lang.scs.state import ScsState, to_memory
+        from agents.lang.registry import memory_of
 
-        return to_memory(self.state.scs) if self.state.scs != ScsState() else {}
+        return memory_of(self.state, self.engine.mechanisms)
 
     def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
         """One executive step; returns the engine's Decision. A malformed outcome is logged
         and left out, never a crash (the world's outcomes are checked by the engine)."""
         from agents.lang import LangError, SharedRows
-        from agents.lang.outcomes import as_outcomes
+        from agents.lang.core.outcomes import as_outcomes
 
         beliefs = self.beliefs.read(belief_lists)
         good = []
@@ -120,7 +118,7 @@ class BeliefReader:
         return Belief.from_list(items)
 
     def read(self, lists: tuple) -> Any:
-        from agents.lang.store import BeliefSet
+        from agents.lang.core.store import BeliefSet
 
         if self.last is None or len(lists) != len(self.lists) \
                 or not all(map(is_, lists, self.lists)):
@@ -136,7 +134,7 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
     LangError (a ProgramError naming file:line:col) for a bad program or learned file."""
     from agents.lang import Engine, load_program
     from agents.lang.loader import read_text
-    from agents.lang.solving.learned import read_learned
+    from agents.lang.registry import read_learned
 
     program = load_program(program_path)
     engine = Engine(program, solver=mechanism if solver else None)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from agents.lang import ProgramError
-from agents.lang.limits import MAX_STATE_STRING, read_json
+from agents.lang.core.limits import MAX_STATE_STRING, read_json
 from agents.processes.goal_store import GoalStore, GoalStoreError
 
 BACKUP_SUFFIX = ".bak"

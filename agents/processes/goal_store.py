@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import Any
 
-from agents.lang.limits import MAX_GOAL_CHARS, shorten
+from agents.lang.core.limits import MAX_GOAL_CHARS, shorten
 from bus.schema import FieldError, ListOf, Record, Str
 
 STORE_VERSION = 1

@@ -28,7 +28,7 @@ from typing import Any
 
 import click
 
-from agents.lang.limits import shorten
+from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
 from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError, rank_problem

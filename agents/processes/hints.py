@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-from agents.lang.sexpr import Atom, SList, read
+from agents.lang.core.sexpr import Atom, SList, read
 
 _UNMET = frozenset({"pending", "impasse", "failed"})
 

@@ -114,7 +114,7 @@ class LearnedFile:
         self.written: tuple[str, ...] | None = None
 
     def save(self, learned: tuple[str, ...]) -> None:
-        from agents.lang.solving.learned import learned_text
+        from agents.lang.registry import learned_text
 
         if learned != self.written:
             try:

@@ -8,7 +8,7 @@ import dataclasses
 
 import pytest
 
-from agents.lang.printer import clause_text
+from agents.lang.reading.printer import clause_text
 from tests.driving.scenarios import goal, scenario
 from tools import law_programs as lp
 from tools.simulate import simulate

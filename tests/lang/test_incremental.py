@@ -11,8 +11,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from agents.lang import Engine, load_program, load_program_text
-from agents.lang.codegen import Estimator, plan
-from agents.lang.store import key_getter
+from agents.lang.core.store import key_getter
+from agents.lang.inference.codegen import Estimator, plan
 
 from .conftest import ROOT
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 
 from agents.lang import Engine, LangError, Percept, load_program_text
-from agents.lang.columns import read_cols
-from agents.lang.intake import PerceptIndex, frame_of
+from agents.lang.core.columns import read_cols
+from agents.lang.core.intake import PerceptIndex, frame_of
 
 PROGRAM = load_program_text("""
 (concepts

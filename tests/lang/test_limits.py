@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 
 from agents.lang import GoalError, ProgramError, load_program, load_program_text, parse_percepts
-from agents.lang.goals import parse_goal
-from agents.lang.limits import MAX_DEPTH, MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json
-from agents.lang.sexpr import read, to_text
+from agents.lang.core.limits import MAX_DEPTH, MAX_DIAGNOSTICS, MAX_TEXT_CHARS, read_json
+from agents.lang.core.sexpr import read, to_text
+from agents.lang.reading.goals import parse_goal
 
 from .conftest import ROOT
 

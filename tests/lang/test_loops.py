@@ -1,4 +1,5 @@
-"""The loop watch (agents/lang/loops.py): a return to a situation already seen while pursuing
+"""The loop watch (agents/lang/execution/loops.py): a return to a situation already seen while
+pursuing
 a goal is found at once within the window, and by the Brent checkpoint for a circle longer than
 the window (within twice its length); staying put, steps the agent did not cause, and
 situations where the goal was not pursued do not count; digests do not depend on Python's
@@ -9,8 +10,8 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from agents.lang.loops import WINDOW, LoopState, Watch, situation
-from agents.lang.store import FactStore
+from agents.lang.core.store import FactStore
+from agents.lang.execution.loops import WINDOW, LoopState, Watch, situation
 
 from .test_determinism import under_hash_seeds
 
@@ -61,8 +62,8 @@ def test_a_watch_round_trips_as_plain_data():
 
 SCRIPT = """
 from agents.lang import Engine, load_program, as_percepts
-from agents.lang.loops import situation
-from agents.lang.store import PerceptIndex, store_of
+from agents.lang.execution.loops import situation
+from agents.lang.core.store import PerceptIndex, store_of
 engine = Engine(load_program("programs/blocks.tlp"))
 rows = [["table", "T", "xpos", 0, "ypos", 0, "height", 2], ["hand", "H1", "status", "empty"],
         ["block", "A", "xpos", 0, "ypos", 2, "height", 2], ["block", "B", "xpos", 0,

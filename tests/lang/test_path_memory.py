@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from agents.lang import Engine, GoalError, GoalStatus, LangError, ProgramError, load_program_text
-from agents.lang.executive import Impasse
+from agents.lang.execution.executive import Impasse
 
 from .conftest import me
 

@@ -7,9 +7,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from agents.lang import Belief, Literal, Var
-from agents.lang.matcher import match_fact, solve
-from agents.lang.store import FactStore, PerceptIndex
-from agents.lang.terms import Percept
+from agents.lang.core.matcher import match_fact, solve
+from agents.lang.core.store import FactStore, PerceptIndex
+from agents.lang.core.terms import Percept
 
 from .test_blocks import percepts as block_percepts
 

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from agents.lang import Engine, load_program_text
-from agents.lang.store import PerceptIndex
+from agents.lang.core.store import PerceptIndex
 
 from .conftest import ROOT
 

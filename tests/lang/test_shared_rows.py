@@ -1,4 +1,5 @@
-"""Percepts as the bus delivers them, their unchanged rows shared (agents/lang/shared_rows.py):
+"""Percepts as the bus delivers them, their unchanged rows shared
+(agents/lang/inference/shared_rows.py):
 inference and the executive reach the same beliefs and decisions as on plain lists, reading
 only the rows that are new, and a bad new row is still refused by name."""
 

@@ -10,8 +10,8 @@ import pytest
 
 from agents.lang import Engine, GoalSpec, Literal, Var, load_program, load_program_text
 from agents.lang.loader import read_text
-from agents.lang.printer import clause_text, program_text
-from agents.lang.transform import TransformError, compile_laws, drop_laws, replace_law
+from agents.lang.reading.printer import clause_text, program_text
+from agents.lang.reading.transform import TransformError, compile_laws, drop_laws, replace_law
 
 from .conftest import FIX, PROGRAMS, ROOT
 

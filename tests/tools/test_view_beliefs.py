@@ -21,9 +21,9 @@ from agents.lang import (
     load_program_text,
     parse_percepts,
 )
-from agents.lang.intake import PerceptIndex
-from agents.lang.matcher import test_holds as holds_under  # not a test of its own
-from agents.lang.store import store_of
+from agents.lang.core.intake import PerceptIndex
+from agents.lang.core.matcher import test_holds as holds_under  # not a test of its own
+from agents.lang.core.store import store_of
 from tools.view.beliefs import why, why_false, why_holds
 from tools.view.programs import Programs
 

@@ -18,9 +18,8 @@ from pathlib import Path
 from typing import Any
 
 from agents.lang import Belief, LangError, Literal, Percept, PerceptPattern, Program, Test, Var
-from agents.lang.goals import parse_goal
-from agents.lang.intake import PerceptIndex
-from agents.lang.matcher import (
+from agents.lang.core.intake import PerceptIndex
+from agents.lang.core.matcher import (
     binding_key,
     first_failure,
     ground,
@@ -29,8 +28,9 @@ from agents.lang.matcher import (
     test_holds,
     unify_head,
 )
-from agents.lang.paths import show
-from agents.lang.store import FactStore, store_of
+from agents.lang.core.store import FactStore, store_of
+from agents.lang.execution.paths import show
+from agents.lang.reading.goals import parse_goal
 
 MAX_DEPTH = 3       # levels of "because" followed below a goal's clause
 MAX_SHOWN = 6       # beliefs (or percepts) listed for one condition

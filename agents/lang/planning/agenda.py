@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
-from ..conjunction import Conjunction
-from ..goals import GoalEntry, ordered
+from ..core.conjunction import Conjunction
+from ..reading.goals import GoalEntry, ordered
 from ..solving.task import literal
 from .backchain import build, check, replan_note
 from .control import Control, GoalView

@@ -20,12 +20,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..matcher import subst
+from ..core.matcher import subst
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Literal, Var
 from ..solving.search import decide
 from ..solving.state import StackEntry
 from ..solving.task import Task, literal
-from ..store import FactStore, PerceptIndex
-from ..terms import Literal, Var
 from .control import Control, OperatorView
 from .domain import Domain, Metric, project
 from .memory import excluded_here

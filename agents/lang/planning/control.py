@@ -22,10 +22,10 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
-from ..matcher import match_fact, subst, unify_head
+from ..core.matcher import match_fact, subst, unify_head
+from ..core.store import FactStore
+from ..core.terms import Literal, Var, fmt
 from ..solving.state import Alternative
-from ..store import FactStore
-from ..terms import Literal, Var, fmt
 from .syntax import ControlRule, Meta
 
 

@@ -9,14 +9,14 @@ from __future__ import annotations
 from dataclasses import replace
 from itertools import islice
 
-from ..arith import evaluate
-from ..errors import EvalError
-from ..matcher import ground, match_fact, match_percept, solve, subst, unify_head
-from ..program import Program, Skill
+from ..core.arith import evaluate
+from ..core.errors import EvalError
+from ..core.matcher import ground, match_fact, match_percept, solve, subst, unify_head
+from ..core.program import Program, Skill
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Literal, Var
 from ..solving.state import Alternative
 from ..solving.task import literal
-from ..store import FactStore, PerceptIndex
-from ..terms import Literal, Var
 from .state import PlanStep
 from .syntax import ControlRule, OperatorSpec, RequestSpec, Travel, between_vars
 

@@ -16,8 +16,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..store import FactStore
-from ..terms import Literal
+from ..core.store import FactStore
+from ..core.terms import Literal
 from .domain import Domain
 from .state import Exclusion, PlanStep, Task
 

@@ -19,10 +19,10 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from functools import cached_property
 
-from ..outcomes import Outcome
+from ..core.outcomes import Outcome
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Literal
 from ..solving.task import Task, literal
-from ..store import FactStore, PerceptIndex
-from ..terms import Literal
 from .domain import Domain, Metric, project, with_facts
 from .memory import exclude
 from .merge import Carry

@@ -1,5 +1,5 @@
 """Reading the planner's program sections (agents/lang/planning/syntax.py says what they
-mean): each handler takes the parser (agents/lang/parser.py, passed in, so this module does
+mean): each handler takes the parser (agents/lang/reading/parser.py, passed in, so this module does
 not import it) and one section's node, and adds what it read to ``parts.sections``, with a
 file:line:col diagnostic for anything wrong."""
 
@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..sexpr import Atom, SList, to_text
-from ..terms import Var
+from ..core.sexpr import Atom, SList, to_text
+from ..core.terms import Var
 from .syntax import (
     GOAL_META,
     KINDS,
@@ -52,7 +52,7 @@ def _keyed(p: Any, node: SList, allowed: tuple[str, ...], what: str,
 
 
 def operators_section(p: Any, node: SList) -> None:
-    """``(operators CLAUSE ...)``: each clause read as a skill (agents/lang/parser.py) once
+    """``(operators CLAUSE ...)``: each clause read as a skill (agents/lang/reading/parser.py) once
     the operator keys are taken out; the skill is kept in the operator, not among the
     program's skills (only the planner applies operators)."""
     for item in node.items[1:]:
@@ -250,4 +250,4 @@ def _head(node: Any) -> Any:
 
 PLANNING_SECTIONS = {"operators": operators_section, "requests": requests_section,
                      "control-rules": control_section}
-"""Section name -> handler(parser, node), merged into agents.lang.parser.SECTIONS."""
+"""Section name -> handler(parser, node), the parser's through Planning.sections."""

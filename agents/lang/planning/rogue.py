@@ -1,7 +1,7 @@
 """ROGUE (seed 003) as a mechanism of the engine: ``Engine(program, solver="rogue")``, or
 ``[[agents]] mechanism = "rogue"`` in a scenario.
 
-It plugs into the executive's goal walk (agents/lang/executive.py) as its impasse handler.
+It plugs into the executive's goal walk (agents/lang/execution/executive.py) as its impasse handler.
 The operators live in the program's (operators ...) section, not among its skills, so a
 request (a user goal) has no skill path and reaches the planner, which answers for all
 requests at once:
@@ -21,14 +21,14 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..executive import Impasse
-from ..explanation import Decision, GoalReport, GoalStatus, PathStep
-from ..goals import GoalEntry
-from ..paths import PathFinder, Walk
-from ..program import Program
-from ..state import EngineState
-from ..store import FactStore
-from ..terms import Action, Literal
+from ..core.explanation import Decision, GoalReport, GoalStatus, PathStep
+from ..core.program import Program
+from ..core.store import FactStore
+from ..core.terms import Action, Literal
+from ..execution.executive import Impasse
+from ..execution.paths import PathFinder, Walk
+from ..execution.state import EngineState
+from ..reading.goals import GoalEntry
 from .agenda import decide, sync
 from .domain import Domain, refresh, with_facts
 from .monitor import Env, abandon, monitor

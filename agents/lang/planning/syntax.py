@@ -1,5 +1,5 @@
-"""The planner's program sections (seed 003; docs/language.md, "Planning"): registered in
-``agents.lang.parser.SECTIONS`` and kept in ``Program.sections``.
+"""The planner's program sections (seed 003; docs/language.md, "Planning"): contributed to
+the parser by the planner's Mechanism (planning/mechanism.py) and kept in ``Program.sections``.
 
 ``(operators CLAUSE ...)``: PRODIGY's operators as skill clauses: the head is the primary
 effect, :start the preconditions, :actions the commands that execute it, plus
@@ -17,7 +17,8 @@ goal|operator|bindings ARGS))``, and ``(travel ...)``, where the robot is and ho
 places are, for ROGUE's execution-driven choice of the next action (section 4).
 
 Each parsed item answers ``define(checker)`` (the planner's own predicates) and
-``check(checker)`` (file:line:col diagnostics), called by agents/lang/checks.py; the sections
+``check(checker)`` (file:line:col diagnostics), called by agents/lang/reading/checks.py; the
+sections
 are read by agents/lang/planning/reader.py.
 """
 
@@ -26,8 +27,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ..program import Skill
-from ..terms import ActionTemplate, Literal, Loc, PerceptPattern, Var
+from ..core.program import Skill
+from ..core.terms import ActionTemplate, Literal, Loc, PerceptPattern, Var
 
 GOAL_META = ("candidate-goal", "ancestor-is-top-priority-goal",
              "compatible-with-top-priority-goal")

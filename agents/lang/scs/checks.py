@@ -1,5 +1,5 @@
 """Semantic checks of skill bodies, reported at file:line:col with the program's other
-diagnostics (agents/lang/checks.py calls ``BodyChecks``): subgoals naming an undefined
+diagnostics (agents/lang/reading/checks.py calls ``BodyChecks``): subgoals naming an undefined
 concept, the wrong arity or a concept no skill achieves, unknown constructs, actions a
 program with a (resources ...) section does not list there, variables bound nowhere (a body
 step sees the skill's head, :percepts, :start and :requires bindings, and those of the
@@ -14,8 +14,8 @@ import difflib
 from collections.abc import Iterable
 from typing import Protocol
 
-from ..program import Skill
-from ..terms import Literal, Loc, Test, Var
+from ..core.program import Skill
+from ..core.terms import Literal, Loc, Test, Var
 from .syntax import (
     WORDS,
     Act,
@@ -31,7 +31,7 @@ from .syntax import (
 
 
 class CheckerLike(Protocol):
-    """What the body checks need from agents/lang/checks.py's Checker."""
+    """What the body checks need from agents/lang/reading/checks.py's Checker."""
 
     arity: dict[str, int]
 

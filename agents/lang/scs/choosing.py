@@ -7,9 +7,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..arith import evaluate
-from ..errors import EvalError
-from ..terms import Var
+from ..core.arith import evaluate
+from ..core.errors import EvalError
+from ..core.terms import Var
 from .learning import record, reward_value
 from .results import OK, R, Res, added, env_with, fail
 from .state import Choice, Frame, ThreadStatus

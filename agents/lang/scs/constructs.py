@@ -16,13 +16,13 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..arith import evaluate
-from ..errors import EvalError
-from ..goals import satisfied
-from ..matcher import ground
-from ..paths import Found, PathFinder, Remembered, Walk
-from ..program import Skill
-from ..terms import Action, Literal, Var
+from ..core.arith import evaluate
+from ..core.errors import EvalError
+from ..core.matcher import ground
+from ..core.program import Skill
+from ..core.terms import Action, Literal, Var
+from ..execution.paths import Found, PathFinder, Remembered, Walk
+from ..reading.goals import satisfied
 from .choosing import Choosing
 from .results import OK, R, Res, added, env_with, fail, show_conds
 from .state import Frame, ScsState, ThreadStatus, model_of

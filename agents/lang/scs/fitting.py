@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..errors import StateError
+from ..core.errors import StateError
 from .checks import model_facts
 from .state import Frame, ScsState, Thread
 from .syntax import children, node_at

@@ -1,8 +1,8 @@
 """Reading a skill's ``:body`` into the step tree of agents/lang/scs/syntax.py, every problem
-reported through the program parser at file:line:col (agents/lang/parser.py calls
-``BodyReader``): unknown constructs (with "did you mean"), misplaced or unknown modifiers,
-alternatives of the wrong shape, a do-best alternative without ``:utility``, conditions of
-neither form.
+reported through the program parser at file:line:col (agents/lang/reading/parser.py asks
+the mechanism that reads bodies, Scs.read_body, which calls ``BodyReader``): unknown
+constructs (with "did you mean"), misplaced or unknown modifiers, alternatives of the wrong
+shape, a do-best alternative without ``:utility``, conditions of neither form.
 
 CONDS (of do-first and do-best alternatives, of ``:while``/``:until``/``:when``/``:unless``)
 is one condition, ``(lamp-on L1)`` (seed 002's ``K1 -> S1`` written directly), or a list of
@@ -14,8 +14,8 @@ from __future__ import annotations
 import difflib
 from typing import Protocol
 
-from ..sexpr import Atom, SList, to_text
-from ..terms import ActionTemplate, Literal, Loc
+from ..core.sexpr import Atom, SList, to_text
+from ..core.terms import ActionTemplate, Literal, Loc
 from .syntax import (
     CONSTRUCTS,
     MODIFIERS,
@@ -34,7 +34,7 @@ from .syntax import (
 
 
 class PieceReader(Protocol):
-    """What the body reader needs from the program parser (agents/lang/parser.py)."""
+    """What the body reader needs from the program parser (agents/lang/reading/parser.py)."""
 
     def err(self, node: object, msg: str, severity: str = "error") -> None: ...
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
-from ..paths import show
-from ..terms import Var
+from ..core.terms import Var
+from ..execution.paths import show
 from .state import Frame, ThreadStatus
 
 

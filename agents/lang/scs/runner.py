@@ -26,19 +26,19 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..explanation import GoalReport, GoalStatus, PathStep
-from ..outcomes import Outcome
-from ..paths import Found, PathFinder, Remembered, Walk
-from ..program import Skill
-from ..state import StoredStep
-from ..terms import Literal
+from ..core.explanation import GoalReport, GoalStatus, PathStep
+from ..core.outcomes import Outcome
+from ..core.program import Skill
+from ..core.terms import Literal
+from ..execution.paths import Found, PathFinder, Remembered, Walk
+from ..execution.state import StoredStep
 from .constructs import Tick
 from .results import R, Res
 from .section import ScsSection
 from .state import Frame, ScsState, Thread, ThreadStatus
 
 WAITING = "waiting"
-"""PathStep.mode of a body that takes no action this cycle (agents/lang/executive.py)."""
+"""PathStep.mode of a body that takes no action this cycle (agents/lang/execution/executive.py)."""
 
 
 def thread_key(goal_id: str, goal: str, skill: Skill) -> str:
@@ -46,7 +46,7 @@ def thread_key(goal_id: str, goal: str, skill: Skill) -> str:
 
 
 class ScsBody:
-    """The runner of ``Skill.kind == "body"`` (agents/lang/bodies.py), and the per-cycle
+    """The runner of ``Skill.kind == "body"`` (agents/lang/execution/bodies.py), and the per-cycle
     hooks of the SCS mechanism (``begin``/``end``)."""
 
     def expand(self, finder: PathFinder, walk: Walk, s: Skill, b: dict, goal: Literal,

@@ -1,4 +1,4 @@
-"""The "scs" section of a decision (agents/lang/explanation.py, Section): every body thread
+"""The "scs" section of a decision (agents/lang/core/explanation.py, Section): every body thread
 with its construct stack (what runs, where it was written, its position, choice, achieved
 and failed substeps, retries, bindings, the action awaiting its outcome), the do-best
 alternatives with their discount factors, the world model and the tally."""
@@ -8,8 +8,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ..program import Program
-from ..terms import Action, fmt
+from ..core.program import Program
+from ..core.terms import Action, fmt
 from .state import Frame, ScsState, Thread
 from .syntax import Construct, Kind, node_at
 

@@ -13,9 +13,9 @@ from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import Any
 
-from ..errors import StateError
-from ..limits import INT_MAX, INT_MIN
-from ..terms import is_const, sort_key
+from ..core.errors import StateError
+from ..core.limits import INT_MAX, INT_MIN
+from ..core.terms import is_const, sort_key
 
 
 class ThreadStatus(StrEnum):

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any
 
-from ..terms import ActionTemplate, Expr, Literal, Loc, Var, fmt
+from ..core.terms import ActionTemplate, Expr, Literal, Loc, Var, fmt
 
 
 class Kind(StrEnum):

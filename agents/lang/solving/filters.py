@@ -5,13 +5,13 @@ it is for (a landmark of the condition; agents/lang/solving/landmarks.py)."""
 
 from __future__ import annotations
 
-from ..arith import evaluate
-from ..effects import undone_goal
-from ..errors import EvalError
-from ..matcher import ground as ground_literal
-from ..matcher import unify_head
-from ..program import Skill
-from ..terms import Action, Literal
+from ..core.arith import evaluate
+from ..core.errors import EvalError
+from ..core.matcher import ground as ground_literal
+from ..core.matcher import unify_head
+from ..core.program import Skill
+from ..core.terms import Action, Literal
+from ..execution.effects import undone_goal
 from .landmarks import key, landmarks
 
 

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from itertools import chain
 
-from ..effects import undone_by
-from ..matcher import unify_head
-from ..terms import Literal, Var
+from ..core.matcher import unify_head
+from ..core.terms import Literal, Var
+from ..execution.effects import undone_by
 
 MAX_LANDMARK = 6   # levels of landmark regression [levels]
 _ANY = Var("_")

@@ -9,11 +9,11 @@ concept this program does not define. It may hold skill clauses only."""
 
 from __future__ import annotations
 
-from ..errors import Diagnostic, ProgramError
-from ..extend import extend_program
-from ..parser import SKILL_MARKERS
-from ..program import Program
-from ..sexpr import Atom, SList, read, to_text
+from ..core.errors import Diagnostic, ProgramError
+from ..core.program import Program
+from ..core.sexpr import Atom, SList, read, to_text
+from ..reading.extend import extend_program
+from ..reading.parser import SKILL_MARKERS
 
 HEADER = "; teleo learned skills"
 

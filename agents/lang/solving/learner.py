@@ -31,8 +31,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..program import Skill
-from ..terms import Expr, Literal, PerceptPattern, Test, Var
+from ..core.program import Skill
+from ..core.terms import Expr, Literal, PerceptPattern, Test, Var
 from .state import CONCEPT, CONJUNCTION, StackEntry
 from .task import Task, condition, literal
 

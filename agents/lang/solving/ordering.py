@@ -5,7 +5,7 @@ For each unsatisfied conjunct h, ``needs`` regresses the solver's own plan from 
 situation (the first way ``Task.alternatives`` ranks at each level, as the search would choose
 it; for a subgoal that holds, what it holds by), and ``landmarks`` the conditions that every
 way of achieving h passes through. A conjunct g *threatens* h when achieving g would make one
-of h's needs false (agents/lang/effects.py: ``(on A B)`` makes ``(clear B)`` false). Then:
+of h's needs false (agents/lang/execution/effects.py: ``(on A B)`` makes ``(clear B)`` false). Then:
 
 1. a conjunct that threatens nobody may be pursued (building a tower from its base: ``(on B
    C)`` before ``(on A B)``, since ``(on A B)`` would undo ``(clear B)``, which ``(on B C)``
@@ -29,9 +29,9 @@ Pure; regressions are kept for the cycle in ``Task.memo``, agendas across cycles
 
 from __future__ import annotations
 
-from ..effects import undone_by
-from ..matcher import solve, unify_head
-from ..terms import Literal, Test, Var
+from ..core.matcher import solve, unify_head
+from ..core.terms import Literal, Test, Var
+from ..execution.effects import undone_by
 from .landmarks import key as _key
 from .landmarks import landmarks
 from .task import Task, condition, literal, pushable

@@ -17,8 +17,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-from ..paths import Found
-from ..terms import Literal
+from ..core.terms import Literal
+from ..execution.paths import Found
 from .ordering import agenda
 from .state import CONJUNCTION, SKILL, Alternative, GoalStack, StackEntry
 from .task import Task, condition, goal_of, literal, pushable

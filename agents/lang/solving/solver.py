@@ -1,5 +1,5 @@
 """The means-ends problem solver as the executive's impasse handler (seed 000, "Problem Solving
-and Skill Learning"; agents/lang/executive.py, ImpasseHandler).
+and Skill Learning"; agents/lang/execution/executive.py, ImpasseHandler).
 
 Every cycle, before the goal walk (``begin``), each goal stack is brought up to date: what the
 conditions of each chosen way did since (achieved, lost, achieved again) is recorded; the
@@ -20,11 +20,11 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..conjunction import Conjunction
-from ..executive import Impasse
-from ..goals import GoalEntry
-from ..paths import NOTHING, PathFinder, Remembered, Walk
-from ..terms import Literal
+from ..core.conjunction import Conjunction
+from ..core.terms import Literal
+from ..execution.executive import Impasse
+from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
+from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, one_step
@@ -86,7 +86,8 @@ class MeansEndsSolver:
         return [literal(c) for c in items]
 
     def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
-        """Back off after a circle (agents/lang/loops.py): the top of the goal's stack fails
+        """Back off after a circle (agents/lang/execution/loops.py): the top of the goal's stack
+        fails
         with ``reason``, its parent's way given up as after any failed subgoal (under a
         conjunction: that conjunct is not pushed again). False when there is no stack."""
         state: SolverState = walk.current("solver")

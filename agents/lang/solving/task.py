@@ -9,19 +9,19 @@ from __future__ import annotations
 from functools import lru_cache
 from itertools import islice
 
-from ..arith import evaluate
-from ..conjunction import Conjunction, conjunction_holds
-from ..effects import Effects
-from ..errors import EvalError, GoalError, LangError
-from ..goals import parse_goal
-from ..loops import situation
-from ..matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
-from ..parser import Parser, Parts
-from ..paths import btuple, show
-from ..program import ConceptClause, Program, Skill
-from ..sexpr import Atom, read
-from ..store import FactStore, PerceptIndex
-from ..terms import Literal, Test, Var, fmt
+from ..core.arith import evaluate
+from ..core.conjunction import Conjunction, conjunction_holds
+from ..core.errors import EvalError, GoalError, LangError
+from ..core.matcher import binding_key, holds, match_fact, solve, test_holds, unify_head
+from ..core.program import ConceptClause, Program, Skill
+from ..core.sexpr import Atom, read
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Literal, Test, Var, fmt
+from ..execution.effects import Effects
+from ..execution.loops import situation
+from ..execution.paths import btuple, show
+from ..reading.goals import parse_goal
+from ..reading.parser import Parser, Parts
 from .filters import WayFilters
 from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
@@ -93,7 +93,7 @@ class Task(WayFilters):
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
     percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
     that hold and come before the one solved for, which no way chained off may undo (seed 000,
-    "Adding Goal Priorities"), judged by ``effects`` (agents/lang/effects.py)."""
+    "Adding Goal Priorities"), judged by ``effects`` (agents/lang/execution/effects.py)."""
 
     def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore,
                  protected: tuple | list = (), effects: Effects | None = None,
@@ -114,7 +114,7 @@ class Task(WayFilters):
 
     @property
     def situation(self) -> str:
-        """The digest of this cycle's percepts and beliefs (agents/lang/loops.py), for
+        """The digest of this cycle's percepts and beliefs (agents/lang/execution/loops.py), for
         results kept across cycles."""
         if not self._situation:
             self._situation = situation(self.pidx, self.store)

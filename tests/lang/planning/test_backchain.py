@@ -100,9 +100,9 @@ def test_a_plan_is_checked_against_the_state_step_by_step():
 def office():
     """The office's start (the robot in the lab r-5306) with programs/office_rogue.tlp."""
     from agents.lang import Engine, load_program
+    from agents.lang.core.store import PerceptIndex
     from agents.lang.engine import as_percepts
     from agents.lang.planning.domain import Domain, Metric
-    from agents.lang.store import PerceptIndex
     from world.domain import get_domain
 
     domain = get_domain("office")

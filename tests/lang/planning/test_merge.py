@@ -9,6 +9,7 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from agents.lang.core.store import PerceptIndex
 from agents.lang.planning.domain import Metric
 from agents.lang.planning.merge import (
     MAX_STATES,
@@ -22,7 +23,6 @@ from agents.lang.planning.merge import (
     visits,
 )
 from agents.lang.planning.state import PlanStep
-from agents.lang.store import PerceptIndex
 
 POS = {"A": 0.0, "B": 14.0, "C": 100.0, "D": 30.0, "E": 50.0}
 

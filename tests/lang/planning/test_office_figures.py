@@ -9,9 +9,9 @@ from __future__ import annotations
 import pytest
 
 from agents.lang import load_program
+from agents.lang.core.store import PerceptIndex
 from agents.lang.engine import as_percepts
 from agents.lang.planning.domain import Domain, Metric
-from agents.lang.store import PerceptIndex
 from world.domain import get_domain
 
 from .office_runs import FIGURE_6, ROOT, interleavings, run

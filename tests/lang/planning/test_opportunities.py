@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from agents.lang import Engine, load_program_text
+from agents.lang.core.store import PerceptIndex
 from agents.lang.engine import as_percepts
 from agents.lang.planning.backchain import build
 from agents.lang.planning.control import Control
@@ -22,7 +23,6 @@ from agents.lang.planning.monitor import Env
 from agents.lang.planning.opportunity import opportunity
 from agents.lang.planning.state import Task
 from agents.lang.solving.task import literal
-from agents.lang.store import PerceptIndex
 from bench.office_sets import PEOPLE, ROOMS, Request, RequestSet, fcfs, measure, metric, run_set
 
 from .office_runs import run

@@ -6,10 +6,10 @@ distance between places and from itself to each place."""
 from __future__ import annotations
 
 from agents.lang import Engine, load_program_text
+from agents.lang.core.store import PerceptIndex
 from agents.lang.engine import as_percepts
 from agents.lang.planning.control import Control
 from agents.lang.planning.domain import Domain, Metric, with_facts
-from agents.lang.store import PerceptIndex
 
 PLACES = ("A", "B", "C", "D", "E")
 

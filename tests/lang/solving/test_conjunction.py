@@ -10,7 +10,7 @@ import re
 import pytest
 
 from agents.lang import Engine, GoalError, GoalStatus, ProgramError, load_program_text
-from agents.lang.goals import parse_goal
+from agents.lang.reading.goals import parse_goal
 
 from ..conftest import BLOCKS, figure3_program
 from ..test_blocks import run
@@ -115,7 +115,8 @@ def test_learning_from_a_conjunction_teaches_its_conjuncts_and_no_anonymous_head
 def test_a_conjunction_that_cannot_hold_fails_after_its_first_circle_naming_it():
     """(and (on A B) (on B A)): each conjunct undoes the other. The agent lifts A, puts it back
     to lift B, and so on; the second time round it is back in a situation it was in (cycle 8)
-    without progress: the loop watch (agents/lang/loops.py) makes the solver give the conjunct
+    without progress: the loop watch (agents/lang/execution/loops.py) makes the solver give the
+    conjunct
     up, and with it the goal, within one more circle of six cycles."""
     trace, *_ = _solve("(and (on A B) (on B A))", {"A": "T", "B": "T"}, 40)
     statuses = [d.status_of("g1") for d, _ in trace]

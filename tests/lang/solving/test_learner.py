@@ -7,10 +7,10 @@ from __future__ import annotations
 import pytest
 
 from agents.lang import Engine, Literal, as_percepts, load_program
+from agents.lang.core.store import PerceptIndex, store_of
 from agents.lang.solving.learner import canonical, generalise, learn
 from agents.lang.solving.state import CONCEPT, Alternative, StackEntry
 from agents.lang.solving.task import Task
-from agents.lang.store import PerceptIndex, store_of
 
 from ..conftest import BLOCKS, ROOT, figure3_program
 from ..test_blocks import TOWER, percepts, run

@@ -163,8 +163,8 @@ def test_a_way_whose_test_reads_a_variable_nothing_bound_is_no_way_and_no_crash(
     relation (near ?x ?d) binds; with no (near A ...) belief the solver's candidate binding
     left ?d open and the test raised KeyError in the executive. A test nothing bound cannot
     hold: the way is passed over and the goal ends failed with its reason."""
-    from agents.lang.matcher import solve
-    from agents.lang.terms import Test, Var
+    from agents.lang.core.matcher import solve
+    from agents.lang.core.terms import Test, Var
 
     program = load_program_text("""
 ((near ?x ?d) :percepts ((thing ?x dist ?d)) :tests ((< ?d 5)))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from .program import ConceptClause
+from ..core.program import ConceptClause
 
 
 def dependency_graph(clauses: Iterable[ConceptClause]) -> dict[str, dict[str, list]]:

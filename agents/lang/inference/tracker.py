@@ -17,10 +17,10 @@ from itertools import compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
-from .columns import EMPTY, ID, Cols, Summary, changed, summarize, summarize_values
-from .intake import Frame
+from ..core.columns import EMPTY, ID, Cols, Summary, changed, summarize, summarize_values
+from ..core.intake import Frame
+from ..core.store import Delta, FactStore
 from .shared_rows import check_irregular, read_cols_of
-from .store import Delta, FactStore
 
 
 @dataclass(frozen=True, slots=True)

@@ -2,22 +2,22 @@
 
 A file holds sections ``(concepts ...)``, ``(skills ...)``, ``(goals ...)``, ``(resources ...)``, or
 bare clauses ``((head ...) :key value ...)`` as printed in seed 000's tables (a clause with :start,
-:requires, :subgoals, :actions or :body is a skill, otherwise a concept). New sections register in
-``SECTIONS``.
+:requires, :subgoals, :actions or :body is a skill, otherwise a concept). A mechanism's own
+sections (the planner's, seed 003) and the reader of a skill's ``:body`` (SCS, seed 002) come
+with the mechanisms the parts are read with (Mechanism.sections, Mechanism.read_body).
 """
 
 from __future__ import annotations
 
-from .arith import OPS
-from .conjunction import Goal, is_conjunction, read_conjunction
-from .errors import Diagnostic
-from .limits import MAX_DIAGNOSTICS
+from ..core.arith import OPS
+from ..core.conjunction import Goal, is_conjunction, read_conjunction
+from ..core.errors import Diagnostic
+from ..core.limits import MAX_DIAGNOSTICS
+from ..core.mechanism import body_reader
+from ..core.program import ConceptClause, GoalSpec, Skill
+from ..core.sexpr import Atom, SList, to_text
+from ..core.terms import Literal, Loc, Test
 from .pieces import PieceParser, op_name, suggest
-from .planning.reader import PLANNING_SECTIONS
-from .program import ConceptClause, GoalSpec, Skill
-from .scs.reader import BodyReader
-from .sexpr import Atom, SList, to_text
-from .terms import Literal, Loc, Test
 
 CONCEPT_KEYS = (":percepts", ":relations", ":tests")
 SKILL_KEYS = (":percepts", ":start", ":requires", ":subgoals", ":actions", ":tests", ":body")
@@ -26,9 +26,11 @@ SKILL_MARKERS = {":start", ":requires", ":require", ":subgoals", ":actions", ":b
 
 
 class Parts:
-    """Everything read from one or more files, before semantic checks."""
+    """Everything read from one or more files, before semantic checks; ``mechanisms``: those
+    that read their sections and skill bodies (agents/lang/core/mechanism.py)."""
 
-    def __init__(self) -> None:
+    def __init__(self, mechanisms: tuple = ()) -> None:
+        self.mechanisms = tuple(mechanisms)
         self.concepts: list[ConceptClause] = []
         self.skills: list[Skill] = []
         self.goals: list[GoalSpec] = []
@@ -37,7 +39,7 @@ class Parts:
         self.diags: list[Diagnostic] = []
         self.sources: list[str] = []
         # a mechanism's own sections (SECTIONS): name -> items, each with define(checker)
-        # and check(checker), called by agents/lang/checks.py
+        # and check(checker), called by agents/lang/reading/checks.py
         self.sections: dict[str, list] = {}
 
 
@@ -47,6 +49,8 @@ class Parser(PieceParser):
     def __init__(self, source: str, parts: Parts):
         self.source = source
         self.parts = parts
+        self.sections = sections_of(parts.mechanisms)
+        self.body_reader = body_reader(parts.mechanisms)
 
     # -- helpers ---------------------------------------------------------------------------
     def loc(self, node: Atom | SList) -> Loc:
@@ -68,10 +72,11 @@ class Parser(PieceParser):
             self.clause(node)
             return
         name = first.value
-        handler = SECTIONS.get(name) if isinstance(name, str) else None
+        handler = self.sections.get(name) if isinstance(name, str) else None
         if handler is None:
-            self.err(first, f"unknown section '{to_text(first)}'{suggest(name, SECTIONS)} "
-                     f"(expected one of: {', '.join(SECTIONS)}, or clauses ((head ...) :key ...))")
+            self.err(first, f"unknown section '{to_text(first)}'{suggest(name, self.sections)} "
+                     f"(expected one of: {', '.join(self.sections)}, or clauses ((head ...) "
+                     ":key ...))")
             return
         handler(self, node)
 
@@ -90,7 +95,7 @@ class Parser(PieceParser):
                 self.parts.goals.append(GoalSpec(goal, self.loc(item)))
 
     def goal(self, node: object) -> Goal | None:
-        """A goal: one literal, or ``(and ...)`` of conditions (agents/lang/conjunction.py)."""
+        """A goal: one literal, or ``(and ...)`` of conditions (agents/lang/core/conjunction.py)."""
         if is_conjunction(node):
             return read_conjunction(self, node)
         return self.literal(node, "goal", allow_not=False)
@@ -177,12 +182,19 @@ class Parser(PieceParser):
         actions = tuple(x for x in (self.action(a) for a in self.items(
             f.get(":actions"), "actions (*name arg ...)")) if x is not None)
         before = len(self.parts.diags)
-        body = BodyReader(self).step(f[":body"]) if ":body" in f else None
+        body = self.read_body(f[":body"]) if ":body" in f else None
         if ":body" in f and body is None and len(self.parts.diags) == before:
             self.err(f[":body"], f"skill {head}: :body could not be read")
         self.parts.skills.append(Skill(
             head, self.patterns(f.get(":percepts")), tuple(start),
             tuple(self.conditions(f.get(":requires"))), subgoals, actions, body, self.loc(node)))
+
+    def read_body(self, node: SList) -> object:
+        """The step tree of a ``:body``, read by the mechanism that reads bodies."""
+        if self.body_reader is None:
+            self.err(node, ":body is read by no mechanism of this engine")
+            return None
+        return self.body_reader.read_body(self, node)
 
     # -- pieces ----------------------------------------------------------------------------
     def literal(self, node: object, what: str, allow_not: bool = True) -> Literal | None:
@@ -236,8 +248,17 @@ SECTIONS = {
     "skills": lambda p, n: p.section_clauses(n, "skills"),
     "goals": Parser.goals_section,
     "resources": Parser.resources_section,
-    **PLANNING_SECTIONS,   # (operators ...), (requests ...), (control-rules ...): seed 003
 }
+"""The kernel's sections; a mechanism's follow (Mechanism.sections: (operators ...),
+(requests ...), (control-rules ...) of the planner, seed 003)."""
+
+
+def sections_of(mechanisms: tuple) -> dict:
+    """Section name -> handler(parser, node): the kernel's, then each mechanism's."""
+    out = dict(SECTIONS)
+    for m in mechanisms:
+        out.update(m.sections())
+    return out
 
 
 def parse_forms(forms: list, source: str, parts: Parts) -> None:

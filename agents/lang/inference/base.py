@@ -11,10 +11,10 @@ from __future__ import annotations
 import marshal
 from collections.abc import Iterable
 
-from .columns import EMPTY, Summary, summarize_values
+from ..core.columns import EMPTY, Summary, summarize_values
+from ..core.store import FactStore
+from ..core.terms import Var
 from .rules import Elem, Rule
-from .store import FactStore
-from .terms import Var
 from .tracker import diff_relation
 
 BASE = "#base"  # first item of a base relation's key: ("#base", pred)

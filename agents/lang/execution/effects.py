@@ -19,12 +19,12 @@ Only fully known effects count: a clause whose action arguments are expressions,
 keeps a variable the action does not bind, says nothing. So the prediction never claims too
 much; an effect the program does not state (``(*pickup A T)`` empties the table spot, fills the
 hand) is not predicted, and the executive's switching back to a violated higher goal and the
-loop watch (agents/lang/loops.py) handle it. Pure; cached per program."""
+loop watch (agents/lang/execution/loops.py) handle it. Pure; cached per program."""
 
 from __future__ import annotations
 
-from .program import ConceptClause, Program
-from .terms import Action, Expr, Literal, Var
+from ..core.program import ConceptClause, Program
+from ..core.terms import Action, Expr, Literal, Var
 
 CLOSURE = 2   # rounds of "needs something undone" [rounds]
 _MAX_CACHE = 4096

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 from functools import cached_property
 from operator import itemgetter
 
-from .program import ConceptClause
-from .terms import PerceptPattern, Test, Var
+from ..core.program import ConceptClause
+from ..core.terms import PerceptPattern, Test, Var
 
 
 @dataclass(frozen=True, slots=True)

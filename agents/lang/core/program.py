@@ -3,14 +3,11 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import Any
 
 from .conjunction import Goal
 from .errors import Diagnostic
 from .terms import ActionTemplate, Literal, Loc, PerceptPattern, Test, Var
-
-if TYPE_CHECKING:
-    from .scs.syntax import Step
 
 
 @dataclass(frozen=True, slots=True)
@@ -35,8 +32,8 @@ class Skill:
     """A skill clause indexed by the concept (goal) it achieves.
 
     Exactly one of ``actions`` (primitive), ``subgoals`` (nonprimitive) or ``body`` (a step tree
-    of SCS constructs, seed 002: agents/lang/scs/syntax.py) is given; the path finder asks the
-    runner of ``kind`` (agents/lang/bodies.py).
+    of SCS constructs, seed 002, read by the mechanism that reads bodies) is given; the path
+    finder asks the runner of ``kind`` (agents/lang/execution/bodies.py).
     """
 
     head: Literal
@@ -45,7 +42,7 @@ class Skill:
     requires: tuple = ()  # Literal | Test, checked on entry and while it continues
     subgoals: tuple[Literal, ...] = ()
     actions: tuple[ActionTemplate, ...] = ()
-    body: Step | None = None  # SCS step tree (seed 002, Appendix C)
+    body: Any = None  # a step tree (SCS, seed 002, Appendix C), read by a mechanism
     loc: Loc | None = None
     index: int = 1  # 1-based clause number among skills for this head predicate
     number: int = 0  # 0-based position among all skills (stable id inside a program)
@@ -76,7 +73,8 @@ class GoalSpec:
 
 @dataclass(frozen=True, eq=False)
 class Program:
-    """A checked program. ``strata`` lists the concept SCCs bottom-up: (preds, recursive)."""
+    """A checked program. ``strata`` lists the concept SCCs bottom-up: (preds, recursive);
+    ``mechanisms``: those it was read with (agents/lang/core/mechanism.py), which run it."""
 
     concepts: dict[str, tuple[ConceptClause, ...]]
     arity: dict[str, int]
@@ -88,6 +86,7 @@ class Program:
     sources: tuple[str, ...] = ()
     skills_by_pred: dict[str, tuple[Skill, ...]] = field(default_factory=dict)
     sections: dict[str, tuple] = field(default_factory=dict)  # a mechanism's own sections
+    mechanisms: tuple = ()
 
     def skills_for(self, pred: str) -> tuple[Skill, ...]:
         """Skills whose head is ``pred``, in program order."""
@@ -96,15 +95,13 @@ class Program:
     def actions(self) -> tuple[ActionTemplate, ...]:
         """Every action the program can send its world, in program order: skills' :actions,
         the atomic actions of SCS bodies (seed 002), operators' :actions and :on-failure
-        (seed 003)."""
-        from .scs.syntax import Act, Atomic, walk_steps
-
+        (seed 003): Mechanism.body_actions and program_actions."""
         out: list[ActionTemplate] = []
         for skill in self.skills:
             out.extend(skill.actions)
-            for _, step in walk_steps(skill.body) if skill.body is not None else ():
-                steps = step.steps if isinstance(step, Atomic) else (step,)
-                out.extend(x.action for x in steps if isinstance(x, Act))
-        for op in self.sections.get("operators", ()):
-            out.extend((*op.skill.actions, *op.on_failure))
+            if skill.body is not None:
+                for m in self.mechanisms:
+                    out.extend(m.body_actions(skill.body))
+        for m in self.mechanisms:
+            out.extend(m.program_actions(self))
         return tuple(out)

@@ -17,9 +17,9 @@ from itertools import compress
 from math import copysign
 from operator import is_not
 
-from .columns import ATOMS, ID, Cols, read_cols
-from .intake import Frame, frame_of
-from .terms import Percept, check_row
+from ..core.columns import ATOMS, ID, Cols, read_cols
+from ..core.intake import Frame, frame_of
+from ..core.terms import Percept, check_row
 
 
 class SharedRows(tuple):

@@ -4,10 +4,10 @@ it, and numbered after the program's own skills, so a remembered path stays vali
 
 from __future__ import annotations
 
+from ..core.program import Program
+from ..core.sexpr import read
 from .checks import build_program
 from .parser import Parts, parse_forms
-from .program import Program
-from .sexpr import read
 
 
 def extend_program(program: Program, clauses: tuple[str, ...],
@@ -16,7 +16,7 @@ def extend_program(program: Program, clauses: tuple[str, ...],
     Raises ProgramError with every problem found, located in ``source``."""
     if not clauses:
         return program
-    parts = Parts()
+    parts = Parts(program.mechanisms)
     parts.concepts = [c for group in program.concepts.values() for c in group]
     parts.skills = list(program.skills)
     parts.goals = list(program.goals)

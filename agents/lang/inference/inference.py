@@ -22,16 +22,16 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from ..core.columns import EMPTY, summarize_values
+from ..core.intake import Frame, PerceptCache
+from ..core.program import Program
+from ..core.store import BeliefSet, Delta, FactStore
+from ..core.terms import Belief, Var
 from .base import BASE, BaseFacts, base_rule
 from .codegen import Estimator, variants
-from .columns import EMPTY, summarize_values
-from .intake import Frame, PerceptCache
 from .maintain import Maintainer
-from .program import Program
 from .rules import Rule
 from .shared_rows import Framer
-from .store import BeliefSet, Delta, FactStore
-from .terms import Belief, Var
 from .tracker import PerceptTracker
 
 _new_tuple = tuple.__new__

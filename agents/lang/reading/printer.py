@@ -9,7 +9,7 @@ read and are printed there, which reads back the same. Pure: no I/O.
 
 from __future__ import annotations
 
-from .program import ConceptClause, Program, Skill
+from ..core.program import ConceptClause, Program, Skill
 
 _INDENT = "   "
 

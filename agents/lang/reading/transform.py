@@ -31,9 +31,9 @@ from __future__ import annotations
 from collections.abc import Collection
 from dataclasses import replace
 
-from .errors import LangError
-from .program import GoalSpec, Program, Skill
-from .terms import Literal, PerceptPattern, Var
+from ..core.errors import LangError
+from ..core.program import GoalSpec, Program, Skill
+from ..core.terms import Literal, PerceptPattern, Var
 
 
 class TransformError(LangError):

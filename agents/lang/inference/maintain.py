@@ -17,8 +17,8 @@ from __future__ import annotations
 from collections import Counter
 from itertools import chain
 
+from ..core.store import Delta, FactStore, OldView
 from .codegen import HEAD
-from .store import Delta, FactStore, OldView
 
 
 class Maintainer:

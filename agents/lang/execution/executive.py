@@ -1,19 +1,20 @@
 """The executive (seed 000, "Inference and Execution Mechanisms", "Adding Goal Priorities").
 
 Each cycle it walks the prioritized goal list; the first unsatisfied goal gets a skill path
-(agents/lang/paths.py: how a path is chosen). Achieved goals are rechecked every cycle and a
+(agents/lang/execution/paths.py: how a path is chosen). Achieved goals are rechecked every cycle
+and a
 violated higher goal suspends the current one, which later resumes its remembered path if
 every skill on it could be started now, and chooses afresh otherwise. A path never takes an
-action that the program says undoes a higher goal that holds (agents/lang/effects.py). A
+action that the program says undoes a higher goal that holds (agents/lang/execution/effects.py). A
 conjunctive goal is pursued one conjunct at a time, in the order of the impasse handler's
-``agenda`` (agents/lang/conjunction.py). With a (resources ...) section, lower goals may also
+``agenda`` (agents/lang/core/conjunction.py). With a (resources ...) section, lower goals may also
 act through free resources. When the first unsatisfied goal has no executable path (an
-impasse), the impasse handler (the means-ends problem solver, agents/lang/solving) is asked; a
+impasse), the impasse handler (a mechanism's, agents/lang/core/mechanism.py) is asked; a
 goal it gives up on is failed, with the reason, and blocks the goals after it as an impasse
 does (seed 000: "the agent considers a goal only when all more important goals are
 satisfied"); it is looked at again every cycle and is worked on as soon as a skill path for it
 is executable. A goal that comes back to a situation it was in without progress is made to
-try something else, and fails after MAX_LOOPS such circles (agents/lang/loops.py).
+try something else, and fails after MAX_LOOPS such circles (agents/lang/execution/loops.py).
 """
 
 from __future__ import annotations
@@ -21,19 +22,19 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Protocol
 
+from ..core.conjunction import Conjunction, first_binding
+from ..core.explanation import Decision, GoalPath, GoalReport, GoalStatus
+from ..core.matcher import ground
+from ..core.outcomes import Outcome
+from ..core.program import Program
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Literal, Var
+from ..reading.goals import GoalEntry, instances, ordered, satisfied
 from .bodies import body_runners, cycle_hooks
 from .circles import Watcher
-from .conjunction import Conjunction, first_binding
-from .explanation import Decision, GoalPath, GoalReport, GoalStatus
-from .goals import GoalEntry, instances, ordered, satisfied
 from .loops import MAX_LOOPS, intention
-from .matcher import ground
-from .outcomes import Outcome
 from .paths import NOTHING, Found, PathFinder, Remembered, Walk
-from .program import Program
 from .state import EngineState
-from .store import FactStore, PerceptIndex
-from .terms import Literal, Var
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,7 +65,7 @@ class Executive:
 
     def __init__(self, program: Program, solver: ImpasseHandler | None = None):
         self.program = program
-        self.finder = PathFinder(program, body_runners())
+        self.finder = PathFinder(program, body_runners(program.mechanisms))
         self.hooks = cycle_hooks(self.finder.bodies, {s.kind for s in program.skills})
         self.solver = solver
 
@@ -82,8 +83,9 @@ class Executive:
         goals = ordered(state.goals)
         watcher = Watcher(state.loops, pidx, store, state.cycle,
                           {e.id: e.text for e in goals}, {e.id: k for k, e in enumerate(goals)},
-                          intention(state.paths, state.active, state.scs.threads,
-                                    state.scs.choices, len(state.learned)))
+                          intention(state.paths, state.active,
+                                    tuple(x for m in self.program.mechanisms
+                                          for x in m.intention(state)), len(state.learned)))
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
         for e in goals:
             walk.goal_id = e.id

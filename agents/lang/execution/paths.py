@@ -10,7 +10,7 @@ only the broken part is replaced.
 The walk is owned here (as py_trees' tick); each kind of skill body answers through one
 interface, ``BodyRunner.expand``: primitive skills give actions, subgoal skills recurse on
 their first unsatisfied subgoal, and further kinds (SCS bodies, seed 002) register in
-``agents.lang.bodies``.
+``agents.lang.execution.bodies``.
 """
 
 from __future__ import annotations
@@ -18,14 +18,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
+from ..core.explanation import PassOver, PathStep
+from ..core.matcher import binding_key, first_failure, ground, solve, subst, unify_head
+from ..core.outcomes import Outcome
+from ..core.program import Program, Skill
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Action, Expr, Literal, PerceptPattern, Test, Var, fmt
 from .effects import Effects, undoing
-from .explanation import PassOver, PathStep
-from .matcher import binding_key, first_failure, ground, solve, subst, unify_head
-from .outcomes import Outcome
-from .program import Program, Skill
 from .state import EngineState, StoredStep
-from .store import FactStore, PerceptIndex
-from .terms import Action, Expr, Literal, PerceptPattern, Test, Var, fmt
 
 MAX_DEPTH = 64       # deepest skill path [skills] (a learned skill recurses twice per block
                      # of a tower: 30 blocks need 60)
@@ -73,7 +73,7 @@ class Walk:
     protected: list = field(default_factory=list)  # (goal id, text, ground literals) of the
     #                                                satisfied goals before the current one
     banned: frozenset = frozenset()  # (goal text, skill number, bindings) not to be used for
-    #                                  the current goal (agents/lang/loops.py)
+    #                                  the current goal (agents/lang/execution/loops.py)
 
     def passed(self, depth: int, goal: str, skill: str, b: dict, reason: str) -> None:
         """Record why a skill (or goal) was passed over."""
@@ -106,7 +106,8 @@ class PathFinder:
     # -- higher goals ------------------------------------------------------------------------
     def undoes(self, walk: Walk, actions) -> str:
         """Why ``actions`` may not run for the current goal ("" if they may): the program says
-        they undo a literal by which a more important goal holds (agents/lang/effects.py)."""
+        they undo a literal by which a more important goal holds
+        (agents/lang/execution/effects.py)."""
         return undoing(self.effects, walk.protected, actions)
 
     # -- resources -------------------------------------------------------------------------

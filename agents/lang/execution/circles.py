@@ -1,18 +1,19 @@
-"""The executive's use of the loop watch (agents/lang/loops.py), one cycle at a time: the
+"""The executive's use of the loop watch (agents/lang/execution/loops.py), one cycle at a time: the
 situation digest (made when first asked), the circles found, the goal each is blamed on, and
 the watches for the next cycle.
 
 A circle found while pursuing a goal is blamed on the least important goal that acted in it
 (seed 000's priorities: the lower goal gives way), which backs off the next time it is pursued
-(agents/lang/executive.py): the skill its remembered path began with is not used again for it
+(agents/lang/execution/executive.py): the skill its remembered path began with is not used again
+for it
 in the episode, and the impasse handler backtracks; after MAX_LOOPS circles it fails."""
 
 from __future__ import annotations
 
 from dataclasses import replace
 
+from ..core.store import FactStore, PerceptIndex
 from .loops import LoopState, Watch, combined, world
-from .store import FactStore, PerceptIndex
 
 
 class Watcher:

@@ -1,24 +1,38 @@
 """EngineState: everything carried between cycles, as an explicit frozen value so a cycle is a
 pure function of (program, state, percepts, outcomes): the goal list, each goal's last skill
 path, which goals acted last cycle, failed goals, the agent's seed, learned skills, and one
-named field per mechanism (problem solver, SCS bodies, planner), each with its own
-to_dict/from_dict, so a restarted executive loses none of them."""
+slot per mechanism (agents/lang/core/mechanism.py: its ``slot`` key and ``state_type``), each with
+its own to_dict/from_dict, so a restarted executive loses none of them. The kernel names no
+mechanism: the slots kept by default are those the registry (agents/lang/registry.py) hands
+to ``use_slots``; a slot reads as an attribute (``state.scs``) and is replaced as a field
+(``replace(state, scs=...)``)."""
 
 from __future__ import annotations
 
 import hashlib
 import random
 from dataclasses import dataclass
+from typing import Any
 
-from .errors import GoalError, LangError, StateError
-from .goals import GoalEntry, parse_goal
+from ..core.errors import GoalError, LangError, StateError
+from ..core.terms import is_const
+from ..reading.goals import GoalEntry, parse_goal
 from .loops import LoopState
-from .planning.state import PlannerState
-from .scs.state import ScsState
-from .solving.state import SolverState
-from .terms import is_const
 
 STATE_VERSION = 2
+
+NO_LOOPS = LoopState()
+
+SLOTS: dict[str, type] = {}
+"""Slot key -> state type of the registered mechanisms, in registry order (the order of their
+keys in the state file); filled by ``use_slots``."""
+
+
+def use_slots(kinds: tuple[tuple[str, type], ...]) -> None:
+    """Make ``kinds`` ((slot key, state type), ...) the slots every EngineState keeps by
+    default (called once by agents/lang/registry.py)."""
+    SLOTS.clear()
+    SLOTS.update(kinds)
 
 
 @dataclass(frozen=True, slots=True)
@@ -40,7 +54,7 @@ class StoredStep:
                    tuple((str(k), v) for k, v in d["bindings"]))
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, init=False)
 class EngineState:
     """Goal list plus, per goal id, the path it last executed (used to prefer/resume it).
 
@@ -48,7 +62,10 @@ class EngineState:
     its remembered path only if every skill on it could be started now); ``failed``: goals
     given up on, with the reason; ``seed``: the agent's seed for nondeterministic choices;
     ``learned``: skill clauses learned at run time, in program syntax (seed 000); ``loops``:
-    the loop watch of every unsatisfied goal (agents/lang/loops.py)."""
+    the loop watch of every unsatisfied goal (agents/lang/execution/loops.py); ``slots``: (key,
+    state)
+    of each mechanism, every registered key present (its empty state by default), in
+    registry order, then any other."""
 
     goals: tuple[GoalEntry, ...] = ()
     paths: tuple[tuple[str, tuple[StoredStep, ...]], ...] = ()
@@ -58,10 +75,35 @@ class EngineState:
     active: tuple[str, ...] = ()
     failed: tuple[tuple[str, str], ...] = ()
     learned: tuple[str, ...] = ()
-    solver: SolverState = SolverState()
-    scs: ScsState = ScsState()
-    planner: PlannerState = PlannerState()
     loops: LoopState = LoopState()
+    slots: tuple[tuple[str, Any], ...] = ()
+
+    def __init__(self, goals: tuple[GoalEntry, ...] = (),
+                 paths: tuple[tuple[str, tuple[StoredStep, ...]], ...] = (),
+                 next_seq: int = 0, cycle: int = 0, seed: int = 0,
+                 active: tuple[str, ...] = (), failed: tuple[tuple[str, str], ...] = (),
+                 learned: tuple[str, ...] = (), loops: LoopState = NO_LOOPS,
+                 slots: tuple[tuple[str, Any], ...] = (), **named: Any):
+        """The fields, and the mechanism slots by key (``scs=...``) or as ``slots``."""
+        table = {k: None for k in SLOTS}
+        table.update(slots)
+        table.update(named)
+        for k, v in table.items():
+            if v is None:
+                table[k] = SLOTS[k]()
+        for name, value in (("goals", goals), ("paths", paths), ("next_seq", next_seq),
+                            ("cycle", cycle), ("seed", seed), ("active", active),
+                            ("failed", failed), ("learned", learned), ("loops", loops),
+                            ("slots", tuple(table.items()))):
+            object.__setattr__(self, name, value)
+
+    def __getattr__(self, name: str) -> Any:
+        """A mechanism's slot by its key (``state.scs``)."""
+        if not name.startswith("_"):
+            for k, v in object.__getattribute__(self, "slots"):
+                if k == name:
+                    return v
+        raise AttributeError(f"EngineState has no field or mechanism slot {name!r}")
 
     def rng(self, tag: str) -> random.Random:
         """A random generator for this cycle and purpose, derived from the agent's seed (the
@@ -95,13 +137,16 @@ class EngineState:
                            "origin": e.origin} for e in self.goals],
                 "paths": {gid: [s.to_dict() for s in steps] for gid, steps in self.paths},
                 "active": list(self.active), "failed": {g: why for g, why in self.failed},
-                "learned": list(self.learned), "solver": self.solver.to_dict(),
-                "scs": self.scs.to_dict(), "planner": self.planner.to_dict(),
+                "learned": list(self.learned),
+                **{k: v.to_dict() for k, v in self.slots},
                 "loops": self.loops.to_dict()}
 
     @classmethod
-    def from_dict(cls, d: dict) -> EngineState:
-        """Inverse of to_dict; raises StateError naming what is wrong."""
+    def from_dict(cls, d: dict, kinds: tuple[tuple[str, type], ...] | None = None
+                  ) -> EngineState:
+        """Inverse of to_dict; raises StateError naming what is wrong. ``kinds``: the
+        mechanism slots to read ((key, state type), ...; default: the registered ones)."""
+        kinds = tuple(SLOTS.items()) if kinds is None else kinds
         try:
             if d.get("version") != STATE_VERSION:
                 raise StateError(f"engine state version {d.get('version')!r}, expected "
@@ -119,10 +164,8 @@ class EngineState:
                        int(d.get("seed", 0)), tuple(str(g) for g in d.get("active", ())),
                        tuple((str(g), str(w)) for g, w in sorted(d.get("failed", {}).items())),
                        tuple(str(t) for t in d.get("learned", ())),
-                       SolverState.from_dict(d.get("solver", {})),
-                       ScsState.from_dict(d.get("scs", {})),
-                       PlannerState.from_dict(d.get("planner", {})),
-                       LoopState.from_dict(d.get("loops", {})))
+                       slots=tuple((k, t.from_dict(d.get(k, {}))) for k, t in kinds),
+                       loops=LoopState.from_dict(d.get("loops", {})))
         except StateError:
             raise
         except (KeyError, TypeError, ValueError, AttributeError, LangError) as exc:

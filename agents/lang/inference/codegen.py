@@ -18,9 +18,9 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+from ..core.store import key_getter
+from ..core.terms import Expr, Var
 from .rules import Rule
-from .store import key_getter
-from .terms import Expr, Var
 
 _PYOP = {"<": "<", "<=": "<=", ">": ">", ">=": ">=", "=": "==", "<>": "!=", "+": "+", "-": "-",
          "*": "*", "/": "/", "mod": "%"}

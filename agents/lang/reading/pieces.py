@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import difflib
 
-from .arith import BOOL_OPS, LOGIC, OPS, check_call
-from .sexpr import Atom, SList, to_text
-from .terms import ActionTemplate, Expr, PerceptPattern, Test, Var
+from ..core.arith import BOOL_OPS, LOGIC, OPS, check_call
+from ..core.sexpr import Atom, SList, to_text
+from ..core.terms import ActionTemplate, Expr, PerceptPattern, Test, Var
 
 
 class PieceParser:

@@ -1,22 +1,22 @@
 """The kinds of skill body and the runner of each (STYLE.md, "One interface for every skill
 body"): ``Skill.kind`` names the kind; the path finder asks its runner for the path below an
-entered skill. A new kind (an SCS body, a learned or planned skill) is a new runner here,
-not a new branch in the path finder. A runner that keeps state across cycles may also be a
-``CycleHook``: the executive calls ``begin`` before each cycle's goal walk and ``end`` after
-it (the SCS runner settles action outcomes and shows its threads there)."""
+entered skill. A new kind (an SCS body, a learned or planned skill) is a mechanism's runner
+(Mechanism.runners), not a new branch in the path finder. A runner that keeps state across
+cycles may also be a ``CycleHook``: the executive calls ``begin`` before each cycle's goal
+walk and ``end`` after it (the SCS runner settles action outcomes and shows its threads
+there)."""
 
 from __future__ import annotations
 
 from typing import Protocol, runtime_checkable
 
-from .arith import evaluate
-from .errors import EvalError
-from .explanation import GoalReport
-from .goals import satisfied
-from .matcher import ground
+from ..core.arith import evaluate
+from ..core.errors import EvalError
+from ..core.explanation import GoalReport
+from ..core.matcher import ground
+from ..core.terms import Action
+from ..reading.goals import satisfied
 from .paths import BodyRunner, PathFinder, Walk
-from .scs.runner import ScsBody
-from .terms import Action
 
 
 @runtime_checkable
@@ -28,9 +28,13 @@ class CycleHook(Protocol):
     def end(self, finder: PathFinder, walk: Walk, reports: list[GoalReport]) -> None: ...
 
 
-def body_runners() -> dict[str, BodyRunner]:
-    """``Skill.kind`` -> runner, for every kind this engine can execute."""
-    return {"primitive": PrimitiveBody(), "nonprimitive": SubgoalBody(), "body": ScsBody()}
+def body_runners(mechanisms: tuple = ()) -> dict[str, BodyRunner]:
+    """``Skill.kind`` -> runner, for every kind this engine can execute: the kernel's two and
+    the mechanisms' (Mechanism.runners: the SCS body, seed 002)."""
+    out: dict[str, BodyRunner] = {"primitive": PrimitiveBody(), "nonprimitive": SubgoalBody()}
+    for m in mechanisms:
+        out.update(m.runners())
+    return out
 
 
 def cycle_hooks(runners: dict[str, BodyRunner], program_kinds: set[str]) -> list[CycleHook]:

@@ -2,7 +2,7 @@
 while pursuing the same goal, without the goal having held in between, is going round in a
 circle (a lower goal undoing a higher one that is then restored, a learned skill moving a block
 to the table and back). The executive notices it within a bounded number of cycles and makes
-the goal try something else (agents/lang/circles.py); after MAX_LOOPS such circles in one
+the goal try something else (agents/lang/execution/circles.py); after MAX_LOOPS such circles in one
 episode the goal fails, naming the goals that acted in the circle.
 
 A situation is what the agent perceives, believes and intends at the start of a cycle: a
@@ -20,7 +20,7 @@ catches a circle longer than the window within twice its length. A return counts
 the goal was pursued (active, in impasse or given up), only after the situation has changed in
 between (staying put while the solver thinks is not a circle), and only when every step of the
 circle was the agent's own doing: what the program says its actions achieve
-(agents/lang/effects.py) was seen to hold in the next situation, or it did not act and the
+(agents/lang/execution/effects.py) was seen to hold in the next situation, or it did not act and the
 world stayed as it was. A world that changes back and forth by itself while a teleoreactive
 program follows it is not the agent going round in a circle. Plain data in EngineState.loops."""
 
@@ -30,7 +30,7 @@ import hashlib
 from dataclasses import dataclass, replace
 from typing import Any
 
-from .store import FactStore, PerceptIndex
+from ..core.store import FactStore, PerceptIndex
 
 WINDOW = 32       # distinct situations kept per goal episode [situations]
 MAX_LOOPS = 3     # returns tolerated per goal episode before the goal fails [returns]
@@ -207,12 +207,12 @@ class LoopState:
         return cls(tuple(Watch.from_dict(w) for w in d.get("watches", ())))
 
 
-def intention(paths: tuple, active: tuple, threads: tuple, choices: tuple,
-              learned: int) -> str:
+def intention(paths: tuple, active: tuple, parts: tuple, learned: int) -> str:
     """The part of EngineState that decides what the agent does next in a given world: the
-    goals' remembered paths, the goals that acted last, the SCS threads and choices, and how
-    many skills it has learned (a circle that taught a skill may not come round again)."""
-    return repr((paths, active, threads, choices, learned))
+    goals' remembered paths, the goals that acted last, the mechanisms' ``parts`` (the SCS
+    threads and choices: Mechanism.intention), and how many skills it has learned (a circle
+    that taught a skill may not come round again)."""
+    return repr((paths, active, *parts, learned))
 
 
 def _step(d: Any) -> tuple | None:

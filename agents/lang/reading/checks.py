@@ -1,5 +1,7 @@
 """Semantic checks that turn parsed parts into a Program, reporting every problem at once:
-undefined concepts, arity mismatches, unbound variables, unstratified negation (seed 000)."""
+undefined concepts, arity mismatches, unbound variables, unstratified negation (seed 000); a
+mechanism's facts, sections and skill bodies are checked through its hooks
+(agents/lang/core/mechanism.py)."""
 
 from __future__ import annotations
 
@@ -7,13 +9,14 @@ import difflib
 from collections.abc import Collection
 from dataclasses import replace
 
-from .conjunction import goal_literals
-from .errors import Diagnostic, ProgramError
+from ..core.conjunction import goal_literals
+from ..core.errors import Diagnostic, ProgramError
+from ..core.mechanism import body_reader
+from ..core.program import ConceptClause, Program, Skill
+from ..core.terms import Literal, Loc, Test, Var
+from .goals import enumerable
 from .parser import Parts
-from .program import ConceptClause, Program, Skill
-from .scs.checks import BodyChecks, known_actions, model_facts
 from .stratify import dependency_graph, negative_cycle, sccs
-from .terms import Literal, Loc, Test, Var
 
 MAX_SUGGESTIONS = 20
 """'did you mean' is searched for the first MAX_SUGGESTIONS unknown names only, among at most
@@ -50,7 +53,8 @@ class Checker:
             group = concepts.setdefault(c.head.pred, [])
             group.append(replace(c, index=len(group) + 1))
             self.define(c.head)
-        model = model_facts(self.parts.skills)
+        mechanisms = self.parts.mechanisms
+        model = [u for m in mechanisms for u in m.asserted(self.parts.skills)]
         for u in model:   # the world model's predicates (seed 002: assert, retract)
             if u.fact.pred not in self.arity:
                 self.define(u.fact)
@@ -62,8 +66,9 @@ class Checker:
         sections = [x for items in self.parts.sections.values() for x in items]
         for item in sections:   # a mechanism's own predicates (the planner's, seed 003)
             item.define(self)
-        self.bodies = BodyChecks(self, self.parts.skills,
-                                 known_actions(self.parts.resources))
+        reader = body_reader(mechanisms)
+        self.bodies = None if reader is None else \
+            reader.body_checks(self, self.parts.skills, self.parts.resources)
         skills = []
         by_pred: dict[str, list[Skill]] = {}
         for n, s in enumerate(self.parts.skills):
@@ -89,7 +94,8 @@ class Checker:
             strata=strata, warnings=tuple(sorted(self.diags, key=_order)),
             sources=tuple(self.parts.sources),
             skills_by_pred={k: tuple(v) for k, v in by_pred.items()},
-            sections={k: tuple(v) for k, v in self.parts.sections.items()})
+            sections={k: tuple(v) for k, v in self.parts.sections.items()},
+            mechanisms=mechanisms)
 
     # -- names and arities -------------------------------------------------------------------
     def define(self, head: Literal) -> None:
@@ -153,7 +159,7 @@ class Checker:
         for a in s.actions:
             self.unbound(a.variables() - bound, a.loc, f"action {a}",
                          "bind it in the head, :percepts, :start or :requires", bound)
-        if s.body is not None:
+        if s.body is not None and self.bodies is not None:
             self.bodies.check(s, bound)
 
     def unbound(self, vs: set[Var], loc: Loc | None, where: str, hint: str,
@@ -166,9 +172,7 @@ class Checker:
 
     def check_goal_variables(self, concepts: dict[str, list[ConceptClause]]) -> None:
         """A goal variable must mean "every instance", so its concept must take it from
-        percepts in every clause (agents/lang/goals.py, ``enumerable``)."""
-        from .goals import enumerable
-
+        percepts in every clause (agents/lang/reading/goals.py, ``enumerable``)."""
         view = Program({k: tuple(v) for k, v in concepts.items()}, {}, (), ())
         for g in self.parts.goals:
             if isinstance(g.literal, Literal) and g.literal.pred in concepts:

@@ -21,7 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
-from .conjunction import (
+from ..core.conjunction import (
     Conjunction,
     Goal,
     conjunction_holds,
@@ -29,14 +29,14 @@ from .conjunction import (
     is_conjunction,
     read_conjunction,
 )
-from .errors import GoalError
-from .limits import MAX_GOAL_CHARS, shorten
-from .matcher import binding_key, holds, solve, unify_head
+from ..core.errors import GoalError
+from ..core.limits import MAX_GOAL_CHARS, shorten
+from ..core.matcher import binding_key, holds, solve, unify_head
+from ..core.program import Program
+from ..core.sexpr import Atom, SList, read
+from ..core.store import FactStore, PerceptIndex
+from ..core.terms import Literal, PerceptPattern, Var, sort_key
 from .parser import Parser, Parts
-from .program import Program
-from .sexpr import Atom, SList, read
-from .store import FactStore, PerceptIndex
-from .terms import Literal, PerceptPattern, Var, sort_key
 
 
 @dataclass(frozen=True, slots=True)
