@@ -1,7 +1,7 @@
 """teleo on a Blocks World problem of bench/bw_problems.py: the problem written as a program and
 a scenario for the pymunk Blocks World (world/blocks), run by `teleo simulate`'s own loop
-(tools.simulate.simulate, in this process), and the run's figures: its actions, when the goal
-first held, the problem solver's effort, the goal statuses its summary reports.
+(tools.commands.simulate.simulate, in this process), and the run's figures: its actions, when the
+goal first held, the problem solver's effort, the goal statuses its summary reports.
 
 Goal forms (``mode``, a form and an order: "conjunction-listed", ...):
   conjunction  one user goal for the whole goal: ``(and (on ..) ...)`` once teleo reads it
@@ -130,9 +130,9 @@ def run_teleo(p: Problem, mode: str, folder: Path, learned: Path | None = None) 
     """Write the problem under ``folder`` and run it for cycle_limit(n) cycles, starting
     from the skills in ``learned`` if given."""
     from agents.lang import LangError
-    from tools import sim_summary
-    from tools.scenario_check import load_checked
-    from tools.simulate import simulate
+    from tools.commands.scenario_check import load_checked
+    from tools.commands.simulate import simulate
+    from tools.records import sim_summary
     from world.errors import WorldError
 
     extra, goals = goals_of(p, mode)

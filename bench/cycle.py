@@ -17,7 +17,7 @@ that fails the check is reported and the bench exits 1. Delivery takes about 215
 --shared: the launch layouts to compare, as `teleo launch --agents-per-process K` values: 0 a
 process per stage (3 per agent), 1 a process per agent, `all` every agent in one process
 (agents/processes/shared.py), `auto` the agents spread over the machine's CPUs
-(tools/run_plan.py `per_core`). The first layout is the baseline of the "x" column.
+(tools/launching/run_plan.py `per_core`). The first layout is the baseline of the "x" column.
 """
 
 from __future__ import annotations

@@ -242,7 +242,7 @@ def goal_reader() -> Reader:
 
 
 def event_reader() -> Reader:
-    from tools.event_commands import read_event
+    from tools.commands.event import read_event
 
     bases = [json.dumps(e) for e in (
         {"kind": "pedestrian", "ahead_of": "ME", "dist": 20, "lateral": 1.5},
@@ -265,7 +265,7 @@ def event_reader() -> Reader:
 def scenario_reader(tmp: Path) -> Reader:
     """Scenario files: bytes written to a file in `tmp` (program paths there made absolute
     so that the shipped programs are found), read and checked fully as `teleo launch` does."""
-    from tools.scenario_check import load_checked
+    from tools.commands.scenario_check import load_checked
     from world.errors import WorldError
 
     bases = [text.replace('program = "programs/', f'program = "{ROOT}/programs/')

@@ -123,7 +123,7 @@ def burst(endpoint: str, run: str, agent: str, requests: list, clients: int) -> 
 def main(requests: int, window: float, scenario: str, seed: int, clients: int,
          mix: str) -> None:
     """Measure the cycle rate before, during and after a burst of goal requests."""
-    from tools import runfile
+    from tools.runs import runfile
 
     with tempfile.TemporaryDirectory() as tmp:
         env = {**os.environ, "TELEO_RUN_DIR": tmp}

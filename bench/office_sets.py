@@ -1,5 +1,5 @@
 """Random office request sets (seed 003) and what bench/office.py measures of each: run
-through the ROGUE planner in one process (tools/simulate.py: the pymunk office world, its
+through the ROGUE planner in one process (tools/commands/simulate.py: the pymunk office world, its
 perception, the engine), the travel of the executed order by the map, against serving the
 requests first come, first served and against the optimal order.
 
@@ -28,7 +28,7 @@ from agents.lang import load_program
 from agents.lang.core.store import PerceptIndex
 from agents.lang.engine import as_percepts
 from agents.lang.planning.domain import Domain, Metric
-from tools.simulate import SimRun, simulate
+from tools.commands.simulate import SimRun, simulate
 from world.domain import get_domain
 from world.office.config import DEFAULT_NORTH, DEFAULT_PEOPLE, DEFAULT_SOUTH, OfficeConfig
 from world.run_scenario import scenario_from_dict

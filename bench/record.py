@@ -38,7 +38,7 @@ def launch(scenario: Path, record: bool) -> tuple[float, int, int, float]:
         mcap = Path(summary["trace"]).with_name("record.mcap")
         if not record:
             return summary["cycles_per_s"], summary["cycles"], 0, 0.0
-        with mcap.open("rb") as f:  # metadata written by tools/recorder.py
+        with mcap.open("rb") as f:  # metadata written by tools/records/recorder.py
             meta = {m.name: m.metadata for m in make_reader(f).iter_metadata()}
         cpu_ms = float(meta["teleo.recorder"]["cpu_ms"])
         return (summary["cycles_per_s"], summary["cycles"], mcap.stat().st_size,

@@ -9,8 +9,8 @@ each notation. Table 8 diffs the clauses of the 2-law programs against those in 
 (at-desired-speed -> driving-as-fast-as-possible) or both (and not-hitting-pedestrians ->
 giving-way-to-pedestrians) are replaced, counting the driving skills (not the laws' own skills)
 that are deleted or rewritten. Then every prioritized/original pair runs `teleo simulate`'s loop
-(tools.simulate.simulate) on scenarios/driving_demo.toml and scenarios/busy_streets.toml with
-each seed, and the runs' trace lines (each cycle's actions, counters and world digest, what
+(tools.commands.simulate.simulate) on scenarios/driving_demo.toml and scenarios/busy_streets.toml
+with each seed, and the runs' trace lines (each cycle's actions, counters and world digest, what
 `teleo simulate` writes to trace.jsonl) are compared. Exits 1 if any pair differs. With no law
 both notations are one program, so the 0-law rows run it once.
 """
@@ -32,7 +32,7 @@ sys.path.insert(0, str(ROOT))
 from agents.lang import Program, load_program  # noqa: E402
 from agents.lang.reading.printer import clause_text  # noqa: E402
 from tools import law_programs as lp  # noqa: E402
-from tools.simulate import simulate  # noqa: E402
+from tools.commands.simulate import simulate  # noqa: E402
 from world.run_scenario import load_scenario  # noqa: E402
 
 SCENARIOS = ("scenarios/driving_demo.toml", "scenarios/busy_streets.toml")

@@ -141,7 +141,7 @@ def all_stats(run: str) -> str:
 
 
 RECORDER = "launch.record"
-"""The process name of a launch's recorder (tools/recorder.py): its liveliness token says it
+"""The process name of a launch's recorder (tools/records/recorder.py): its liveliness token says it
 is there, its ProcessStats carry the last cycle it has recorded whole (the world keeps pace
 with it: bus/clock.py Clock.keep_pace)."""
 

@@ -1,5 +1,6 @@
 """The recorded form of a bus message: plain JSON-able data with a JSON Schema per kind, so a
-run record (tools/records.py writes it as MCAP) opens in Foxglove and plays back on the bus.
+run record (tools/records/run_record.py writes it as MCAP) opens in Foxglove and plays back on the
+bus.
 
 The form is the wire map itself (`{"kind", "env", <fields>}`, bus/codec.py) read from msgpack,
 plus derived fields that only help a viewer and are dropped again on the way back: a

@@ -15,7 +15,7 @@ import re
 
 import click
 
-from tools import stop_signals
+from tools.launching import stop_signals
 from tools.paths import describe_os_error
 
 # module -> the commands it owns (its attribute `commands`, a list of click commands). A
@@ -23,20 +23,20 @@ from tools.paths import describe_os_error
 # `teleo --help` or completion, imports them all): importing all of them was most of every
 # command's start-up, 3 s of a `teleo stop` at load 8 against 0.4 s for its own module.
 _COMMAND_MODULES = {
-    "tools.check_commands": ("check",),          # programs, learned files, scenarios
-    "tools.lang_commands": ("infer", "step"),     # language engine
-    "tools.bus_commands": ("router", "echo", "record", "replay"),  # bus
-    "tools.rate_commands": ("hz",),              # bus rates
-    "tools.world_commands": ("render",),         # world
-    "tools.launch": ("launch",),                 # processes
-    "tools.run_commands": ("ps", "stop"),        # runs on this host
-    "tools.goal_commands": ("goal",),            # goal post/list/cancel/priority
-    "tools.event_commands": ("event",),          # world events into a running launch
-    "tools.inspect": ("inspect",),
-    "tools.simulate": ("simulate",),             # one process, no bus
-    "tools.explain": ("explain",),               # run records
-    "tools.plot": ("plot",),                     # run records
-    "tools.view": ("view",),                     # live web view
+    "tools.commands.check": ("check",),         # programs, learned files, scenarios
+    "tools.commands.lang": ("infer", "step"),   # language engine
+    "tools.commands.bus": ("router", "echo", "record", "replay"),  # bus
+    "tools.commands.rate": ("hz",),             # bus rates
+    "tools.commands.world": ("render",),        # world
+    "tools.commands.launch": ("launch",),       # processes
+    "tools.commands.run": ("ps", "stop"),       # runs on this host
+    "tools.commands.goal": ("goal",),           # goal post/list/cancel/priority
+    "tools.commands.event": ("event",),         # world events into a running launch
+    "tools.commands.inspect": ("inspect",),
+    "tools.commands.simulate": ("simulate",),   # one process, no bus
+    "tools.commands.explain": ("explain",),     # run records
+    "tools.commands.plot": ("plot",),           # run records
+    "tools.view": ("view",),                    # live web view
 }
 _MODULE_OF = {name: module for module, names in _COMMAND_MODULES.items() for name in names}
 SUMMARY_CHARS = 66

@@ -95,7 +95,7 @@ def scenario_from_dict(doc: dict[str, Any], path: Path, overrides: tuple[str, ..
 class Draft:
     """A scenario document read as far as it goes: the scenario (a field in error at its
     default), every error found, and what those errors spoil ("world", "agent ID",
-    "goal K" for [[goals]] #K), which the later checks (tools/scenario_check.py) leave out
+    "goal K" for [[goals]] #K), which the later checks (tools/commands/scenario_check.py) leave out
     rather than report what follows from an error already reported."""
 
     scenario: Scenario

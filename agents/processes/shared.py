@@ -3,8 +3,8 @@
     python -m agents.processes.shared --run RUN --name agents1 --agents JSON [bus flags]
 
 JSON: a list of {"agent", "program", "state", "learned_out", "learned", "solver",
-"mechanism"} (the executive's options, tools/run_plan.py writes them). Each cycle the process
-joins the world state with every agent's goal list and runs, per agent, the perception,
+"mechanism"} (the executive's options, tools/launching/run_plan.py writes them). Each cycle the
+process joins the world state with every agent's goal list and runs, per agent, the perception,
 inference and executive steps of the separate processes (the same functions) one after the
 other, handing each step's message to the next in memory: no hop, no decode between an
 agent's stages. It still publishes every message (percepts, beliefs, intention, actions) and

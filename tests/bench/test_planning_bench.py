@@ -57,7 +57,7 @@ def test_bad_options_are_one_usage_error_without_a_traceback(args, message):
 
 @pytest.mark.parametrize("mode", bw_teleo.MODES)
 def test_each_goal_form_is_a_scenario_teleo_accepts(tmp_path, mode):
-    from tools.scenario_check import load_checked
+    from tools.commands.scenario_check import load_checked
 
     p = problem(30, 1)
     extra, goals = bw_teleo.goals_of(p, mode)

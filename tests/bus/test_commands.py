@@ -12,7 +12,7 @@ from bus_helpers import ROOT, python
 from bus import keys
 from bus.messages import Percepts, WorldEvent, WorldState
 from bus.node import open_node
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 TELEO = ("-c", "from tools.cli import main; main()")
 
@@ -49,7 +49,7 @@ def test_record_then_replay_gives_back_the_same_messages(cfg, run_id, tmp_path):
 
 def test_replay_without_a_launch_plays_to_its_own_router_and_a_dead_one_is_refused(
         tmp_path, run_id):
-    from tools.records import RecordWriter
+    from tools.records.run_record import RecordWriter
 
     path = tmp_path / "empty.mcap"
     RecordWriter(path, run_id).close()

@@ -18,7 +18,7 @@ from bus import keys
 from bus.clock import Clock, CycleInterrupted
 from bus.config import BusConfig
 from bus.node import open_node
-from tools.supervisor import wait_until
+from tools.launching.supervisor import wait_until
 
 RECORDER = """
 import sys

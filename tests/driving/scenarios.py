@@ -6,7 +6,7 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
-from tools.simulate import SimRun
+from tools.commands.simulate import SimRun
 from world.driving.snapshot import WorldSnapshot
 from world.run_scenario import Scenario, load_scenario, scenario_from_dict
 

@@ -1,12 +1,12 @@
 """The driving program (programs/driving.tlp) really drives the car: the pure engine decides,
-the pymunk world moves, cycle by cycle in one process (tools/simulate.py). Its skills form a
-hierarchy (seed 000): an errand reaches the pedals through several levels of skills."""
+the pymunk world moves, cycle by cycle in one process (tools/commands/simulate.py). Its skills form
+a hierarchy (seed 000): an errand reaches the pedals through several levels of skills."""
 
 from __future__ import annotations
 
 from agents.lang import Engine, load_program
 from tests.driving.scenarios import PROGRAM, final, goal, scenario
-from tools.simulate import simulate
+from tools.commands.simulate import simulate
 from world.driving.config import load_world_config
 from world.driving.perception import perceive
 from world.driving.simulation import Simulation

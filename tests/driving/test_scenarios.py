@@ -1,12 +1,12 @@
-"""The shipped driving scenarios, run whole in one process (tools/simulate.py): every errand
-delivered, no law broken (world/driving/percepts.md, counters)."""
+"""The shipped driving scenarios, run whole in one process (tools/commands/simulate.py): every
+errand delivered, no law broken (world/driving/percepts.md, counters)."""
 
 from __future__ import annotations
 
 import pytest
 
 from tests.driving.scenarios import final, goal, scenario, shipped
-from tools.simulate import simulate
+from tools.commands.simulate import simulate
 
 LAWS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
         "speeding_cycles")

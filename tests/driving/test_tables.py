@@ -11,7 +11,7 @@ import pytest
 from agents.lang.reading.printer import clause_text
 from tests.driving.scenarios import goal, scenario
 from tools import law_programs as lp
-from tools.simulate import simulate
+from tools.commands.simulate import simulate
 
 VARIANTS = {v.name: v for v in lp.variants()}
 LAWS = {lp.PEDESTRIANS, lp.SPEED, lp.FAST[0], lp.GIVING_WAY[0]}

@@ -37,7 +37,7 @@ class Teleo:
         return self.launcher
 
     def run_files(self) -> list[Path]:
-        """The run registry's files in this folder (tools/runfile.py): one per running run."""
+        """The run registry's files in this folder (tools/runs/runfile.py): one per running run."""
         return sorted((self.run_dir / "active").glob("*.json"))
 
     def run_info(self, timeout: float = 60) -> dict:

@@ -30,7 +30,7 @@ from bus.codec import decode  # noqa: E402
 from bus.errors import BusError, CodecError  # noqa: E402
 from bus.messages import EventReply, WorldEvent  # noqa: E402
 from bus.node import open_node  # noqa: E402
-from tools import runfile  # noqa: E402
+from tools.runs import runfile  # noqa: E402
 from world.domain import get_domain  # noqa: E402
 from world.run_scenario import load_scenario  # noqa: E402
 

@@ -24,7 +24,7 @@ from fault_helpers import (
     wait_cycles,
 )
 
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 CYCLES = "400"
 

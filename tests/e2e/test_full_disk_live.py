@@ -22,7 +22,7 @@ import pytest
 from e2e_helpers import ROOT, TELEO, wait_for
 from fault_helpers import pids_alive, scenario
 
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 SIZE = "2m"             # the tmpfs
 FILE_LIMIT = 300_000    # [bytes] each file, where no tmpfs can be mounted

@@ -47,7 +47,7 @@ def test_the_trace_shows_the_errands_commands_and_matches_simulate(errand):
             steps.append(last)
     assert steps == [[["*goto", "r-5313"]], [["*acquire", "mail-reid", "khaigh"]],
                      [["*goto", "r-5315"]], [["*deliver", "mail-reid", "reid"]], []]
-    from tools.simulate import simulate
+    from tools.commands.simulate import simulate
     from world.run_scenario import load_scenario
 
     run = simulate(load_scenario(SCENARIO))

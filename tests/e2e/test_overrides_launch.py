@@ -11,7 +11,7 @@ import json
 import pytest
 from e2e_helpers import HOLD_SPEED, Teleo
 
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 SETS = ("--set", "world.pedestrians=0", "--set", "run.cycles=14", "--set", "goals.1.priority=4",
         "--set", f"agents.ME.program={HOLD_SPEED.with_name('hold_speed.tlp')}")

@@ -21,9 +21,9 @@ import pytest
 
 from bus.config import BusConfig
 from bus.router import spawn_router
-from tools.record_coverage import coverage
-from tools.recorder import BusRecorder
-from tools.records import RECORD_FILE, RunRecord
+from tools.records.record_coverage import coverage
+from tools.records.recorder import BusRecorder
+from tools.records.run_record import RECORD_FILE, RunRecord
 
 PUBLISHER = """
 import sys
@@ -96,7 +96,7 @@ def test_a_drain_cut_short_stops_at_once_with_a_whole_record_that_says_what_it_l
 
     def cut(r: BusRecorder, seconds: float) -> None:
         said.append(seconds)
-        r.cut_short()   # what a second Ctrl-C does (tools/run_stop.py)
+        r.cut_short()   # what a second Ctrl-C does (tools/launching/run_stop.py)
 
     with outrun(router, tmp_path, each) as recorder:
         recorder.stop(progress=cut)

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 from e2e_helpers import HOLD_SPEED, ROOT, TELEO, Teleo, interrupt, trace_lines, wait_for
 
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 STOP_BOUND_S = 15.0  # [s] far below the 30 s the stop once took
 SAID = re.compile(r"recorded (\d+) messages \((\d+) cycles, (\d+)\.\.(\d+)\) of run (\S+) "

@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 from e2e_helpers import HOLD_SPEED, ROOT, TELEO, Teleo, wait_for
 
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 
 @pytest.fixture(scope="module")

@@ -24,8 +24,8 @@ from bus.config import BusConfig
 from bus.node import open_node
 from bus.router import spawn_router
 from tools.cli import cli
-from tools.records import RunRecord
-from tools.tree import decision_tree, to_json
+from tools.records.run_record import RunRecord
+from tools.records.tree import decision_tree, to_json
 
 DEMO = ROOT / "scenarios" / "driving_demo.toml"
 CYCLES = 650  # the demo's [run] cycles

@@ -15,7 +15,7 @@ import pytest
 from e2e_helpers import TELEO, Teleo, wait_for
 from fault_helpers import kill_all, pids_alive, scenario, wait_cycles
 
-from tools import runfile
+from tools.runs import runfile
 
 
 def anywhere(teleo: Teleo, *args: str) -> subprocess.CompletedProcess:

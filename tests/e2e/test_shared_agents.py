@@ -11,7 +11,7 @@ import re
 import pytest
 from e2e_helpers import ROOT, two_cars
 
-from tools.cpus import usable_cores
+from tools.launching.cpus import usable_cores
 
 
 def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):

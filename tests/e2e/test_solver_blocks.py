@@ -59,8 +59,8 @@ def _trace(path: str | Path) -> list[dict]:
 def _records(scenario: Path, learned: Path | None = None) -> list[dict]:
     """Each cycle's goal statuses and solver section of an in-process run (the trace file,
     as a launch's, holds actions, counters and digests only)."""
-    from tools.scenario_check import load_checked
-    from tools.simulate import simulate
+    from tools.commands.scenario_check import load_checked
+    from tools.commands.simulate import simulate
 
     return [r["ME"] for r in simulate(load_checked(scenario)[0], learned=learned).records]
 

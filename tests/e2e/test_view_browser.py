@@ -18,7 +18,7 @@ from pathlib import Path
 from cdp import Chromium
 from e2e_helpers import FIXTURES, ROOT, TELEO, interrupt, wait_for
 
-from tools.records import RunRecord
+from tools.records.run_record import RunRecord
 
 ROWS = "Object.fromEntries([...document.querySelectorAll('#agents tr.goal')]" \
        ".map(r => [r.dataset.id, r.dataset.status]))"

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from agents.lang import Engine
 from tools.cli import cli
-from tools.lang_commands import read_state
+from tools.commands.lang import read_state
 
 from .conftest import BLOCKS, figure3_program
 from .test_blocks import act, percepts

@@ -14,7 +14,7 @@ import pytest
 from agents.processes import goal_file
 from agents.processes.goal_file import backup_path, open_store, read_store, save
 from agents.processes.goal_store import GoalStore, GoalStoreError
-from tools import summary
+from tools.records import summary
 
 
 def accept_all(agent: str, goal: str, priority: int) -> str:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from rich.console import Console
 
 from bus.messages import Actions, Beliefs, Envelope, Percepts, ProcessStats, WorldState
-from tools.inspect import Model, render
+from tools.commands.inspect import Model, render
 
 RUN = "r1"
 

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from tools.run_plan import Plan, process_specs, select
-from tools.scenario_check import check_scenario
+from tools.commands.scenario_check import check_scenario
+from tools.launching.run_plan import Plan, process_specs, select
 from world.run_scenario import ScenarioError, load_scenario, scenario_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -34,7 +34,7 @@ def test_the_mechanism_is_read_and_checked():
 
 
 def specs_of(scenario, folder: Path) -> dict:
-    """The processes `teleo launch` would start for `scenario` (tools/run_plan.py)."""
+    """The processes `teleo launch` would start for `scenario` (tools/launching/run_plan.py)."""
     plan = Plan(scenario, "r", folder, 10, 1, "lockstep", select(scenario, None),
                 endpoint="tcp/127.0.0.1:7447")
     return {s.name: s for s in process_specs(plan)}

@@ -1,4 +1,4 @@
-"""The run registry (tools/runfile.py): one file per run, readable by its owner only, found
+"""The run registry (tools/runs/runfile.py): one file per run, readable by its owner only, found
 the same way by every tool from any directory; a second run never takes over the first's
 file; a run whose launcher has exited is told apart, and its entry removed (`teleo ps
 --prune`, the next launch) once nothing of it is left, or stopped with `teleo stop --all`."""
@@ -14,8 +14,8 @@ from dataclasses import replace
 import pytest
 from click.testing import CliRunner
 
-from tools import runfile
 from tools.cli import cli
+from tools.runs import runfile
 
 
 @pytest.fixture

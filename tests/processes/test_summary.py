@@ -11,7 +11,7 @@ import click
 from click.testing import CliRunner
 
 from bus.cycle import CycleReport
-from tools import summary
+from tools.records import summary
 from world.domain import get_domain
 from world.recorder import Recorder
 
@@ -123,7 +123,7 @@ def _echo(doc: str) -> None:
 
 def test_the_summary_gives_each_process_share_of_the_cycle():
     """issue 13: the launch summary says where a lockstep cycle's time goes."""
-    from tools.summary import cycle_time
+    from tools.records.summary import cycle_time
 
     timing = {"cycle": 800.0, "world": 200.0,
               "stages": {"ME.executive": 300.0, "ME.perception": 100.0, "goals": 50.0}}

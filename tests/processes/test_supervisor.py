@@ -6,7 +6,7 @@ import os
 import signal
 import sys
 
-from tools.supervisor import ProcSpec, Supervisor, wait_until
+from tools.launching.supervisor import ProcSpec, Supervisor, wait_until
 
 CRASH = "import sys; print('started'); sys.exit(3)"
 # Writes its name to a shared file when told to stop, so the stop order can be checked.

@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from tools.check_commands import is_scenario
 from tools.cli import cli
-from tools.scenario_check import load_checked
+from tools.commands.check import is_scenario
+from tools.commands.scenario_check import load_checked
 from world.run_scenario import ScenarioError, load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]

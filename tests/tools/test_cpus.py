@@ -1,5 +1,5 @@
-"""How many CPUs `--agents-per-process auto` spreads the agents over (tools/cpus.py): the CPUs
-the launch may run on, fewer when its control group caps its CPU time, as a container's
+"""How many CPUs `--agents-per-process auto` spreads the agents over (tools/launching/cpus.py): the
+CPUs the launch may run on, fewer when its control group caps its CPU time, as a container's
 `--cpus 2` or a Kubernetes CPU limit does (cgroup v2 and v1 layouts, written into a folder)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import os
 
 import pytest
 
-from tools.cpus import cpus_of, quota_cores, usable_cores
+from tools.launching.cpus import cpus_of, quota_cores, usable_cores
 
 
 def cgroup_v2(tmp_path, cpu_max: str):

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from bus import keys
 from bus.messages import Envelope, Intention, WorldState
 from bus.record import message_record
-from tools.records import RECORD_FILE, RecordWriter, RunRecord, history_text, reconcile
+from tools.records.run_record import RECORD_FILE, RecordWriter, RunRecord, history_text, reconcile
 
 STATUSES = ("pending", "active", "suspended", "satisfied")
 

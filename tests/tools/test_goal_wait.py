@@ -1,4 +1,4 @@
-"""What `teleo goal post --wait` says about a goal (tools/goal_wait.py), fed with the
+"""What `teleo goal post --wait` says about a goal (tools/commands/goal_wait.py), fed with the
 intentions and goal lists of real runs recorded by `teleo simulate`: a delivery followed to
 achieved with its skill path, a goal the problem solver gives up (failed, with its reason), the
 solver's and the planner's steps, and a goal withdrawn by a scripted cancel. The live command
@@ -11,11 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from tools.goal_wait import Follower, doing
-from tools.recorder import SimRecorder
-from tools.records import RecordWriter, RunRecord
-from tools.scenario_check import load_checked
-from tools.simulate import simulate
+from tools.commands.goal_wait import Follower, doing
+from tools.commands.scenario_check import load_checked
+from tools.commands.simulate import simulate
+from tools.records.recorder import SimRecorder
+from tools.records.run_record import RecordWriter, RunRecord
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "tests" / "e2e" / "fixtures"

@@ -15,8 +15,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tools.cli import cli
-from tools.records import RunRecord
-from tools.scenario_check import load_checked
+from tools.commands.scenario_check import load_checked
+from tools.records.run_record import RunRecord
 from world.overrides import (
     STRING_FIELDS,
     Override,

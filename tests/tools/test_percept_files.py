@@ -13,8 +13,8 @@ from click.testing import CliRunner
 from bus import keys
 from bus.codec import encode
 from bus.messages import Beliefs, Envelope, Percepts
-from tools.bus_commands import _json_line
 from tools.cli import cli
+from tools.commands.bus import _json_line
 
 ROOT = Path(__file__).resolve().parents[2]
 BLOCKS = ROOT / "programs" / "blocks.tlp"

@@ -1,4 +1,4 @@
-"""How `teleo replay` plays a record (tools/player.py): messages grouped by cycle in the
+"""How `teleo replay` plays a record (tools/records/player.py): messages grouped by cycle in the
 record's order, from `--start CYCLE`, again with `--loop`, and, with keys, paused, stepped one
 cycle at a time and resumed. The keys here are a scripted sequence of presses (what a
 terminal would deliver); tests/e2e/test_replay_alone.py presses them on a real terminal."""
@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from tools.player import PAUSE, STEP, NoKeys, Player, cycles_of, from_cycle
+from tools.records.player import PAUSE, STEP, NoKeys, Player, cycles_of, from_cycle
 
 CYCLE_RUNS = st.lists(st.tuples(st.integers(min_value=-1, max_value=40),
                                 st.integers(min_value=1, max_value=5)), max_size=30)

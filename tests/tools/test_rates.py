@@ -1,4 +1,4 @@
-"""The figures of `teleo hz` and `teleo echo --list` (tools/rates.py) on arrivals made up
+"""The figures of `teleo hz` and `teleo echo --list` (tools/runs/rates.py) on arrivals made up
 here: the rate is the messages after the first over the time they took, the period's min, max
 and standard deviation are those of the gaps, bytes per second what came after the first over
 the same time, and only the last `window` messages count."""
@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from tools.rates import Meter, hz_line, list_table
+from tools.runs.rates import Meter, hz_line, list_table
 
 GAPS = st.lists(st.integers(min_value=1, max_value=10**9), min_size=1, max_size=200)
 SIZES = st.integers(min_value=0, max_value=10**6)

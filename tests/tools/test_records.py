@@ -13,8 +13,8 @@ from bus import keys
 from bus.messages import Envelope, GoalList, Intention, Percepts, WorldEvent, WorldState
 from bus.record import message_record
 from tools.cli import cli
-from tools.record_coverage import coverage
-from tools.records import RECORD_FILE, RecordError, RecordWriter, RunRecord, locate
+from tools.records.record_coverage import coverage
+from tools.records.run_record import RECORD_FILE, RecordError, RecordWriter, RunRecord, locate
 
 ROOT = Path(__file__).resolve().parents[2]
 FIGURE3 = ROOT / "scenarios" / "blocks_figure3.toml"
@@ -156,9 +156,9 @@ def test_simulate_times_the_stages_apart_yet_decides_as_engine_cycle(tmp_path) -
     """simulate splits Engine.cycle into infer and decide to time them; with an SCS body that
     asserts facts into the world model (programs/errands.tlp) the actions must stay the same."""
     from agents.lang import Engine, load_program
-    from tools.recorder import SimRecorder
-    from tools.scenario_check import load_checked
-    from tools.simulate import simulate
+    from tools.commands.scenario_check import load_checked
+    from tools.commands.simulate import simulate
+    from tools.records.recorder import SimRecorder
     from world.domain import get_domain
 
     scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
@@ -244,7 +244,7 @@ def test_a_record_cut_at_any_byte_reads_as_far_as_it_goes(tmp_path) -> None:
 def test_explain_of_a_decision_that_does_not_read_says_so_in_one_line(tmp_path) -> None:
     """A record is only shape-checked: a decision whose parts are of the wrong kind (here
     `parallel: 3`) made `teleo explain` print a traceback (found by the view's own checks)."""
-    from tools.records import RecordWriter
+    from tools.records.run_record import RecordWriter
 
     path = tmp_path / "bad.mcap"
     env = {"v": 1, "run": "bad-1", "cycle": 0, "sender": "ME.executive", "sent_ns": 0}
@@ -265,10 +265,10 @@ def test_a_simulate_record_carries_the_agent_memory_as_a_launch_does(tmp_path) -
     no memory (the view's program check had to take the world model from the decision);
     now the actions of t send the memory and the world state and percepts of t + 1 hand it
     back, as in a launch (docs/bus.md, "Agent memory")."""
-    from tools.recorder import SimRecorder
-    from tools.records import RecordWriter, RunRecord
-    from tools.scenario_check import load_checked
-    from tools.simulate import simulate
+    from tools.commands.scenario_check import load_checked
+    from tools.commands.simulate import simulate
+    from tools.records.recorder import SimRecorder
+    from tools.records.run_record import RecordWriter, RunRecord
 
     scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
     path = tmp_path / "errands.mcap"

@@ -1,6 +1,6 @@
-"""What `teleo launch` starts and how its processes meet (tools/run_plan.py): a few processes
-are peers, many are clients of the router (a full mesh of 50 peers ran at 4 cycles/s on two
-cores, one of 98 never started), and start-up gets more time the more processes there are."""
+"""What `teleo launch` starts and how its processes meet (tools/launching/run_plan.py): a few
+processes are peers, many are clients of the router (a full mesh of 50 peers ran at 4 cycles/s on
+two cores, one of 98 never started), and start-up gets more time the more processes there are."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from tools.run_plan import (
+from tools.launching.run_plan import (
     PEER_MESH_LIMIT,
     Plan,
     per_core,

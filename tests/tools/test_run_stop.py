@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from tools.run_stop import drain_progress, trace_cycles
+from tools.launching.run_stop import drain_progress, trace_cycles
 
 
 def test_a_long_drain_says_how_far_it_has_got(tmp_path, capsys) -> None:

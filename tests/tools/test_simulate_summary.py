@@ -90,7 +90,7 @@ def test_a_scripted_event_the_world_refuses_fails_the_run(tmp_path, monkeypatch)
 
 def test_a_run_stops_at_the_end_of_the_first_cycle_its_until_accepts():
     """simulate(until=...) ends a run once its work is done (bench/office.py)."""
-    from tools.simulate import simulate
+    from tools.commands.simulate import simulate
     from world.run_scenario import load_scenario
 
     scenario = load_scenario(ROOT / "scenarios" / "office_figure6.toml")
@@ -111,7 +111,7 @@ def test_the_summary_is_the_same_with_or_without_a_record(tmp_path, monkeypatch)
     cycles: the histories told in the loop are those the record gives."""
     import random
 
-    from tools import records
+    from tools.records import run_record as records
 
     monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
     rng = random.Random(11)

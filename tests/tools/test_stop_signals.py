@@ -1,5 +1,5 @@
-"""The launcher's three signal phases (tools/stop_signals.py), with real signals sent to this
-process: while the command starts a stop signal is kept, not lost and not raised inside an
+"""The launcher's three signal phases (tools/launching/stop_signals.py), with real signals sent to
+this process: while the command starts a stop signal is kept, not lost and not raised inside an
 import; while the run starts or runs it raises KeyboardInterrupt (one kept earlier at once);
 while the run stops it only calls the hook, so a second Ctrl-C never breaks off the stop."""
 
@@ -10,7 +10,7 @@ import signal
 
 import pytest
 
-from tools import stop_signals
+from tools.launching import stop_signals
 
 
 @pytest.fixture(autouse=True)

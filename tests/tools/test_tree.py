@@ -1,4 +1,4 @@
-"""The decision tree (tools/tree.py) against golden files: each input is a recorded decision
+"""The decision tree (tools/records/tree.py) against golden files: each input is a recorded decision
 (Decision.to_dict, as the intention channel carries it) and the expected ascii rendering and
 JSON nodes beside it. Regenerate after an intended change with TELEO_UPDATE_GOLDEN=1 and
 read the diff.
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from tools.tree import UNICODE, decision_tree, fold, render_text, to_json
+from tools.records.tree import UNICODE, decision_tree, fold, render_text, to_json
 
 GOLDEN = Path(__file__).with_name("golden")
 CASES = sorted(p.stem for p in GOLDEN.glob("*.json") if p.suffixes == [".json"])

@@ -14,11 +14,11 @@ from pathlib import Path
 import pytest
 
 from bus import keys
-from tools.recorder import SimRecorder
-from tools.records import RecordWriter, RunRecord
-from tools.scenario_check import load_checked
-from tools.simulate import simulate
-from tools.tree import decision_tree, to_json
+from tools.commands.scenario_check import load_checked
+from tools.commands.simulate import simulate
+from tools.records.recorder import SimRecorder
+from tools.records.run_record import RecordWriter, RunRecord
+from tools.records.tree import decision_tree, to_json
 from tools.view import scene
 from tools.view.feeds import load_file
 from tools.view.model import ViewModel

@@ -11,9 +11,9 @@ from click.testing import CliRunner
 from PIL import Image
 
 from tools.cli import cli
-from tools.scenario_check import load_checked
-from tools.simulate import simulate
-from tools.world_commands import load_snapshots
+from tools.commands.scenario_check import load_checked
+from tools.commands.simulate import simulate
+from tools.commands.world import load_snapshots
 from world.domain import get_domain
 from world.errors import WorldError
 from world.pictures import nice_length, picture_format

@@ -8,7 +8,7 @@ from pathlib import Path
 from click.testing import CliRunner
 from PIL import Image
 
-from tools.world_commands import render
+from tools.commands.world import render
 from world.driving.config import WorldConfig
 from world.driving.simulation import Simulation
 
@@ -73,7 +73,7 @@ def test_render_a_run_record(tmp_path: Path) -> None:
     from bus import keys
     from bus.messages import Envelope, WorldState
     from bus.record import message_record
-    from tools.records import RecordWriter
+    from tools.records.run_record import RecordWriter
 
     sim = Simulation(WorldConfig(pedestrians=2, traffic=1), seed=1, agents=["ME"])
     with RecordWriter(tmp_path / "run.mcap", "r1") as rec:

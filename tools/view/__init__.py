@@ -35,7 +35,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
          bus_config: BusConfig) -> None:
     """Serve a web page showing the running launch live (or RECORD: a run folder, run id or
     .mcap file): the world, each agent's goals and decision tree, processes and rates."""
-    from tools.records import RecordError, locate
+    from tools.records.run_record import RecordError, locate
     from tools.view.feeds import BusFeed, load_file, scenario_of
     from tools.view.model import ViewModel
     from tools.view.server import ViewServer
@@ -77,7 +77,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
 def _target(bus_config: BusConfig, run_id: str | None):
     """The bus to follow: the launch of run `run_id` (or the only one); a run that is no
     launch's (one `teleo replay` plays) on the only running launch's router."""
-    from tools.target import TargetError, connect_given, find_target
+    from tools.runs.target import TargetError, connect_given, find_target
 
     try:
         return find_target(bus_config, run=run_id)

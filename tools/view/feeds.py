@@ -14,9 +14,9 @@ from bus.errors import BusError, CodecError
 from bus.node import open_node
 from bus.presence import Presence
 from bus.record import to_record
-from tools import runfile
-from tools.records import RUN_META, RunRecord
-from tools.target import Target
+from tools.records.run_record import RUN_META, RunRecord
+from tools.runs import runfile
+from tools.runs.target import Target
 from tools.view.model import MALFORMED, ViewModel
 
 log = logging.getLogger(__name__)

@@ -26,8 +26,8 @@ import orjson
 
 from agents.lang import LangError
 from bus import keys
-from tools.records import GoalHistory
-from tools.tree import Node, decision_tree, to_json
+from tools.records.run_record import GoalHistory
+from tools.records.tree import Node, decision_tree, to_json
 from tools.view import scene
 from tools.view.beliefs import listing, why
 from tools.view.programs import Programs

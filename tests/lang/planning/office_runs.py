@@ -1,5 +1,5 @@
 """Helpers for the planner's office tests: a scenario of seed 003 run in one process
-(tools/simulate.py: the pymunk office world, its perception and the engine with the ROGUE
+(tools/commands/simulate.py: the pymunk office world, its perception and the engine with the ROGUE
 planner), read back as the planner's state, the actions sent and the world's events."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 from itertools import combinations
 from pathlib import Path
 
-from tools.simulate import SimRun, simulate
+from tools.commands.simulate import SimRun, simulate
 from world.run_scenario import ScriptedEvent, load_scenario
 
 ROOT = Path(__file__).resolve().parents[3]

@@ -192,7 +192,7 @@ def test_the_memory_survives_a_restart_and_reads_back():
 def figure7_prefer_only(tmp_path_factory):
     from dataclasses import replace
 
-    from tools.simulate import simulate
+    from tools.commands.simulate import simulate
     from world.run_scenario import load_scenario
     program = prefer_only(tmp_path_factory.mktemp("fig7"))
     scenario = load_scenario(ROOT / "scenarios" / "office_figure7.toml")

@@ -1,4 +1,4 @@
-"""Seed 003's figures in the office world, in one process (tools/simulate.py, the real
+"""Seed 003's figures in the office world, in one process (tools/commands/simulate.py, the real
 pymunk world): Figure 6 (a request merged with the rest of a plan under way), Figure 5 (both
 requests at once: the order of least travel), Table 2 (a compatible request interleaved, an
 incompatible one waiting), Figure 7 (the closest conference room first, then backtracking on

@@ -255,7 +255,8 @@ def test_a_step_that_has_just_ended_ends_its_alternative_though_the_condition_fa
 
 
 def test_a_program_lists_the_actions_its_bodies_can_send():
-    # what `teleo check SCENARIO` holds against the world's actions (tools/scenario_check.py)
+    # what `teleo check SCENARIO` holds against the world's actions
+    # (tools/commands/scenario_check.py)
     engine = body_program("(do (atomic (*a 1) (assert (mark ?x))) (do-any (*b) (*c ?x)))")
     assert [str(a) for a in engine.program.actions()] == ["(*a 1)", "(*b)", "(*c ?x)"]
 

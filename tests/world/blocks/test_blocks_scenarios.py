@@ -1,5 +1,5 @@
-"""The blocks scenarios run through tools.simulate.simulate, the same pure pieces the processes
-run: Figure 3 of seed 000 on programs/blocks.tlp, and a random tower problem."""
+"""The blocks scenarios run through tools.commands.simulate.simulate, the same pure pieces the
+processes run: Figure 3 of seed 000 on programs/blocks.tlp, and a random tower problem."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from agents.lang import Engine, load_program
-from tools.scenario_check import load_checked
-from tools.simulate import simulate
+from tools.commands.scenario_check import load_checked
+from tools.commands.simulate import simulate
 from world.blocks import perceive
 
 ROOT = Path(__file__).resolve().parents[3]

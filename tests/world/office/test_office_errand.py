@@ -1,12 +1,12 @@
 """The primitive-skill errand program (programs/office_errand.tlp) in the office world, run
-in one process by tools.simulate: go to the mail room, acquire the mail, deliver it."""
+in one process by tools.commands.simulate: go to the mail room, acquire the mail, deliver it."""
 
 from __future__ import annotations
 
 import tomllib
 from pathlib import Path
 
-from tools.simulate import simulate
+from tools.commands.simulate import simulate
 from world.run_scenario import load_scenario, scenario_from_dict
 
 ROOT = Path(__file__).resolve().parents[3]

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from tools.scenario_check import load_checked
-from tools.simulate import simulate
+from tools.commands.scenario_check import load_checked
+from tools.commands.simulate import simulate
 from world.office.config import load_office_config
 from world.run_scenario import ScenarioError, scenario_from_dict
 
@@ -38,7 +38,7 @@ def test_a_scripted_event_of_an_unknown_kind_is_refused_before_the_run(tmp_path)
     doc = {"world": {"domain": "office"},
            "agents": [{"id": "ME", "program": str(ROOT / "programs" / "office_errand.tlp")}],
            "events": [{"at_cycle": 3, "kind": "earthquake"}]}
-    from tools.scenario_check import check_scenario
+    from tools.commands.scenario_check import check_scenario
     with pytest.raises(ScenarioError, match="kind: expected one of .*'false-success'"):
         check_scenario(scenario_from_dict(doc, tmp_path / "x.toml"))
 
@@ -46,6 +46,6 @@ def test_a_scripted_event_of_an_unknown_kind_is_refused_before_the_run(tmp_path)
 def test_a_robot_start_for_someone_who_is_not_an_agent_is_refused(tmp_path):
     doc = {"world": {"domain": "office", "robots": [{"agent": "R2", "room": "r-5303"}]},
            "agents": [{"id": "ME", "program": str(ROOT / "programs" / "office_errand.tlp")}]}
-    from tools.scenario_check import check_scenario
+    from tools.commands.scenario_check import check_scenario
     with pytest.raises(ScenarioError, match="robots: 'R2' is not an agent of this run"):
         check_scenario(scenario_from_dict(doc, tmp_path / "x.toml"))

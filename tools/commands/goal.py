@@ -1,11 +1,11 @@
 """`teleo goal post|list|cancel|priority`: talk to the goal-entry process of a running launch.
 
-The launch is found through the run registry (tools/runfile.py; `--run RUN` when several
+The launch is found through the run registry (tools/runs/runfile.py; `--run RUN` when several
 run), so no bus flags are needed.
 Each command is one query on teleo/<run>/agent/<agent>/goals (GoalRequest -> GoalReply);
 the goal-entry process validates a post against the agent's program and answers with the
 reason when it refuses it. A posted goal takes effect at the next cycle the goal-entry
-process publishes. `post --wait` then follows the goal to its end (tools/goal_wait.py).
+process publishes. `post --wait` then follows the goal to its end (tools/commands/goal_wait.py).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 import click
 
 from agents.processes.goal_store import MAX_PRIORITY
-from tools import runfile
+from tools.runs import runfile
 
 if TYPE_CHECKING:
     from bus.node import Node
@@ -147,7 +147,7 @@ def post(text: str, priority: int, agent: str | None, force: bool, wait: bool,
     --wait works as ros2 action send_goal --feedback: after the verdict it prints a line at
     each status change of the goal (with the skill path, the problem solver's or the
     planner's current step) until the goal is achieved or fails."""
-    from tools.goal_wait import follow, subscribe
+    from tools.commands.goal_wait import follow, subscribe
 
     for given, name in ((timeout is not None, "--timeout"),
                         (cancel_on_interrupt, "--cancel-on-interrupt")):

@@ -1,4 +1,5 @@
-"""`teleo explain RUN`: why an agent did what it did, from a run record (tools/records.py).
+"""`teleo explain RUN`: why an agent did what it did, from a run record
+(tools/records/run_record.py).
 
     teleo explain RUN [--agent A] [--cycle N]       the decision of cycle N as a tree
     teleo explain RUN --goal g2                     when g2 became active, suspended, achieved
@@ -15,8 +16,8 @@ from typing import Any
 
 import click
 
-from tools.records import GoalHistory, RecordError, RunRecord, locate
-from tools.tree import decision_tree, fold, render_text, to_json
+from tools.records.run_record import GoalHistory, RecordError, RunRecord, locate
+from tools.records.tree import decision_tree, fold, render_text, to_json
 
 PROGRAM_GOAL = re.compile(r"p\d+")  # the engine's ids of program goals (Engine.initial_state)
 
@@ -60,7 +61,7 @@ def _of_cycle(rec: RunRecord, kind: str, agent: str, cycle: int | None) -> tuple
 def goal_history(rec: RunRecord, agent: str, goal_id: str) -> list[dict[str, Any]]:
     """Every status change of one goal, from the intentions (with the engine's notes) and the
     goal lists (a cancellation); a change seen only after a gap in the record has "after"
-    (tools/records.py GoalHistory)."""
+    (tools/records/run_record.py GoalHistory)."""
     history, states = GoalHistory(), rec.state_cycles()
     for _, record in rec.kinds_of(("intention", "goal-list"), agent):
         history.feed(record, states.__contains__)

@@ -32,8 +32,8 @@ import click
 
 from bus import keys
 from bus.messages import GoalList, Intention
-from tools import runfile
-from tools.records import USER_STATUS
+from tools.records.run_record import USER_STATUS
+from tools.runs import runfile
 
 EXIT_FAILED, EXIT_ENDED, EXIT_TIMEOUT = 1, 3, 124
 ALIVE_S = 0.5  # [s] between looks at the launcher (has the run ended?)

@@ -1,4 +1,4 @@
-"""What each agent's mechanisms did, for the run summary (tools/summary.py): the skills its
+"""What each agent's mechanisms did, for the run summary (tools/records/summary.py): the skills its
 problem solver learned (`learned-AGENT.tlp`), what its SCS bodies did (its last memory, as
 the world's trace recorded it), and the ROGUE planner's head-plan and travel figures (its
 executive's state file `state-AGENT.json`).

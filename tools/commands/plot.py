@@ -19,7 +19,7 @@ from typing import Any
 import click
 
 from tools.paths import OutputPath, suffix_check
-from tools.records import RecordError, RunRecord, locate
+from tools.records.run_record import RecordError, RunRecord, locate
 
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 """What a plot is written as (matplotlib's own backends), by the file's suffix."""

@@ -2,8 +2,8 @@
 it is, without running anything.
 
 A scenario (a `.toml` file, or text that starts as TOML does: a `[table]` header or a
-`key = value` line) is checked fully by tools/scenario_check.py: its world table against its
-domain, every agent's program, every scripted goal against its agent's program and the
+`key = value` line) is checked fully by tools/commands/scenario_check.py: its world table against
+its domain, every agent's program, every scripted goal against its agent's program and the
 priority rule, every scripted event's kind. A file of learned skills is checked against the
 program named before it. Anything else is read as a program. `--json` prints one object
 for scripts: {"ok": bool, "files": [{"file", "kind", "ok", "errors", "warnings", ...}]}.
@@ -21,9 +21,9 @@ import click
 from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
 from agents.lang.registry import is_learned_text, program_named, read_learned
-from tools.lang_commands import include_option
-from tools.scenario_check import override_option
-from tools.tree import shown_path
+from tools.commands.lang import include_option
+from tools.commands.scenario_check import override_option
+from tools.records.tree import shown_path
 
 # The first line that is not blank nor a comment, as TOML starts: [table], [[array]], key =
 _TOML_START = re.compile(r"\s*(\[\[?\s*[A-Za-z0-9_\"'.-]+\s*\]\]?|[A-Za-z0-9_\"'.-]+\s*=)")
@@ -94,7 +94,7 @@ def _its_program(path: str, text: str, includes: tuple[str, ...]) -> Any:
 
 
 def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
-    from tools.scenario_check import load_checked
+    from tools.commands.scenario_check import load_checked
     from world.run_scenario import ScenarioError
 
     result = {"file": path, "kind": "scenario", "ok": False, "warnings": [],

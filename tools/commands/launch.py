@@ -3,16 +3,16 @@
 Order of a launch: a router (bus.router.spawn_router), then the goal-entry process, each
 agent's perception, inference and executive, and the world (the clock, which waits for all
 the others). The launcher waits until every process has announced itself (liveliness), shows
-their status, registers the run (tools/runfile.py), restarts any process that dies (the
+their status, registers the run (tools/runs/runfile.py), restarts any process that dies (the
 router on the same endpoint, the world with --resume: docs/faults.md) per its respawn policy,
 and ends the run when the world finishes, when a process is left down (its restarts used up),
 or on Ctrl-C, SIGTERM or SIGHUP; it then stops every process within about two seconds,
-unregisters the run and prints the summary (tools/summary.py), whose status is its exit code.
-If the launcher itself is killed, every process of the run follows it (bus/lifeline.py).
+unregisters the run and prints the summary (tools/records/summary.py), whose status is its exit
+code. If the launcher itself is killed, every process of the run follows it (bus/lifeline.py).
 
 `--secure` (or `[run] secure = true`) runs the bus with TLS, a user and password per process
 and an access-control list (bus/security.py); `--only` and `--join` spread one run over
-several hosts (tools/run_plan.py, docs/faults.md "Across hosts").
+several hosts (tools/launching/run_plan.py, docs/faults.md "Across hosts").
 """
 
 from __future__ import annotations
@@ -30,11 +30,11 @@ from pathlib import Path
 
 import click
 
-from tools import runfile, stop_signals, summary
-from tools.cpus import usable_cores
-from tools.paths import OutputPath, describe_os_error, picture_check
-from tools.plot import plot_check
-from tools.run_plan import (
+from tools.commands.plot import plot_check
+from tools.commands.scenario_check import load_checked, override_option
+from tools.launching import stop_signals
+from tools.launching.cpus import usable_cores
+from tools.launching.run_plan import (
     Plan,
     PlanError,
     agent_processes,
@@ -45,9 +45,11 @@ from tools.run_plan import (
     uses_clients,
     with_bus_mode,
 )
-from tools.run_secrets import RunSecrets, host_of, make_secrets
-from tools.scenario_check import load_checked, override_option
-from tools.supervision import Outcome, supervise
+from tools.launching.run_secrets import RunSecrets, host_of, make_secrets
+from tools.launching.supervision import Outcome, supervise
+from tools.paths import OutputPath, describe_os_error, picture_check
+from tools.records import summary
+from tools.runs import runfile
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError
 
@@ -125,7 +127,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     if plot_file and no_record:
         raise click.UsageError("--plot draws the run record: leave out --no-record")
     try:
-        stop_signals.running()  # SIGINT, SIGTERM, SIGHUP: stop in order (tools/stop_signals.py)
+        # SIGINT, SIGTERM, SIGHUP: stop in order (tools/launching/stop_signals.py)
+        stop_signals.running()
         scenario, _ = load_checked(scenario_file, overrides)
         if learned:
             check_learned(scenario, learned)
@@ -210,7 +213,7 @@ def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str |
         click.echo(f"picture written to {render_file} ({frames} frame(s))" if frames
                    else "no snapshots saved: nothing rendered")
     if plot_file:
-        from tools.plot import plot_command_output
+        from tools.commands.plot import plot_command_output
 
         click.echo(plot_command_output(run_dir, Path(plot_file)))
     return False
@@ -271,7 +274,7 @@ def _reach_router(plan: Plan) -> None:
     before anything is started or written: no run folder, no process left behind."""
     from bus.errors import BusError
     from bus.node import open_node
-    from tools.run_plan import bus_config
+    from tools.launching.run_plan import bus_config
 
     try:
         with open_node(bus_config(plan, "launch"), plan.run, f"join-{os.getpid()}"):

@@ -4,7 +4,7 @@ message kinds and publishers seen) and `Figures` is what it says: rate [1/s], th
 min, max and standard deviation [s], bytes per second and the mean message size [bytes].
 
 Pure bookkeeping, fed with arrival times [ns] by `teleo hz` and `teleo echo --list`
-(tools/bus_commands.py), so it is tested on made-up arrivals. Times are when messages
+(tools/commands/bus.py), so it is tested on made-up arrivals. Times are when messages
 arrived here, on one clock, as ros2 measures them: in lockstep the world's time is not the
 wall clock, and a rate of cycles is what a user watching the run wants.
 """

@@ -29,7 +29,7 @@ from rich.live import Live
 from rich.table import Table
 from rich.text import Text
 
-from tools import runfile
+from tools.runs import runfile
 
 WINDOW_S = 5.0  # [s] over which rates are computed
 

@@ -4,7 +4,7 @@ record (agents left uncontrolled, late, dead and stalled stages, world restarts)
 final totals when it wrote them, the goal store, and the launcher's own record (restarts per
 process, processes left down, why the run ended). The files are read as they are, so the
 figures stay true when the world was killed. What each agent's mechanisms did (learned
-skills, SCS bodies, the ROGUE planner) is told by tools/summary_agents.py.
+skills, SCS bodies, the ROGUE planner) is told by tools/records/summary_agents.py.
 
 The run's status (docs/faults.md, "What counts as a failed run"):
 - failed (exit 1): an agent was uncontrolled for at least one cycle (its actions did not
@@ -30,9 +30,9 @@ from typing import Any
 
 import click
 
-from tools import records
-from tools.record_coverage import coverage, ranges_text
-from tools.summary_agents import agent_sections, echo_agents, read_json_file
+from tools.records import run_record as records
+from tools.records.record_coverage import coverage, ranges_text
+from tools.records.summary_agents import agent_sections, echo_agents, read_json_file
 from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, complete_lines_bytes, read_jsonl
 
 log = logging.getLogger(__name__)
@@ -61,7 +61,8 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     cycles; `left_down`: processes the launcher gave up on; `ended`: the launcher's reason
     for ending the run early; `requested_stop`: a user asked for the stop; `scripted`: the
     scenario's events (ScriptedEvent: at_cycle, event); `recorder`: the launch recorder's
-    report (tools/recorder.py BusRecorder.report: a write that failed, a drain cut short)."""
+    report (tools/records/recorder.py BusRecorder.report: a write that failed, a drain cut
+    short)."""
     from world.domain import get_domain
 
     spec = get_domain(domain)

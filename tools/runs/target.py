@@ -1,5 +1,5 @@
 """Which bus an echo, record, replay, hz or view command talks to, said out loud: the running
-launch's router (found in the run registry as every tool finds it, tools/runfile.py: the
+launch's router (found in the run registry as every tool finds it, tools/runs/runfile.py: the
 only running launch, or the one named with --run; with the operator's credentials when the
 run is secured), or a router named with --connect (or $TELEO_ZENOH_CONNECT), checked by
 opening a client session to it, so a command never publishes into nothing or waits silently
@@ -20,7 +20,7 @@ from click.core import ParameterSource
 from bus import keys
 from bus.config import ENV_CONNECT, BusConfig, Mode
 from bus.errors import BusError
-from tools import runfile
+from tools.runs import runfile
 
 
 class TargetError(click.ClickException):

@@ -1,8 +1,8 @@
-"""How a launch stops its run (tools/supervision.py), in order and quickly, whatever point its
-start had reached: the world first (so that no cycle runs while a stage goes), then every
+"""How a launch stops its run (tools/launching/supervision.py), in order and quickly, whatever point
+its start had reached: the world first (so that no cycle runs while a stage goes), then every
 other process, the record's last messages, the router, the launcher's own session and its
-registry entry. A second stop signal never breaks this off (tools/stop_signals.py); it only
-cuts the record's drain short. Each part's time goes in the run's journal, supervision.jsonl.
+registry entry. A second stop signal never breaks this off (tools/launching/stop_signals.py); it
+only cuts the record's drain short. Each part's time goes in the run's journal, supervision.jsonl.
 """
 
 from __future__ import annotations
@@ -18,9 +18,9 @@ from typing import Any
 
 import click
 
-from tools import runfile
-from tools.run_plan import Plan
-from tools.supervisor import Supervisor
+from tools.launching.run_plan import Plan
+from tools.launching.supervisor import Supervisor
+from tools.runs import runfile
 from world.recorder import TRACE
 
 log = logging.getLogger(__name__)
@@ -69,7 +69,7 @@ class Held:
     any moment of it): the registry entry, the recorder, the launcher's own bus session."""
 
     info: runfile.RunInfo | None = None
-    recorder: Any = None  # tools.recorder.BusRecorder
+    recorder: Any = None  # tools.records.recorder.BusRecorder
     session: ExitStack = field(default_factory=ExitStack)
 
     def cut_short(self) -> None:

@@ -1,11 +1,11 @@
 """`teleo router | echo | record | replay`: the bus subcommands (thin wrappers over bus/).
 
-echo, record and replay reach the running launch as every tool does (tools/target.py over
-tools/runfile.py: the only running launch, or `--run RUN`) and say so in one short line on
+echo, record and replay reach the running launch as every tool does (tools/runs/target.py over
+tools/runs/runfile.py: the only running launch, or `--run RUN`) and say so in one short line on
 stderr, `run R (router EP): ...` (none with --quiet); an explicit `--connect` (or
 TELEO_ZENOH_CONNECT) names a router instead. `teleo replay` with no launch running plays on a
-router of its own (tools/replayer.py); `echo --list` and `teleo hz` are in
-tools/rate_commands.py.
+router of its own (tools/records/replayer.py); `echo --list` and `teleo hz` are in
+tools/commands/rate.py.
 """
 
 from __future__ import annotations
@@ -25,8 +25,8 @@ from bus.errors import BusError, CodecError
 from bus.node import open_node
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
-from tools import runfile
 from tools.paths import OutputPath, suffix_check
+from tools.runs import runfile
 
 _SECONDS = click.FloatRange(min=0, min_open=True)
 """A watch of S > 0 seconds (--seconds of echo and record)."""
@@ -78,8 +78,8 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
 
     --list prints every key seen on KEYEXPR instead, with its message kind, rate, mean
     size and publishers (teleo hz KEYEXPR follows one key's rate)."""
-    from tools.rate_commands import list_keys
-    from tools.target import reach_keys, run_of
+    from tools.commands.rate import list_keys
+    from tools.runs.target import reach_keys, run_of
 
     if as_list:
         for given, name in ((text, "--filter"), (count, "--count")):
@@ -132,8 +132,8 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
 
     FILE ends in .mcap, in a folder that exists. Without --connect it records the running
     launch; with --connect, the run given by --run on that router."""
-    from tools.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
-    from tools.target import find_target
+    from tools.records.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
+    from tools.runs.target import find_target
 
     if run_id is not None:
         try:
@@ -193,7 +193,7 @@ def replay(file: str, rate: float, start: int | None, loop: bool, paused: bool, 
     router of its own on loopback, with its world-time pacing (as ros2 bag play).
 
     On a terminal, space pauses and resumes and s (or the right arrow) plays one cycle."""
-    from tools.replayer import replay_record
+    from tools.records.replayer import replay_record
 
     replay_record(file, rate, start, loop, paused, wait_s, onto, bus_config)
 

@@ -1,7 +1,7 @@
 """`teleo hz KEYEXPR` and `teleo echo --list`: how often messages come, as `ros2 topic hz`,
-`ros2 topic bw` and `ros2 topic list -v` say it (tools/rates.py keeps the figures).
+`ros2 topic bw` and `ros2 topic list -v` say it (tools/runs/rates.py keeps the figures).
 
-Both reach the running launch as every bus tool does (tools/target.py; `--run RUN`, or a
+Both reach the running launch as every bus tool does (tools/runs/target.py; `--run RUN`, or a
 router named with `--connect`) and watch the keys matching KEYEXPR: a key of the run such as
 `world/state` or `agent/*/actions`, or a full `teleo/RUN/...`.
 """
@@ -20,9 +20,9 @@ from bus.config import BusConfig, bus_options
 from bus.errors import BusError, CodecError
 from bus.node import open_node
 from bus.stage import stop_on_signals
-from tools import runfile
-from tools.rates import DEFAULT_WINDOW, Meter, hz_line, list_table
-from tools.target import reach_keys, run_of
+from tools.runs import runfile
+from tools.runs.rates import DEFAULT_WINDOW, Meter, hz_line, list_table
+from tools.runs.target import reach_keys, run_of
 
 LIST_S = 2.0  # [s] `teleo echo --list` watches this long unless --seconds says
 

@@ -25,12 +25,12 @@ from agents.lang.registry import learned_text, memory_of, read_learned
 from agents.processes.goal_store import GoalStore, GoalStoreError
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
-from tools import sim_summary, summary
+from tools.commands.plot import plot_check
+from tools.commands.scenario_check import load_checked, override_option
+from tools.launching.progress import progress_cycles
 from tools.paths import OutputPath, picture_check
-from tools.plot import plot_check
-from tools.progress import progress_cycles
-from tools.records import GoalHistory
-from tools.scenario_check import load_checked, override_option
+from tools.records import sim_summary, summary
+from tools.records.run_record import GoalHistory
 from world.domain import get_domain
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
@@ -138,9 +138,9 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
     file:line:col if it does not fit an agent's program); `recorder` (a
-    tools.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
-    bar on a terminal (tools/progress.py); `until`: stop after the first cycle at whose end
-    it answers True for the agents' states (a benchmark's run ends when its work is done)."""
+    tools.records.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
+    bar on a terminal (tools/launching/progress.py); `until`: stop after the first cycle at whose
+    end it answers True for the agents' states (a benchmark's run ends when its work is done)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
@@ -259,7 +259,7 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
     The same cycle as a lockstep launch, with the same goal ids (g1, g2, ...), trace lines
     and summary, with or without its record; a progress bar on a terminal. `--set
     KEY=VALUE` changes a field of the scenario for this run, as `teleo launch --set`."""
-    from tools.recorder import SimRecorder
+    from tools.records.recorder import SimRecorder
 
     recorder = None
     try:
@@ -281,7 +281,7 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
     if recorder is not None:
         notes.append(f"run record written to {recorder.writer.path}")
     if plot:
-        from tools.plot import plot_record
+        from tools.commands.plot import plot_record
 
         notes.append(f"plot written to {plot_record(recorder.writer.path, plot)}")
     _write_outputs(run, sc, _Outputs(trace, render, learned_out, summary_file), seed, cycles,

@@ -1,5 +1,5 @@
 """`teleo replay RECORD`: a run record played back on a bus (the command is in
-tools/bus_commands.py, the playing in tools/player.py).
+tools/commands/bus.py, the playing in tools/records/player.py).
 
 Which bus: the running launch's (the only one, or `--onto RUN`), the router named with
 `--connect`, or, when no launch is running and none is named, a router of its own on
@@ -23,9 +23,9 @@ from bus.node import open_node
 from bus.record import from_record
 from bus.router import RouterProcess, spawn_router
 from bus.stage import stop_on_signals
-from tools import runfile
-from tools.player import NoKeys, Player, cycles_of, from_cycle, terminal_keys
-from tools.target import Target, client_of, connect_given, find_target, launches_running
+from tools.records.player import NoKeys, Player, cycles_of, from_cycle, terminal_keys
+from tools.runs import runfile
+from tools.runs.target import Target, client_of, connect_given, find_target, launches_running
 
 SETTLE_S = 1.0
 """[s] a router of its own is kept after the last message, for what it still delivers."""
@@ -34,7 +34,7 @@ SETTLE_S = 1.0
 def replay_record(file: str, rate: float, start: int | None, loop: bool, paused: bool,
                   wait_s: float, onto: str | None, bus_config: BusConfig) -> None:
     """Play RECORD (see the module doc); one clear line for every refusal."""
-    from tools.records import RecordError, RunRecord, locate
+    from tools.records.run_record import RecordError, RunRecord, locate
 
     stop = stop_on_signals()
     keys = terminal_keys(stop)

@@ -17,7 +17,7 @@ from typing import Any
 import click
 
 from tools.paths import OutputPath, picture_check
-from tools.records import RecordError, locate
+from tools.records.run_record import RecordError, locate
 from world.domain import DEFAULT_DOMAIN, domain_of, get_domain
 from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
@@ -63,8 +63,8 @@ def _check_rows(source: Path, rows: list) -> None:
 
 
 def _from_recording(path: Path) -> list[dict[str, Any]]:
-    """The world snapshots of a run record (tools/records.py: an .mcap file)."""
-    from tools.records import RecordError, RunRecord
+    """The world snapshots of a run record (tools/records/run_record.py: an .mcap file)."""
+    from tools.records.run_record import RecordError, RunRecord
 
     try:
         return [r["snapshot"] for _, r in RunRecord(path).kinds("state")]

@@ -8,7 +8,7 @@ import logging
 from pathlib import Path
 from typing import Any
 
-from tools.records import RECORD_FILE, RecordError, RunRecord
+from tools.records.run_record import RECORD_FILE, RecordError, RunRecord
 
 log = logging.getLogger(__name__)
 

@@ -1,6 +1,6 @@
 """`teleo ps` and `teleo stop [RUN]`: the runs of this host and their processes.
 
-Both read the run registry (tools/runfile.py). `ps` lists every registered run: its launcher
+Both read the run registry (tools/runs/runfile.py). `ps` lists every registered run: its launcher
 (running, or gone: a stale entry), router, whether it is secured, its folder, and each process
 with its pid and whether it is still there. `stop` asks a run's launcher to stop it (SIGTERM:
 the same orderly stop as Ctrl-C) and waits for it; if the launcher is already gone it stops
@@ -20,7 +20,7 @@ import time
 
 import click
 
-from tools import runfile
+from tools.runs import runfile
 
 STOP_TIMEOUT = 60.0  # [s] for a launcher to stop its run (2 s) and write its summary
 KILL_AFTER = 2.0     # [s] between SIGTERM and SIGKILL for orphans

@@ -31,7 +31,7 @@ from mcap.writer import CompressionType, Writer
 
 from bus import keys
 from bus.record import json_schema
-from tools import runfile
+from tools.runs import runfile
 
 log = logging.getLogger(__name__)
 RECORD_FILE = "record.mcap"

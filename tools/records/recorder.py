@@ -30,8 +30,8 @@ from bus.messages import (
 )
 from bus.node import FifoInbox, open_node
 from bus.record import message_record, to_record
-from tools import runfile
-from tools.records import RECORD_FILE, RecordWriter
+from tools.records.run_record import RECORD_FILE, RecordWriter
+from tools.runs import runfile
 
 log = logging.getLogger(__name__)
 RECORDER_META = "teleo.recorder"
@@ -340,7 +340,7 @@ class SimRecorder:
 
     def goal_list(self, cycle: int, agent: str, goals: tuple[dict[str, Any], ...]) -> None:
         """The user goals `agent` is given at `cycle`, as the goal-entry process publishes
-        them (a cancelled goal leaves the list: tools/records.py GoalHistory)."""
+        them (a cancelled goal leaves the list: tools/records/run_record.py GoalHistory)."""
         self._add(keys.goal_list(self.run, agent), GoalList(self._env(cycle, "goals"), agent,
                                                             goals))
 

@@ -1,4 +1,4 @@
-"""What one `teleo launch` starts, and with which bus settings (tools/launch.py runs it).
+"""What one `teleo launch` starts, and with which bus settings (tools/commands/launch.py runs it).
 
 A scenario's processes are the goal-entry process, each agent's perception, inference and
 executive, and the world; a launch also starts the router unless it joins another launch's
@@ -24,8 +24,8 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from bus.config import BusConfig, Mode
-from tools.run_secrets import RunSecrets, host_of
-from tools.supervisor import ProcSpec, module_argv
+from tools.launching.run_secrets import RunSecrets, host_of
+from tools.launching.supervisor import ProcSpec, module_argv
 from world.run_scenario import AGENT_STAGES, AgentSpec, Scenario
 
 _MODULES = {"perception": "agents.processes.perception",
@@ -188,7 +188,7 @@ def _shared_specs(plan: Plan) -> dict[str, ProcSpec | None]:
     """Agent id -> the process its stages share with the next `plan.agents_per_process - 1`
     agents' (agents/processes/shared.py) for the first agent of each group, None for the
     others."""
-    from tools import summary
+    from tools.records import summary
 
     agents = [a for a in plan.scenario.agents if f"{a.id}.perception" in plan.local]
     out: dict[str, ProcSpec | None] = {}
@@ -212,7 +212,7 @@ def _shared_specs(plan: Plan) -> dict[str, ProcSpec | None]:
 def _executive_args(plan: Plan, spec: AgentSpec) -> list[str]:
     """Each executive keeps its engine state and learned skills in the run folder
     (summary.state_file, summary.learned_file), starting from `plan.learned` if given."""
-    from tools import summary
+    from tools.records import summary
 
     return ["--state", str(summary.state_file(plan.run_dir, spec.id)),
             "--learned-out", str(summary.learned_file(plan.run_dir, spec.id)),

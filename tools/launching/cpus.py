@@ -1,7 +1,7 @@
 """How many CPUs this launch may use: the CPUs it may run on (its affinity: taskset, a
 container's cpuset), fewer when its control group caps its CPU time (a container's `--cpus`,
 a Kubernetes CPU limit). `teleo launch --agents-per-process auto` spreads the agents over
-them (tools/run_plan.py `per_core`)."""
+them (tools/launching/run_plan.py `per_core`)."""
 
 from __future__ import annotations
 

@@ -16,7 +16,7 @@ import json
 
 import click
 
-from tools import runfile
+from tools.runs import runfile
 
 VERDICT_TIMEOUT = 10.0  # [s] for the world to apply the event at a cycle boundary and answer
 

@@ -1,4 +1,4 @@
-"""The summary of a `teleo simulate` run in the form of `teleo launch`'s (tools/summary.py):
+"""The summary of a `teleo simulate` run in the form of `teleo launch`'s (tools/records/summary.py):
 the same keys, the same goal records (ids g1, g2, ... from the goal store, statuses as the
 goal-entry process reports them, each with its history of status changes, told in the loop
 as the record is told them, so the summary is the same with or without a record), so a
@@ -12,15 +12,15 @@ from pathlib import Path
 from typing import Any
 
 from agents.lang.registry import clause_heads
-from tools import records
-from tools.summary import finish_status, refused_events
-from tools.summary_agents import bodies, planner_section
+from tools.records import run_record as records
+from tools.records.summary import finish_status, refused_events
+from tools.records.summary_agents import bodies, planner_section
 from world.domain import get_domain
 
 
 def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = None,
           learned_files: dict[str, Path] | None = None) -> dict[str, Any]:
-    """The summary dict of ``run`` (a tools.simulate.SimRun) of ``scenario``."""
+    """The summary dict of ``run`` (a tools.commands.simulate.SimRun) of ``scenario``."""
     spec = get_domain(scenario.domain)
     counters: dict[str, dict[str, int]] = run.final.get("counters", {})
     goals = records.goals_with_history([g.to_dict() for g in run.goals.goals],

@@ -1,4 +1,4 @@
-"""The supervision loop of one `teleo launch` (tools/launch.py): start the router and the
+"""The supervision loop of one `teleo launch` (tools/commands/launch.py): start the router and the
 local processes of a plan, wait until they are up, register the run, restart what dies, end
 the run when it is over, stop everything quickly.
 
@@ -11,9 +11,9 @@ What it does on each fault (docs/faults.md has the table with measured times):
 - a process is left down (restarts used up): the run ends at once, as failed;
 - the world cannot write its run folder (a full disk): the run ends as failed, with the
   reason; before that, the launcher stops the run itself once the folder's file system is
-  nearly full, while every file can still be closed whole (tools/diskspace.py);
+  nearly full, while every file can still be closed whole (tools/launching/diskspace.py);
 - Ctrl-C, SIGTERM or SIGHUP, at any moment from the command's start: the run is stopped in
-  order (tools/run_stop.py, tools/stop_signals.py), its registry entry removed.
+  order (tools/launching/run_stop.py, tools/launching/stop_signals.py), its registry entry removed.
 
 Registering the run also removes the stale entries other launches left (their launcher
 killed outright, and nothing of their run left). It records, in the run folder's
@@ -32,14 +32,15 @@ from pathlib import Path
 import click
 
 from bus.errors import BusError
-from tools import runfile, stop_signals
-from tools.diskspace import free_text, shortage
+from tools.commands.run import echo_pruned
+from tools.launching import stop_signals
+from tools.launching.diskspace import free_text, shortage
+from tools.launching.progress import WorldProgress
+from tools.launching.run_plan import Plan, bus_config, process_specs, start_timeout
+from tools.launching.run_stop import Held, Journal, Outcome, stop_run, trace_cycles
+from tools.launching.supervisor import Exit, ProcSpec, Supervisor
 from tools.paths import describe_os_error
-from tools.progress import WorldProgress
-from tools.run_commands import echo_pruned
-from tools.run_plan import Plan, bus_config, process_specs, start_timeout
-from tools.run_stop import Held, Journal, Outcome, stop_run, trace_cycles
-from tools.supervisor import Exit, ProcSpec, Supervisor
+from tools.runs import runfile
 
 log = logging.getLogger(__name__)
 POLL_S = 0.05           # [s] between looks at the children when nothing else wakes us
@@ -100,9 +101,9 @@ def _start(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
 
 
 def _start_recorder(plan: Plan, held: Held) -> None:
-    """The run's recorder (tools/recorder.py); when it cannot start the run goes on
+    """The run's recorder (tools/records/recorder.py); when it cannot start the run goes on
     unrecorded, said on the log."""
-    from tools.recorder import run_recorder
+    from tools.records.recorder import run_recorder
 
     try:
         held.recorder = run_recorder(bus_config(plan, "operator"), plan.run, plan.run_dir,
@@ -154,7 +155,7 @@ def _loop(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
 
 def _register(info: runfile.RunInfo, update: bool = False) -> None:
     """Write the run's registry entry (first removing stale ones, whose launcher is gone
-    and nothing of whose run is left: tools/run_commands.py); one that cannot be written is
+    and nothing of whose run is left: tools/commands/run.py); one that cannot be written is
     said, and the run goes on (the tools will not find it)."""
     if not update:
         echo_pruned(*runfile.prune())
@@ -206,7 +207,7 @@ def _watch(plan: Plan, sup: Supervisor, node, journal: Journal, outcome: Outcome
 
 def _short_of_room(plan: Plan) -> str | None:
     """The reason to stop the run when its folder's file system is nearly full (stopped
-    while every file can still be closed whole: tools/diskspace.py), else None."""
+    while every file can still be closed whole: tools/launching/diskspace.py), else None."""
     short = shortage(plan.run_dir)
     if not short:
         return None
