@@ -104,6 +104,74 @@ def test_processes_never_import_the_command_layer() -> None:
     assert _violations("agents.processes", lambda m, i: _top(i) != "tools") == []
 
 
+# The rooms of tools/ (docs/architecture.md, "tools/: its rooms") and the rooms each may
+# import: runs below records, both below launching, the commands on top; the web view beside
+# the commands, below them. tools/paths.py (output-file checks) is under every room.
+TOOLS_ROOMS = {
+    "tools.runs": set(),
+    "tools.records": {"tools.runs"},
+    "tools.launching": {"tools.records", "tools.runs"},
+    "tools.view": {"tools.records", "tools.runs"},
+    "tools.commands": {"tools.launching", "tools.records", "tools.runs"},
+}
+TOOLS_BASE = {"tools.paths"}
+
+
+def _room(name: str) -> str:
+    return ".".join(name.split(".")[:2])
+
+
+def _tools_allowed(mod: str, imp: str) -> bool:
+    """May ``mod`` (in a room of tools/) import ``imp``? Its own room, the rooms below it, the
+    base modules, and anything outside tools/ (the other rules see to that)."""
+    if _top(imp) != "tools" or imp == "tools":
+        return True
+    return _room(imp) in {_room(mod)} | TOOLS_ROOMS[_room(mod)] | TOOLS_BASE
+
+
+def test_the_rooms_of_tools_import_only_the_rooms_below_them() -> None:
+    """Records and launching never import a command, the view neither nor the launcher, the
+    registry nothing of the others: each room is read and tested without the ones above it."""
+    assert set(TOOLS_ROOMS) | TOOLS_BASE | {"tools.cli", "tools.law_programs"} == \
+        {_room(m) for m in SOURCES if _top(m) == "tools" and m != "tools"}
+    for room in TOOLS_ROOMS:
+        assert _violations(room, _tools_allowed) == []
+    assert not _tools_allowed("tools.records.summary", "tools.commands.launch")
+    assert not _tools_allowed("tools.launching.supervision", "tools.commands.run")
+    assert not _tools_allowed("tools.view.feeds", "tools.launching.run_plan")
+    assert not _tools_allowed("tools.runs.target", "tools.records.run_record")
+
+
+def test_the_base_modules_of_tools_import_no_room() -> None:
+    for base in TOOLS_BASE | {"tools.law_programs"}:
+        assert _violations(base, lambda m, i: _top(i) != "tools") == []
+
+
+def _command_table() -> dict[str, tuple[str, ...]]:
+    """tools/cli.py's `_COMMAND_MODULES`, read with ast (importing cli sets signal handlers)."""
+    tree = ast.parse((ROOT / "tools" / "cli.py").read_text())
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and \
+                any(getattr(t, "id", "") == "_COMMAND_MODULES" for t in node.targets):
+            return ast.literal_eval(node.value)
+    raise AssertionError("tools/cli.py has no _COMMAND_MODULES")
+
+
+def test_the_command_group_imports_a_command_module_only_when_asked() -> None:
+    """`teleo` starts fast (tests/tools/test_cli_startup.py): tools/cli.py imports the stop
+    signals and the path checks; every command module is in its table, loaded by name when
+    its command is asked for, and only from tools/commands/ or the web view's package."""
+    assert {_room(i) for i in SOURCES["tools.cli"] if _top(i) == "tools" and i != "tools"} \
+        <= {"tools.launching", "tools.paths"}
+    assert {i for i in SOURCES["tools.cli"] if _room(i) == "tools.launching"} <= \
+        {"tools.launching", "tools.launching.stop_signals"}
+    modules = set(_command_table())
+    assert {m for m in modules if not m.startswith("tools.commands.")} == {"tools.view"}
+    assert modules <= set(SOURCES)
+    assert not any(i.startswith("tools.commands") for m, imports in SOURCES.items()
+                   if not m.startswith("tools.commands") for i in imports)
+
+
 def test_no_import_cycles_between_modules() -> None:
     graph = {m: {i for i in imports if i in SOURCES and i != m}
              for m, imports in SOURCES.items()}

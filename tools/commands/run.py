@@ -34,7 +34,7 @@ KILL_AFTER = 2.0     # [s] between SIGTERM and SIGKILL for orphans
 def ps(as_json: bool, prune: bool) -> None:
     """List the runs on this host with their processes."""
     if prune:
-        echo_pruned(*runfile.prune(), err=as_json)
+        runfile.echo_pruned(*runfile.prune(), err=as_json)
     runs = runfile.all_runs()
     if as_json:
         for info, up in runs:
@@ -57,20 +57,6 @@ def ps(as_json: bool, prune: bool) -> None:
         for name, pid in info.pids.items():
             alive = "up" if runfile.belongs(pid, info.run) else "gone"
             click.echo(f"  {name:<24} pid {pid:<8} {alive}")
-
-
-def echo_pruned(removed: list[runfile.RunInfo], kept: list[runfile.RunInfo],
-                err: bool = False) -> None:
-    """Say which stale entries `runfile.prune` removed, and which it kept and why."""
-    for info in removed:
-        click.echo(f"removed the stale entry of run {info.key} (its launcher {info.pid} is "
-                   f"gone, and nothing of the run is left)", err=err)
-    for info in kept:
-        left = runfile.leftovers(info)
-        click.echo(f"kept the stale entry of run {info.key}: its launcher {info.pid} is gone "
-                   f"but {len(left)} of its processes are still there (pids "
-                   f"{', '.join(map(str, left))}); `teleo stop {info.key}` stops them",
-                   err=err)
 
 
 def _target(run: str | None) -> runfile.RunInfo:

@@ -32,7 +32,6 @@ from pathlib import Path
 import click
 
 from bus.errors import BusError
-from tools.commands.run import echo_pruned
 from tools.launching import stop_signals
 from tools.launching.diskspace import free_text, shortage
 from tools.launching.progress import WorldProgress
@@ -158,7 +157,7 @@ def _register(info: runfile.RunInfo, update: bool = False) -> None:
     and nothing of whose run is left: tools/commands/run.py); one that cannot be written is
     said, and the run goes on (the tools will not find it)."""
     if not update:
-        echo_pruned(*runfile.prune())
+        runfile.echo_pruned(*runfile.prune())
     try:
         runfile.write(info)
     except OSError as exc:

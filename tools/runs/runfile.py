@@ -251,6 +251,22 @@ def say_reached(text: str) -> None:
         click.echo(text, err=True)
 
 
+def echo_pruned(removed: list[RunInfo], kept: list[RunInfo], err: bool = False) -> None:
+    """Say which stale entries `prune` removed, and which it kept and why (`teleo ps
+    --prune`, and every launch before it registers its run)."""
+    import click
+
+    for info in removed:
+        click.echo(f"removed the stale entry of run {info.key} (its launcher {info.pid} is "
+                   f"gone, and nothing of the run is left)", err=err)
+    for info in kept:
+        left = leftovers(info)
+        click.echo(f"kept the stale entry of run {info.key}: its launcher {info.pid} is gone "
+                   f"but {len(left)} of its processes are still there (pids "
+                   f"{', '.join(map(str, left))}); `teleo stop {info.key}` stops them",
+                   err=err)
+
+
 def who_of(info: RunInfo) -> str:
     """`run R (router EP)`, `, secured` added for a secured run: how a tool names a launch
     (where its registry file is, `teleo ps` says)."""
