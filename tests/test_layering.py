@@ -117,7 +117,7 @@ TOOLS_ROOMS = {
 TOOLS_BASE = {"tools.paths"}
 
 
-def _room(name: str) -> str:
+def _tools_room(name: str) -> str:
     return ".".join(name.split(".")[:2])
 
 
@@ -126,14 +126,14 @@ def _tools_allowed(mod: str, imp: str) -> bool:
     base modules, and anything outside tools/ (the other rules see to that)."""
     if _top(imp) != "tools" or imp == "tools":
         return True
-    return _room(imp) in {_room(mod)} | TOOLS_ROOMS[_room(mod)] | TOOLS_BASE
+    return _tools_room(imp) in {_tools_room(mod)} | TOOLS_ROOMS[_tools_room(mod)] | TOOLS_BASE
 
 
 def test_the_rooms_of_tools_import_only_the_rooms_below_them() -> None:
     """Records and launching never import a command, the view neither nor the launcher, the
     registry nothing of the others: each room is read and tested without the ones above it."""
     assert set(TOOLS_ROOMS) | TOOLS_BASE | {"tools.cli", "tools.law_programs"} == \
-        {_room(m) for m in SOURCES if _top(m) == "tools" and m != "tools"}
+        {_tools_room(m) for m in SOURCES if _top(m) == "tools" and m != "tools"}
     for room in TOOLS_ROOMS:
         assert _violations(room, _tools_allowed) == []
     assert not _tools_allowed("tools.records.summary", "tools.commands.launch")
@@ -161,9 +161,9 @@ def test_the_command_group_imports_a_command_module_only_when_asked() -> None:
     """`teleo` starts fast (tests/tools/test_cli_startup.py): tools/cli.py imports the stop
     signals and the path checks; every command module is in its table, loaded by name when
     its command is asked for, and only from tools/commands/ or the web view's package."""
-    assert {_room(i) for i in SOURCES["tools.cli"] if _top(i) == "tools" and i != "tools"} \
+    assert {_tools_room(i) for i in SOURCES["tools.cli"] if _top(i) == "tools" and i != "tools"} \
         <= {"tools.launching", "tools.paths"}
-    assert {i for i in SOURCES["tools.cli"] if _room(i) == "tools.launching"} <= \
+    assert {i for i in SOURCES["tools.cli"] if _tools_room(i) == "tools.launching"} <= \
         {"tools.launching", "tools.launching.stop_signals"}
     modules = set(_command_table())
     assert {m for m in modules if not m.startswith("tools.commands.")} == {"tools.view"}
