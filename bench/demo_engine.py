@@ -1,0 +1,114 @@
+"""One engine cycle (infer + decide) for the driving demo's program at the demo's percept load,
+against the first release's engine (a24e6ef) on its own demo, measured alternately in one run.
+
+    .venv/bin/python bench/demo_engine.py [--rounds 2] [--release ../rel-a24e6ef] [--clock cpu]
+
+Each round runs the demo (scenarios/driving_demo.toml, programs/driving.tlp, 650 cycles) in
+one process, as `teleo simulate` does, and times every cycle's inference and executive step:
+here `Engine.infer` of the percept lists perceive() made and `Engine.decide` on them (what the
+inference and executive processes call), at the release `Engine.cycle` (its infer and decide
+in one call; run in the release worktree's own .venv, made by `make setup` there). By default
+the time is this thread's CPU time (steady on a shared machine); `--clock wall` for wall time.
+Prints, per kind, the median and mean [ms] per cycle and the percepts per cycle, then the
+ratio of the medians (target: at most 0.5 ms a cycle here, issue 27).
+"""
+
+from __future__ import annotations
+
+import json
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import click
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENARIO = "scenarios/driving_demo.toml"
+CLOCKS = {"cpu": "thread_time", "wall": "perf_counter"}
+
+# Run in the release's tree and .venv: every Engine.cycle of its demo, timed. (The release
+# has no separate infer/decide timing; its Engine.cycle is both.)
+RELEASE = """
+import json, sys, time
+from agents.lang import engine as E
+from tools.scenario import load_scenario
+from tools.simulate import simulate
+clock, out = getattr(time, sys.argv[1]), []
+inner = E.Engine.cycle
+def timed(self, state, percepts, *a, **k):
+    t0 = clock()
+    r = inner(self, state, percepts, *a, **k)
+    out.append(((clock() - t0) * 1e3, len(percepts)))
+    return r
+E.Engine.cycle = timed
+simulate(load_scenario(sys.argv[2]))
+print(json.dumps(out))
+"""
+
+
+def release_cycles(tree: Path, clock: str) -> list[tuple[float, int]]:
+    """(ms, percepts) of every engine cycle of the release's demo."""
+    done = subprocess.run([str(tree / ".venv" / "bin" / "python"), "-c", RELEASE,
+                           CLOCKS[clock], SCENARIO], cwd=tree, capture_output=True,
+                          text=True, timeout=600)
+    if done.returncode != 0:
+        raise click.ClickException(f"the release's demo failed:\n{done.stderr[-2000:]}")
+    return [tuple(x) for x in json.loads(done.stdout.splitlines()[-1])]
+
+
+def current_cycles(clock: str) -> list[tuple[float, int]]:
+    """(ms, percepts) of every engine cycle (infer + decide) of this tree's demo."""
+    sys.path.insert(0, str(ROOT))
+    import tools.simulate as sim
+    from world.run_scenario import load_scenario
+
+    tick, out = getattr(time, CLOCKS[clock]), []
+
+    def agent_cycle(engine, state, domain, snap, agent, outcomes):  # tools/simulate.py's
+        percepts = domain.perceive(snap, agent)
+        t0 = tick()
+        beliefs = engine.infer(percepts, state.scs.model)
+        decision, state = engine.decide(state, percepts, beliefs, outcomes)
+        out.append(((tick() - t0) * 1e3, len(percepts)))
+        return sim.AgentCycle(percepts, list(outcomes), beliefs, decision, {}), state
+
+    inner, sim._agent_cycle = sim._agent_cycle, agent_cycle
+    try:
+        sim.simulate(load_scenario(ROOT / SCENARIO))
+    finally:
+        sim._agent_cycle = inner
+    return out
+
+
+@click.command()
+@click.option("--rounds", type=click.IntRange(min=1), default=2, show_default=True)
+@click.option("--release", type=click.Path(exists=True, file_okay=False, path_type=Path),
+              default=ROOT.parent / "rel-a24e6ef", show_default=True,
+              help="A worktree of the first release with its .venv (make setup).")
+@click.option("--clock", type=click.Choice(sorted(CLOCKS)), default="cpu", show_default=True)
+def main(rounds: int, release: Path, clock: str) -> None:
+    """Print the demo's engine cycle [ms] here and at the first release."""
+    got: dict[str, list[tuple[float, int]]] = {"release": [], "this tree": []}
+    for k in range(rounds):
+        for kind in (("release", "this tree") if k % 2 == 0 else ("this tree", "release")):
+            rows = release_cycles(release, clock) if kind == "release" else \
+                current_cycles(clock)
+            got[kind] += rows
+            click.echo(f"round {k + 1}: {kind:<9} median "
+                       f"{statistics.median(r[0] for r in rows):.3f} ms a cycle "
+                       f"({len(rows)} cycles)")
+    med = {}
+    for kind, rows in got.items():
+        med[kind] = statistics.median(r[0] for r in rows)
+        click.echo(f"{kind:<9} infer + decide: median {med[kind]:.3f} ms, mean "
+                   f"{statistics.fmean(r[0] for r in rows):.3f} ms a cycle ({clock} time), "
+                   f"percepts {statistics.median(r[1] for r in rows):.0f} a cycle "
+                   f"(median)")
+    click.echo(f"release / this tree: {med['release'] / med['this tree']:.2f}x; target "
+               f"<= 0.5 ms here: {'met' if med['this tree'] <= 0.5 else 'not met'}")
+
+
+if __name__ == "__main__":
+    main()
