@@ -3,10 +3,10 @@
 FIFO, drained in batches: nothing lost). Made by `Node.subscribe`, `Node.subscribe_ring` and
 `Node.subscribe_fifo`; also importable from `bus.node`.
 
-Hand-off cost (docs/bus.md, "Benchmark"): every sample crosses from zenoh's receiving thread
-to the reading thread. For decoded inboxes the callback is `SimpleQueue.put` itself, called on
-zenoh's receiving thread (bus/node.py `_handler`): no Python bytecode runs there and the GIL
-is given back at once; the reading thread copies the payload and decodes it.
+Hand-off cost (docs/bus.md, "Benchmark"): every sample crosses from zenoh's callback thread
+to the reading thread. For decoded inboxes the callback is `SimpleQueue.put` itself, so the
+callback thread runs no Python bytecode and gives the GIL back at once; the reading thread
+copies the payload and decodes it.
 """
 
 from __future__ import annotations

@@ -124,7 +124,7 @@ class Node:
         """Subscribe to `key_expr`; samples go to `inbox` (a new one unless given, so several
         subscriptions can feed one main loop). `raw=True` skips decoding (record/replay)."""
         box = inbox if inbox is not None else Inbox(raw=raw)
-        sub = self.session.declare_subscriber(key_expr, _handler(box))
+        sub = self.session.declare_subscriber(key_expr, box.callback)
         with self._lock:
             self._entities.append(sub)
         return box
@@ -226,15 +226,6 @@ class Node:
         if self._token is not None:
             self._token.undeclare()
             self._token = None
-
-
-def _handler(box: Inbox) -> zenoh.handlers.Callback:
-    """The subscriber callback of `box`. A decoded inbox's callback is `SimpleQueue.put`
-    (C, never blocks): it runs on zenoh's own receiving thread (`indirect=False`), which
-    saves a hop through a Python thread zenoh would start for it (one wake-up less per
-    message: bench/bus.py, docs/benchmarks.md "Speed of the whole cycle"). A raw inbox's
-    callback runs Python (it stamps the arrival), so it keeps zenoh's callback thread."""
-    return zenoh.handlers.Callback(box.callback, indirect=box.raw)
 
 
 @contextmanager
