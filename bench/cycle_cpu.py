@@ -9,12 +9,14 @@ far (the lines of the run's trace.jsonl). The figures are the differences betwee
 sample at or past cycle 50 (start-up and the first cycles left out) and the last one before
 the world ends, per cycle [ms]: a process's CPU time is its own work (decode, checks, its
 stage's step, encode, puts, zenoh's threads in it) and the rest of the cycle it waits. Prints
-each process's ms per cycle and their sum, the wall time per cycle and the share of the two
-cores the launch kept busy, as the median over the runs.
+each process's ms per cycle, beside the part of it its step took (the compute times the world
+totals in world-final.json, over the whole run), their sum, the wall time per cycle and the
+share of the two cores the launch kept busy, as the median over the runs.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import statistics
 import subprocess
@@ -96,10 +98,15 @@ def one_run(record: bool, per_process: str) -> dict[str, float]:
             time.sleep(0.1)
         if first is None or last is None or proc.returncode != 0:
             raise click.ClickException(f"launch failed or too short (rc {proc.returncode})")
+        final = json.loads(next(Path(tmp).glob("runs/*/world-final.json")).read_text())
     cycles = last[0] - first[0]
     out = {role: (last[2].get(role, 0.0) - first[2].get(role, 0.0)) * 1e3 / cycles
            for role in last[2]}
     out["wall"] = (last[1] - first[1]) * 1e3 / cycles
+    timing, done = final["timing_ms"], max(last[0], 1)   # the whole run's step times
+    out["step:process"] = timing["world"] / done
+    for name, total in timing["stages"].items():
+        out[f"step:{name.split('.')[-1]}"] = total / done
     return out
 
 
@@ -113,12 +120,15 @@ def main(runs: int, record: bool, per_process: str) -> None:
     click.echo(f"driving demo, lockstep, --agents-per-process {per_process}, "
                f"{'record on' if record else 'no record'}, {runs} run(s), load average "
                f"{os.getloadavg()[0]:.1f}; CPU ms per cycle from cycle 50 on (median):")
-    roles = sorted({r for g in got for r in g} - {"wall"})
+    roles = sorted({r for g in got for r in g if not r.startswith("step:")} - {"wall"})
     total = 0.0
     for role in roles:
         ms = statistics.median(g.get(role, 0.0) for g in got)
         total += ms
-        click.echo(f"  {role:<12} {ms:6.3f} ms")
+        step = [g[f"step:{role}"] for g in got if f"step:{role}" in g]
+        click.echo(f"  {role:<12} {ms:6.3f} ms" + (
+            f", of which its step {statistics.median(step):.3f} ms (the world's timing)"
+            if step else ""))
     wall = statistics.median(g["wall"] for g in got)
     click.echo(f"  {'all':<12} {total:6.3f} ms of CPU a cycle; the cycle takes {wall:.3f} ms "
                f"({1e3 / wall:.0f} cycles/s): {total / wall:.2f} cores busy of "
