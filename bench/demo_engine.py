@@ -2,6 +2,7 @@
 against the first release's engine (a24e6ef) on its own demo, measured alternately in one run.
 
     .venv/bin/python bench/demo_engine.py [--rounds 2] [--release ../rel-a24e6ef] [--clock cpu]
+                                          [--split]
 
 Each round runs the demo (scenarios/driving_demo.toml, programs/driving.tlp, 650 cycles) in
 one process, as `teleo simulate` does, and times every cycle's inference and executive step:
@@ -13,7 +14,9 @@ The demo's program has grown since (38 concepts and 27 skills against 19 and 15)
 kind runs this tree's engine on the release's program in this tree's demo world (the same
 world, another program: it delivers both packages too), which sets the engines apart from the
 programs. Prints, per kind, the median and mean [ms] per cycle and the percepts per cycle,
-then the ratios of the medians (target: at most 0.5 ms a cycle here, issue 27).
+then the ratios of the medians (target: at most 0.5 ms a cycle here, issue 27). ``--split``
+also times the parts of this tree's cycle (where the engine calls them; a part's time holds
+the parts it calls).
 """
 
 from __future__ import annotations
@@ -88,13 +91,55 @@ def current_cycles(clock: str, program: Path | None = None) -> list[tuple[float,
     return out
 
 
+PARTS = (  # (module, object, attribute, label): timed where the engine calls them
+    ("agents.lang.engine", "Engine", "infer", "infer"),
+    ("agents.lang.tracker", "PerceptTracker", "update", "  infer: what changed in the percepts"),
+    ("agents.lang.maintain", "Maintainer", "counting", "  infer: counting maintenance"),
+    ("agents.lang.engine", "Engine", "decide", "decide"),
+    ("agents.lang.engine", "Engine", "_index", "  decide: percepts checked and indexed"),
+    ("agents.lang.executive", "Executive", "_first_path", "  decide: skill paths"),
+    ("agents.lang.executive", None, "instances", "  decide: goal instances"),
+    ("agents.lang.circles", None, "world", "  decide: loop-watch digest of the world"),
+)
+
+
+def split(clock: str) -> dict[str, float]:
+    """ms per cycle of the parts of this tree's engine cycle (PARTS), one run of the demo."""
+    import importlib
+
+    tick, spent = getattr(time, CLOCKS[clock]), dict.fromkeys([p[3] for p in PARTS], 0.0)
+    undo = []
+    for module, owner, name, label in PARTS:
+        target = importlib.import_module(module)
+        target = getattr(target, owner) if owner else target
+        inner = getattr(target, name)
+
+        def timed(*a, _inner=inner, _label=label, **k):
+            t0 = tick()
+            try:
+                return _inner(*a, **k)
+            finally:
+                spent[_label] += tick() - t0
+
+        setattr(target, name, timed)
+        undo.append((target, name, inner))
+    try:
+        n = len(current_cycles(clock))
+    finally:
+        for target, name, inner in undo:
+            setattr(target, name, inner)
+    return {k: v * 1e3 / n for k, v in spent.items()}
+
+
 @click.command()
+@click.option("--split", "show_split", is_flag=True,
+              help="Also time the parts of this tree's cycle (one more run).")
 @click.option("--rounds", type=click.IntRange(min=1), default=2, show_default=True)
 @click.option("--release", type=click.Path(exists=True, file_okay=False, path_type=Path),
               default=ROOT.parent / "rel-a24e6ef", show_default=True,
               help="A worktree of the first release with its .venv (make setup).")
 @click.option("--clock", type=click.Choice(sorted(CLOCKS)), default="cpu", show_default=True)
-def main(rounds: int, release: Path, clock: str) -> None:
+def main(show_split: bool, rounds: int, release: Path, clock: str) -> None:
     """Print the demo's engine cycle [ms] here and at the first release."""
     old = release / "programs" / "driving.tlp"
     kinds = ("release", "this tree", OLD_PROGRAM)
@@ -118,6 +163,11 @@ def main(rounds: int, release: Path, clock: str) -> None:
                f"alone (release / this tree's engine on the release's program): "
                f"{med['release'] / med[OLD_PROGRAM]:.2f}x; target "
                f"<= 0.5 ms here: {'met' if med['this tree'] <= 0.5 else 'not met'}")
+    if show_split:
+        click.echo(f"this tree's cycle by part ({clock} time, ms a cycle, one run; the parts "
+                   "of infer and decide are within them):")
+        for label, ms in split(clock).items():
+            click.echo(f"  {label:<42} {ms:.3f}")
 
 
 if __name__ == "__main__":
