@@ -69,7 +69,7 @@ def current_cycles(clock: str, program: Path | None = None) -> list[tuple[float,
     """(ms, percepts) of every engine cycle (infer + decide) of this tree's demo, its agent
     running ``program`` if given (the release's programs/driving.tlp: same world)."""
     sys.path.insert(0, str(ROOT))
-    import tools.simulate as sim
+    import tools.commands.simulate as sim
     from world.run_scenario import load_scenario
 
     tick, out = getattr(time, CLOCKS[clock]), []
@@ -93,13 +93,17 @@ def current_cycles(clock: str, program: Path | None = None) -> list[tuple[float,
 
 PARTS = (  # (module, object, attribute, label): timed where the engine calls them
     ("agents.lang.engine", "Engine", "infer", "infer"),
-    ("agents.lang.tracker", "PerceptTracker", "update", "  infer: what changed in the percepts"),
-    ("agents.lang.maintain", "Maintainer", "counting", "  infer: counting maintenance"),
+    ("agents.lang.inference.tracker", "PerceptTracker", "update",
+     "  infer: what changed in the percepts"),
+    ("agents.lang.inference.maintain", "Maintainer", "counting",
+     "  infer: counting maintenance"),
     ("agents.lang.engine", "Engine", "decide", "decide"),
     ("agents.lang.engine", "Engine", "_index", "  decide: percepts checked and indexed"),
-    ("agents.lang.executive", "Executive", "_first_path", "  decide: skill paths"),
-    ("agents.lang.executive", None, "instances", "  decide: goal instances"),
-    ("agents.lang.circles", None, "world", "  decide: loop-watch digest of the world"),
+    ("agents.lang.execution.executive", "Executive", "_first_path",
+     "  decide: skill paths"),
+    ("agents.lang.execution.executive", None, "instances", "  decide: goal instances"),
+    ("agents.lang.execution.circles", None, "world",
+     "  decide: loop-watch digest of the world"),
 )
 
 
