@@ -39,15 +39,25 @@ def _limit(start) -> int:
     return 10 * sum(len(t) for t in start) + 20
 
 
-def _returns(keys: list) -> int:
-    """How often the replayed run comes back to a state it had left."""
+def _returns(keys: list, pursued: list | None = None) -> int:
+    """How often the replayed run comes back to a state it had left; with ``pursued`` (the
+    goal acting at each cycle), only a return while pursuing the goal pursued when the state
+    was last seen (issue 22: an agent that "returns to a situation it has already been in
+    while pursuing the same goal"; a lower goal that happens to undo what a failed higher
+    goal began goes round no circle)."""
     seen: dict = {}
     back = 0
     for i, k in enumerate(keys):
-        if k in seen and any(keys[j] != k for j in range(seen[k], i)):
+        if k in seen and any(keys[j] != k for j in range(seen[k], i)) \
+                and (pursued is None or pursued[i] == pursued[seen[k]]):
             back += 1
         seen[k] = i
     return back
+
+
+def _acting(statuses: list[dict[str, str]]) -> list[str | None]:
+    """The goal active at each cycle (the first in the list), or None."""
+    return [next((g for g, s in row.items() if s == "active"), None) for row in statuses]
 
 
 def _solved(start, facts, learned: tuple[str, ...] = ()):
@@ -95,4 +105,12 @@ def test_a_priority_list_ends_with_every_goal_satisfied_or_failed(problem):
                 out.notes[-1][gid]
         else:
             assert out.replay.under.get(a) == b, (start, facts, gid)
-    assert _returns(out.keys) == 0, (start, facts, out.plan)
+    assert _returns(out.keys, _acting(out.statuses)) == 0, (start, facts, out.plan)
+
+
+def test_a_return_counts_only_while_the_same_goal_is_pursued():
+    """The counter of the property above: g3 lifts B4 and fails, g5 later holds B4 again."""
+    keys = ["a", "b", "c", "b"]
+    assert _returns(keys) == 1
+    assert _returns(keys, [None, "g3", "g4", "g5"]) == 0
+    assert _returns(keys, [None, "g3", "g4", "g3"]) == 1
