@@ -18,7 +18,7 @@ from agents.lang.core.mechanism import Mechanism, slot_kinds
 from agents.lang.core.sexpr import Atom, SList, to_text
 from agents.lang.core.terms import Loc
 from agents.lang.execution.executive import Impasse
-from agents.lang.registry import MECHANISMS
+from agents.lang.registry import MECHANISMS, AgentRecord, summary_lines, summary_sections
 
 # -- the toy mechanism: counts the impasses of its agent, gives up after (toy (give-up-after N))
 
@@ -106,6 +106,16 @@ class Toy(Mechanism):
     def impasse_handlers(self) -> dict[str, Any]:
         return {"toy": ToyHandler}
 
+    summary_key: str = "toy"
+    summary_rank: int = 3
+
+    def summary(self, agent: AgentRecord) -> dict[str, Any] | None:
+        toy = agent.state.get("toy")
+        return {"impasses": toy["impasses"]} if toy else None
+
+    def summary_lines(self, name: str, entry: dict[str, Any]) -> list[str]:
+        return [f"  {name}: toy impasses {entry['impasses']}"]
+
 
 WITH_TOY = (*MECHANISMS, Toy())
 PROGRAM = """(concepts
@@ -143,6 +153,18 @@ def test_the_toy_slot_round_trips_through_the_state_file() -> None:
     assert list(d)[-2:] == ["toy", "loops"]   # after the registered slots, as ever
     back = EngineState.from_dict(d, slot_kinds(WITH_TOY))
     assert back == state and back.toy == ToyState(1)
+
+
+def test_the_toy_has_its_entry_and_lines_in_the_run_summary() -> None:
+    engine = Engine(load_program_text(PROGRAM, "toy.tlp", mechanisms=WITH_TOY), solver="toy")
+    state = engine.cycle(engine.initial_state(), DARK).state
+    agents = {"ME": AgentRecord(state=state.to_dict()), "YOU": AgentRecord()}
+    summary = summary_sections(agents, WITH_TOY)
+    assert list(summary) == ["learned", "bodies", "planner", "toy"]
+    assert summary["toy"] == {"ME": {"impasses": 1}}
+    assert summary["learned"] == summary["bodies"] == summary["planner"] == {}
+    assert summary_lines(summary, WITH_TOY) == ["  ME: toy impasses 1"]
+    assert "toy" not in summary_sections(agents)
 
 
 def test_the_toy_section_reports_file_line_col() -> None:

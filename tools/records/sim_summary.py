@@ -11,10 +11,9 @@ import json
 from pathlib import Path
 from typing import Any
 
-from agents.lang.registry import clause_heads
+from agents.lang.registry import AgentRecord, summary_sections
 from tools.records import run_record as records
 from tools.records.summary import finish_status, refused_events
-from tools.records.summary_agents import bodies, planner_section
 from world.domain import get_domain
 
 
@@ -45,12 +44,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
-        "learned": {a: {"file": str(learned_files.get(a, "")),
-                        "skills": clause_heads("\n".join(run.learned[a]))}
-                    for a in scenario.agent_ids if run.learned.get(a) or a in learned_files},
-        "bodies": {a: b for a, m in sorted(run.memory.items()) if (b := bodies(m))},
-        "planner": planner_section({a: st.planner.to_dict() for a, st in run.states.items()},
-                                   counters),
+        **summary_sections(_agents(run, scenario, counters, learned_files)),
         "trace": str(trace) if trace else "",
         "world_reason": "done",
         "cycle_time": {},   # one process, no bus: no stage shares
@@ -59,3 +53,15 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
     }
     return finish_status(summary)
 
+
+def _agents(run: Any, scenario: Any, counters: dict[str, dict[str, int]],
+            learned_files: dict[str, Path]) -> dict[str, AgentRecord]:
+    """What the run left of each agent, for the mechanisms' entries of the summary."""
+    def learned(a: str) -> str | None:
+        return ("\n".join(run.learned.get(a, ())) if run.learned.get(a) or a in learned_files
+                else None)
+    return {a: AgentRecord(state=run.states[a].to_dict() if a in run.states else {},
+                           memory=run.memory.get(a) or {}, learned=learned(a),
+                           learned_file=str(learned_files.get(a, "")),
+                           counters=counters.get(a, {}))
+            for a in {*scenario.agent_ids, *run.memory, *run.states}}

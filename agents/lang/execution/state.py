@@ -62,10 +62,9 @@ class EngineState:
     its remembered path only if every skill on it could be started now); ``failed``: goals
     given up on, with the reason; ``seed``: the agent's seed for nondeterministic choices;
     ``learned``: skill clauses learned at run time, in program syntax (seed 000); ``loops``:
-    the loop watch of every unsatisfied goal (agents/lang/execution/loops.py); ``slots``: (key,
-    state)
-    of each mechanism, every registered key present (its empty state by default), in
-    registry order, then any other."""
+    the loop watch of every unsatisfied goal (agents/lang/execution/loops.py); ``slots``:
+    (key, state) of each mechanism, every registered key present (its empty state by
+    default), in registry order, then any other."""
 
     goals: tuple[GoalEntry, ...] = ()
     paths: tuple[tuple[str, tuple[StoredStep, ...]], ...] = ()
