@@ -32,20 +32,11 @@ from bus.codec import encode  # noqa: E402
 from bus.config import BusConfig, bus_options  # noqa: E402
 from bus.messages import Beliefs, Envelope, Percepts, ProcessStats, WorldState  # noqa: E402
 from bus.node import open_node  # noqa: E402
-from bus.passthrough import STAGES, make_step, wiring  # noqa: E402
+from bus.passthrough import STAGES, make_step, percepts_200, wiring  # noqa: E402
 from bus.router import spawn_router  # noqa: E402
 from bus.stage import Stage  # noqa: E402
 
 RUN, AGENT = "bench", "A"
-
-
-def percepts_200() -> list[list]:
-    """200 percepts shaped like the driving domain's (seed 000, Table 3)."""
-    rows: list[list] = [["self", "ME", "speed", 20.0, "limit", 25, "segment", "S2724"]]
-    for i in range(199):
-        rows.append(["lane-line", f"L{i}", "dist", 1.5 + i * 0.01, "angle", 2.0 * i,
-                     "segment", f"S{2700 + i}", "color", "yellow"])
-    return rows
 
 
 def figures(name: str, samples_ms: list[float]) -> str:

@@ -1,6 +1,6 @@
 """What the codec costs at each hop of bench/bus.py's pass-through cycle, in one process without
 zenoh: the CPU time of every decode and encode the clock and the three stages do to one cycle's
-messages (200 percepts shaped like the driving domain's, bench/bus.py `percepts_200`).
+messages (200 percepts shaped like the driving domain's, bus/passthrough.py `percepts_200`).
 
     .venv/bin/python bench/bus_hops.py [--cycles 2000]
 
@@ -25,17 +25,9 @@ sys.path.insert(0, str(ROOT))
 from bus import keys  # noqa: E402
 from bus.codec import decode, encode  # noqa: E402
 from bus.messages import Actions, Beliefs, Envelope, Percepts, ProcessStats, WorldState  # noqa: E402
+from bus.passthrough import percepts_200  # noqa: E402
 
 RUN, AGENT = "bench", "A"
-
-
-def percepts_200() -> list[list]:
-    """bench/bus.py's 200 percepts (seed 000, Table 3)."""
-    rows: list[list] = [["self", "ME", "speed", 20.0, "limit", 25, "segment", "S2724"]]
-    for i in range(199):
-        rows.append(["lane-line", f"L{i}", "dist", 1.5 + i * 0.01, "angle", 2.0 * i,
-                     "segment", f"S{2700 + i}", "color", "yellow"])
-    return rows
 
 
 @click.command()

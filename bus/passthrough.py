@@ -26,6 +26,16 @@ from bus.stage import Stage, stop_on_signals
 STAGES = ("perception", "inference", "executive")
 
 
+def percepts_200() -> list[list]:
+    """The pass-through benches' load (bench/bus.py, bench/bus_hops.py): 200 percepts shaped
+    like the driving domain's (seed 000, Table 3)."""
+    rows: list[list] = [["self", "ME", "speed", 20.0, "limit", 25, "segment", "S2724"]]
+    for i in range(199):
+        rows.append(["lane-line", f"L{i}", "dist", 1.5 + i * 0.01, "angle", 2.0 * i,
+                     "segment", f"S{2700 + i}", "color", "yellow"])
+    return rows
+
+
 def wiring(run: str, agent: str, stage: str) -> tuple[str, str]:
     """(input key, output key) of a pass-through stage."""
     chain = [keys.world_state(run), keys.percepts(run, agent), keys.beliefs(run, agent),
