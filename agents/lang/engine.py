@@ -71,6 +71,7 @@ class Engine:
         self._framer = Framer()  # last cycle's grouping, for SharedRows
         self._shared = SharedPercepts()  # and the Percepts of its rows
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
+        self._read: tuple | None = None  # (percepts, Frame) of the last infer, for decide
         readers = [r for r in (m.model_reader(program) for m in self.mechanisms) if r]
         self._read_model = readers[0] if readers else None  # what a world model may hold
 
@@ -141,20 +142,31 @@ class Engine:
         if model and self._read_model is None:
             raise LangError("Engine.infer: no mechanism of this engine keeps a world model")
         facts = self._read_model(model) if model else ()
+        self._read = None
         beliefs = self.inference.beliefs(percepts, facts)
-        self.inference.frame = None  # hold no percept list past the call (fewer GC passes)
+        frame, self.inference.frame = self.inference.frame, None
+        if not isinstance(percepts, PerceptIndex):
+            self._read = (percepts, frame)  # checked and read: decide on them reuses that
         return beliefs
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
         """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
-        on the previous cycle's actions (Outcome values or neutral dicts)."""
-        return self._decide(state, self._index(percepts), store_of(beliefs), outcomes)
+        on the previous cycle's actions (Outcome values or neutral dicts). Given the very
+        percepts object the last ``infer`` was given (not changed in between: infer + decide
+        on the same percepts, as ``cycle``), it takes them as infer checked and read them."""
+        read, self._read = self._read, None
+        if read is not None and read[0] is percepts:
+            index = read[1].index
+        else:
+            index = self._index(percepts)
+        return self._decide(state, index, store_of(beliefs), outcomes)
 
     def cycle(self, state: EngineState, percepts: Iterable,
               outcomes: Iterable = ()) -> CycleResult:
         """infer + decide on the same percepts; the state's world model (facts asserted by
         SCS bodies in earlier cycles) joins inference as base facts."""
+        self._read = None
         beliefs = self.inference.beliefs(percepts, self.facts(state))
         index, self.inference.frame = self.inference.frame.index, None
         decision, new_state = self._decide(state, index, beliefs.store, outcomes)
