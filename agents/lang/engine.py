@@ -145,7 +145,7 @@ class Engine:
         self._read = None
         beliefs = self.inference.beliefs(percepts, facts)
         frame, self.inference.frame = self.inference.frame, None
-        if not isinstance(percepts, PerceptIndex):
+        if isinstance(percepts, (list, tuple)):  # held until decide or the next infer
             self._read = (percepts, frame)  # checked and read: decide on them reuses that
         return beliefs
 
