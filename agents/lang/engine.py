@@ -40,6 +40,10 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
+_HANDOFF = 64  # percepts up to which infer keeps them and its reading of them for decide:
+# kept until decide or the next infer, a larger list would be freed in that next call
+# (bench/engine.py's infer of new lists at 1000 objects: 0.1 ms more a call)
+
 SOLVERS: dict[str, type] = handlers(MECHANISMS)
 """Impasse handlers by name, from the registered mechanisms: seed 000's means-ends problem
 solver and learner, seed 003's ROGUE planner (agents/lang/planning). A handler may also
@@ -145,7 +149,7 @@ class Engine:
         self._read = None
         beliefs = self.inference.beliefs(percepts, facts)
         frame, self.inference.frame = self.inference.frame, None
-        if isinstance(percepts, (list, tuple)):  # held until decide or the next infer
+        if isinstance(percepts, (list, tuple)) and len(percepts) <= _HANDOFF:
             self._read = (percepts, frame)  # checked and read: decide on them reuses that
         return beliefs
 
@@ -153,8 +157,9 @@ class Engine:
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
         """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
         on the previous cycle's actions (Outcome values or neutral dicts). Given the very
-        percepts object the last ``infer`` was given (not changed in between: infer + decide
-        on the same percepts, as ``cycle``), it takes them as infer checked and read them."""
+        percept list or tuple (of up to 64) the last ``infer`` was given, not changed in
+        between (infer + decide on the same percepts, as ``cycle``), it takes them as infer
+        checked and read them."""
         read, self._read = self._read, None
         if read is not None and read[0] is percepts:
             index = read[1].index
