@@ -140,6 +140,32 @@ def test_cycle_decisions_equal_fresh_engine(blocks):
         state, fresh_state = got.state, want.state
 
 
+def test_decide_after_infer_on_the_same_percepts_equals_a_fresh_reading(blocks):
+    """decide given the very list infer was given reuses infer's reading of it; given another
+    list (equal, or other percepts) it reads its own: every decision is the same as ``cycle``'s
+    and a fresh engine's."""
+    from .test_blocks import percepts as block_percepts
+
+    engine, fresh = Engine(blocks.program), Engine(blocks.program)
+    state = fresh_state = engine.add_goal(engine.initial_state(), "(on A C)", priority=0)
+    worlds = [({"A": "T", "B": "A", "C": "T"}, None), ({"A": "T", "C": "T"}, "B"),
+              ({"A": "T", "C": "T"}, "B"), ({"A": "T", "B": "T", "C": "T"}, None)]
+    for k, (support, holding) in enumerate(worlds):
+        ps = block_percepts(support, holding)
+        beliefs = engine.infer(ps)
+        given = ps if k % 2 == 0 else [list(p) for p in ps]  # the same list, or an equal one
+        decision, state = engine.decide(state, given, beliefs)
+        want = fresh.cycle(fresh_state, ps)
+        assert decision.to_dict() == want.decision.to_dict()
+        assert state == want.state
+        fresh_state = want.state
+    other = block_percepts({"A": "T", "B": "T", "C": "T"}, None)
+    engine.infer(block_percepts({"A": "T", "C": "T"}, "B"))
+    decision, _ = engine.decide(state, other, Engine(blocks.program).infer(other))
+    want = Engine(blocks.program).cycle(state, other)
+    assert decision.to_dict() == want.decision.to_dict()
+
+
 def test_blocks_program_evaluates_nothing_for_an_unchanged_world():
     from agents.lang import load_program
 

@@ -131,16 +131,18 @@ class PerceptTracker:
         hot = {a for a, m in moves.items() if m}
         if not (hot or dead or born):
             return
+        every = dead or born or ID in hot
         for rel in rels:
             attrs = rel[1]
-            if not _has(new, attrs) or not (dead or born or ID in hot or not hot.isdisjoint(attrs)):
+            if not (every or not hot.isdisjoint(attrs)) or not _has(new, attrs):
                 continue
             ks = _union([moves[ID], *(moves[a] for a in attrs)])
             if o_pick is None:
-                gone = came = ks
-            else:
-                gone = dead + [o_at[k] for k in ks]
-                came = born + [n_at[k] for k in ks]
+                pick = _picker(ks)  # the same positions, last cycle's rows and this cycle's
+                deltas[rel] = Delta(_rows_at(old, attrs, ks, pick), _rows_at(new, attrs, ks, pick))
+                continue
+            gone = dead + [o_at[k] for k in ks]
+            came = born + [n_at[k] for k in ks]
             deltas[rel] = Delta(_rows_at(old, attrs, gone), _rows_at(new, attrs, came))
         if dead or born or ID in hot:
             self._summaries(t, new, self.read[t])
@@ -211,10 +213,12 @@ def _picker(positions: list[int]):
     return itemgetter(*positions)
 
 
-def _rows_at(c: Cols, attrs: tuple[str, ...], positions: list[int]) -> list:
+def _rows_at(c: Cols, attrs: tuple[str, ...], positions: list[int], pick=None) -> list:
+    """The rows (id, *attrs) of ``c`` at ``positions`` (``pick``: their picker, if made)."""
     if not positions:
         return []
-    pick = _picker(positions)
+    if pick is None:
+        pick = _picker(positions)
     return list(zip(pick(c.ids), *(pick(c.vals[a]) for a in attrs), strict=True))
 
 
