@@ -180,11 +180,7 @@ class Engine:
     def facts(self, state: EngineState) -> tuple:
         """The base facts the mechanisms add to inference (the SCS world model: facts
         asserted by bodies in earlier cycles)."""
-        facts: tuple = ()
-        for m in self.mechanisms:
-            more = m.facts(state)
-            facts = more if not facts else facts + tuple(more)
-        return facts
+        return tuple(fact for m in self.mechanisms for fact in m.facts(state))
 
     def _index(self, percepts: Iterable) -> PerceptIndex:
         """The executive's index of ``percepts``, every value checked."""
