@@ -10,7 +10,7 @@ and a larger one; the modes alternate in rounds, each median set against today's
 
 from __future__ import annotations
 
-import socket
+import statistics
 import sys
 from pathlib import Path
 
@@ -19,13 +19,7 @@ import click
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from bus.shm_probe import median, round_trips  # noqa: E402
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+from bus.shm_probe import round_trips  # noqa: E402
 
 
 @click.command()
@@ -49,15 +43,15 @@ def main(sizes: str, n: int, rounds: int) -> None:
         came = dict.fromkeys(times, 0)
         for _ in range(rounds):
             for mode, shm, enabled in modes:
-                got, in_shm = round_trips(f"tcp/127.0.0.1:{_free_port()}", size, n, shm,
-                                          enabled)
+                got, in_shm = round_trips(size, n, shm, enabled)
                 times[mode] += got
                 came[mode] += in_shm
-        today = median(times[modes[1][0]])
+        today = statistics.median(times[modes[1][0]])
         print(f"{size} bytes ({rounds} x {n} round trips each, alternating):")
         for mode, _, _ in modes:
-            print(f"  {mode:<32} {median(times[mode]):.3f} ms, {median(times[mode]) / today:.2f}"
-                  f"x today; answers in shared memory {came[mode]} of {rounds * (n + 50)}")
+            ms = statistics.median(times[mode])
+            print(f"  {mode:<32} {ms:.3f} ms, {ms / today:.2f}x today; answers in shared "
+                  f"memory {came[mode]} of {rounds * (n + 50)}")
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ transport itself) or disabled; the echo side sends back each payload it receives
 from __future__ import annotations
 
 import json
-import statistics
+import socket
 import subprocess
 import sys
 import threading
@@ -34,12 +34,15 @@ def _config(listen: str | None, connect: str | None, shm: bool = True) -> zenoh.
     return conf
 
 
-def round_trips(endpoint: str, size: int, n: int, shm: bool,
+def round_trips(size: int, n: int, shm: bool,
                 enabled: bool = True) -> tuple[list[float], int]:
-    """``n`` round trips [ms] of a ``size``-byte payload to an echo process at ``endpoint``
-    (started here, stopped at the end), after 50 not counted, and how many of all the
-    answers came back in shared memory. ``shm``: the payload sent in a shared-memory buffer;
-    ``enabled``: shared memory enabled on both sides."""
+    """``n`` round trips [ms] of a ``size``-byte payload to an echo process on a free
+    loopback port (started here, stopped at the end), after 50 not counted, and how many of
+    all the answers came back in shared memory. ``shm``: the payload sent in a shared-memory
+    buffer; ``enabled``: shared memory enabled on both sides."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        endpoint = f"tcp/127.0.0.1:{s.getsockname()[1]}"
     echo = subprocess.Popen([sys.executable, "-m", "bus.shm_probe", "--endpoint", endpoint,
                              *([] if enabled else ["--no-shm"])])
     try:
@@ -87,11 +90,6 @@ def _one(pub, got: threading.Event, data: bytes, provider, policy, shm: bool) ->
     if not got.wait(5.0):
         raise SystemExit("no echo within 5 s: is the probe's endpoint free?")
     return (time.perf_counter() - t0) * 1e3
-
-
-def median(xs: list[float]) -> float:
-    """The median [ms]."""
-    return statistics.median(xs)
 
 
 @click.command()

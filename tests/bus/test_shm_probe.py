@@ -6,22 +6,14 @@ how many of those come back in it depends on timing, and bench/bus_shm.py only c
 
 from __future__ import annotations
 
-import socket
-
 import pytest
 
 from bus.shm_probe import round_trips
 
 
-def _endpoint() -> str:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return f"tcp/127.0.0.1:{s.getsockname()[1]}"
-
-
 @pytest.mark.parametrize("shm, enabled, answers_in_shm", [(True, True, 70), (False, False, 0)])
 def test_a_payload_comes_back_in_shared_memory_exactly_when_sent_so(shm, enabled,
                                                                      answers_in_shm):
-    times, in_shm = round_trips(_endpoint(), 15_000, 20, shm, enabled)
+    times, in_shm = round_trips(15_000, 20, shm, enabled)
     assert len(times) == 20 and all(t > 0 for t in times)
     assert in_shm == answers_in_shm   # 50 not timed, 20 timed
