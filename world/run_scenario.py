@@ -243,6 +243,13 @@ def _resolve(program: str, scenario_path: Path) -> Path:
     return candidate
 
 
+def world_files(table: dict[str, Any], scenario_path: Path) -> dict[str, Any]:
+    """``table`` with each relative path under a key ending in `_file` (the pddl world's
+    `domain_file`, `problem_file`) found as a program is (``_resolve``)."""
+    return {k: str(_resolve(v, scenario_path)) if k.endswith("_file") and isinstance(v, str)
+            and v else v for k, v in table.items()}
+
+
 def _goal(table: Any, index: int, agents: list[str], errors: Errors,
           spoilt: set[str]) -> ScriptedGoal:
     """One [[goals]] entry (at its defaults where in error: "goal K" is then spoilt)."""

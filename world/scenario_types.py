@@ -101,8 +101,11 @@ class Scenario:
 
     @property
     def world_table(self) -> dict[str, Any]:
-        """The `[world]` table without its `domain` key: the domain's own configuration."""
-        return {k: v for k, v in self.world.items() if k != "domain"}
+        """The `[world]` table without its `domain` key: the domain's own configuration
+        (a `*_file` path found as a program is, beside the scenario first)."""
+        from world.run_scenario import world_files
+
+        return world_files({k: v for k, v in self.world.items() if k != "domain"}, self.path)
 
     @property
     def agent_ids(self) -> list[str]:
