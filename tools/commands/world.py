@@ -23,7 +23,7 @@ from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
 from world.errors import WorldError
 from world.pictures import is_animation
-from world.run_scenario import world_files
+from world.scenario_paths import world_files
 from world.toml_text import read_toml
 
 _POSITIVE = click.FloatRange(min=0, min_open=True)  # --scale [px/m], --follow [m]

@@ -7,7 +7,8 @@ from __future__ import annotations
 from typing import Any
 
 from world.errors import ConfigError
-from world.pddl.task import Task, load_task
+from world.pddl.files import load_task
+from world.pddl.task import Task
 
 KEYS = ("domain_file", "problem_file")
 
