@@ -7,8 +7,9 @@
   effect, as programs/blocks.tlp does), each with the operator's parameters bound by object
   percepts of their types, its preconditions as ``:start`` (equality as the tests ``(= ?x ?y)``
   and ``(<> ?x ?y)``) and the operator as its one action ``(*stack ?x ?y)``. A comment above the
-  clauses lists the operator's add and delete effects; the engine learns what an action achieves
-  from the heads of the clauses that perform it (agents/lang/execution/effects.py). An operator
+  clauses lists the operator's add and delete effects, and each clause states them as
+  ``:effects`` (the other adds, the deletes as ``(not L)``), from which the engine knows what
+  the action achieves and undoes (agents/lang/execution/effects.py). An operator
   without add effects achieves no concept and has no skill (a comment says so);
 * with a problem, its goal as the program's one conjunctive goal ``(and ...)``, or, for a
   scenario, as the text to post (``goal_text``).
@@ -61,7 +62,12 @@ def skill_clauses(op: Operator) -> list[str]:
                 lines.append(f"   :percepts ({percepts})")
             if start:
                 lines.append(f"   :start ({start})")
-            lines.append(f"   :actions ({action}))")
+            lines.append(f"   :actions ({action})")
+            effects = [a.text() for a in op.add if a != add] + \
+                [f"(not {d.text()})" for d in op.delete if d not in op.add]
+            if effects:
+                lines[-1] += f"\n   :effects ({' '.join(effects)})"
+            lines[-1] += ")"
             out.append("\n".join(lines))
     return out
 
