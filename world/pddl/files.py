@@ -32,27 +32,30 @@ def _library():
     return DomainParser(), ProblemParser()
 
 
-def load_domain(path: str | Path) -> DomainModel:
-    """The domain in ``path``; raises ConfigError (one line) for anything it cannot run."""
+def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
+    """The domain in ``path`` (or ``text``, read from there); raises ConfigError (one line)
+    for anything it cannot run."""
     parse_domain, _ = _library()
-    text = _read(path)
+    text = _read(path) if text is None else text
     _check_requirements(text, path)
     for construct, name in (("durative-action", "durative actions (:durative-action)"),
                             ("functions", "numeric fluents (:functions)"),
                             ("derived", "derived predicates (:derived)")):
         m = re.search(rf"\(\s*:{construct}\b", text, re.I)
         if m:
-            raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not supported; the "
-                              f"pddl world runs STRIPS with {_fragment()}")
+            raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not "
+                              f"supported; the pddl world runs STRIPS with {_fragment()}")
     d = _parsed(parse_domain, path, text)
     return domain_model(d, str(path), text)
 
 
-def load_task(domain_path: str | Path, problem_path: str | Path) -> Task:
-    """The problem in ``problem_path`` of the domain in ``domain_path``, checked against it."""
-    model = load_domain(domain_path)
+def load_task(domain_path: str | Path, problem_path: str | Path,
+              texts: tuple[str, str] | None = None) -> Task:
+    """The problem in ``problem_path`` of the domain in ``domain_path`` (or ``texts``, the
+    two files' text), checked against it."""
+    model = load_domain(domain_path, texts[0] if texts else None)
     _, parse_problem = _library()
-    text = _read(problem_path)
+    text = _read(problem_path) if texts is None else texts[1]
     _check_requirements(text, problem_path)
     p = _parsed(parse_problem, problem_path, text)
     return task_of(model, p, str(problem_path), text)
