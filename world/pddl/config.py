@@ -11,6 +11,7 @@ from world.pddl.files import load_task
 from world.pddl.task import Task
 
 KEYS = ("domain_file", "problem_file")
+_KNOWN = KEYS   # the keys docs/scenarios.md documents (tests/tools/test_docs.py)
 
 
 def load_pddl_config(table: dict[str, Any]) -> Task:

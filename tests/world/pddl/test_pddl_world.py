@@ -147,3 +147,12 @@ def test_render_draws_a_png_and_a_gif(tmp_path):
     assert (tmp_path / "s.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert domain.render(snaps, tmp_path / "s.gif", "ME") == 2
     assert (tmp_path / "s.gif").read_bytes()[:6] == b"GIF89a"
+
+
+def test_the_view_shows_the_worlds_own_picture():
+    from tools.view.scene import map_of, render_png
+
+    w = world_of(BLOCKS)
+    snaps = [w.snapshot_dict()]
+    assert map_of(snaps[-1])["drawn"] is False     # the page asks for the domain's PNG
+    assert render_png(snaps, "ME")[:8] == b"\x89PNG\r\n\x1a\n"
