@@ -1,7 +1,7 @@
 """The teleo program of a PDDL domain (`teleo pddl program`, docs/pddl.md):
 
 * each predicate a primitive concept over its atoms' percepts (perception.py):
-  ``((on ?x ?y) :percepts ((on ?x arg2 ?y)))``;
+  ``((on ?x ?y) :percepts ((on _ arg1 ?x arg2 ?y)))``;
 * each operator one primitive skill per add effect, the effect its head (ICARUS indexes a skill
   by the concept it achieves; seed 000 writes an action with two effects as one clause per
   effect, as programs/blocks.tlp does), each with the operator's parameters bound by object
@@ -19,21 +19,20 @@ The program reads the world's percepts only, so a user's own concepts and skills
 
 from __future__ import annotations
 
+import textwrap
 from itertools import product
 
-from world.pddl.perception import NULLARY, OBJECT
+from world.pddl.perception import ATOM, OBJECT
 from world.pddl.task import DomainModel, Lit, Operator, Task
 
 
 def concept_clause(pred: str, params: tuple[tuple[str, tuple[str, ...]], ...]) -> str:
-    """The primitive concept of one predicate."""
+    """The primitive concept of one predicate: ``((on ?x ?y) :percepts ((on _ arg1 ?x arg2
+    ?y)))``."""
     names = [v for v, _ in params]
     head = "(" + " ".join([pred, *names]) + ")"
-    if not names:
-        pattern = f"({pred} {NULLARY})"
-    else:
-        pattern = "(" + " ".join([pred, names[0], *[f"arg{k} {v}" for k, v in
-                                                     enumerate(names[1:], start=2)]]) + ")"
+    pattern = "(" + " ".join([pred, ATOM, *[f"arg{k} {v}" for k, v in
+                                           enumerate(names, start=1)]]) + ")"
     return f"  ({head}\n   :percepts ({pattern}))"
 
 
@@ -48,9 +47,12 @@ def skill_clauses(op: Operator) -> list[str]:
     adds = " ".join(a.text() for a in op.add) or "nothing"
     dels = " ".join(d.text() for d in op.delete) or "nothing"
     action = "(" + " ".join([f"*{op.name}", *[v for v, _ in op.params]]) + ")"
-    out = [f"  ; {action}: adds {adds}; deletes {dels}"]
+    note = f"{action}: adds {adds}; deletes {dels}"
     if not op.add:
-        out[0] += " (no skill: it achieves no concept)"
+        note += " (no skill: it achieves no concept)"
+    out = ["\n".join(textwrap.wrap(note, 95, initial_indent="  ; ", subsequent_indent="  ;   ",
+                                   break_on_hyphens=False))]
+    if not op.add:
         return out
     start = " ".join(_condition(p) for p in op.pre)
     for types in product(*[t for _, t in op.params]):
@@ -83,15 +85,17 @@ def goal_text(task: Task) -> str:
 def program_text(model: DomainModel, task: Task | None = None, extra: str = "",
                  source: str = "") -> str:
     """The whole program; with ``task`` its goal as the goals section; ``extra`` appended."""
-    objects = ", ".join(f"({OBJECT} NAME type {t})" for t in
-                        sorted({t for t, _ in model.types} | {"object"}))
-    head = [f"; The PDDL domain {model.name}{f' ({source})' if source else ''}, written by "
+    types = " ".join(sorted({t for t, _ in model.types} | {"object"}))
+    actions = " ".join("(" + " ".join([f"*{o.name}", *[v for v, _ in o.params]]) + ")"
+                       for o in model.operators)
+    head = [f"The PDDL domain {model.name}{f' ({source})' if source else ''}, written by "
             f"`teleo pddl program` (docs/pddl.md).",
-            f"; Percepts: an object once per type it has: {objects};",
-            "; an atom (p a b c) as (p a arg2 b arg3 c), (p a) as itself, (p) as (p true).",
-            "; Actions: " + " ".join("(" + " ".join([f"*{o.name}", *[v for v, _ in o.params]])
-                                     + ")" for o in model.operators),
-            ""]
+            f"Percepts: (object NAME type T) for each object and each of its types (types: "
+            f"{types}); an atom (p a b) as (p _ arg1 a arg2 b), (p) as (p _).",
+            f"Actions: {actions}"]
+    head = [line for text in head for line in textwrap.wrap(
+        text, 97, initial_indent="; ", subsequent_indent=";   ", break_on_hyphens=False)]
+    head.append("")
     concepts = [concept_clause(p, ps) for p, ps in model.predicates]
     skills = [c for op in model.operators for c in skill_clauses(op)]
     text = "\n".join(head) + "(concepts\n" + "\n".join(concepts) + ")\n\n"

@@ -114,10 +114,11 @@ def test_snapshot_percepts_and_goal():
     percepts = get_domain("pddl").perceive(snap, "ME")
     assert ["object", "a", "type", "block"] in percepts
     assert ["object", "a", "type", "object"] in percepts
-    assert ["handempty", "true"] in percepts and ["clear", "a"] in percepts
+    assert ["handempty", "_"] in percepts and ["clear", "_", "arg1", "a"] in percepts
     for move in (["*pick-up", "b"], ["*stack", "b", "a"]):
         _do(w, *move)
-    assert ["on", "b", "arg2", "a"] in get_domain("pddl").perceive(w.snapshot_dict(), "ME")
+    percepts = get_domain("pddl").perceive(w.snapshot_dict(), "ME")
+    assert ["on", "_", "arg1", "b", "arg2", "a"] in percepts
 
 
 def test_safe_action_waits_and_is_no_step_of_the_plan():
