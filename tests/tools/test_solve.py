@@ -57,6 +57,17 @@ def test_the_typed_domain_with_either_and_negations_is_solved():
     assert out["actions"][0] == ["load", "p1", "t1", "home"]
 
 
+def test_negated_goals_and_preconditions_are_pursued(tmp_path):
+    problem = tmp_path / "van.pddl"
+    problem.write_text(TRUCKS[1].read_text().replace(
+        "(:goal (and (parcel-at p1 shop) (parcel-at p2 home)))",
+        "(:goal (and (at v1 shop) (not (parcel-at p1 home))))"))
+    code, out = _solve((TRUCKS[0], problem))
+    assert (code, out["status"], out["goal"]) == \
+        (0, "achieved", "(and (at v1 shop) (not-parcel-at p1 home))"), out
+    assert ["service", "v1"] in out["actions"]   # v1 is broken: it must be serviced to drive
+
+
 def test_learned_skills_make_the_same_problem_need_less_problem_solving(tmp_path):
     learned = tmp_path / "learned.tlp"
     code, first = _solve(BLOCKS, "--learned-out", str(learned))

@@ -110,7 +110,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
     limit = cycles or default_cycles(len(task.objects), len(task.goal))
     with tempfile.TemporaryDirectory(prefix="teleo-solve-") as folder:
         program = Path(folder) / f"{task.domain.name}.tlp"
-        program.write_text(program_text(task.domain, None, extra, str(domain)))
+        program.write_text(program_text(task.domain, task, extra, str(domain), goals=False))
         path = Path(folder) / "solve.toml"
         name = f"solve-{task.name}"[:40].replace(".", "-")
         path.write_text(_scenario_text(name, domain.resolve(), problem.resolve(), program,

@@ -36,37 +36,74 @@ def concept_clause(pred: str, params: tuple[tuple[str, tuple[str, ...]], ...]) -
     return f"  ({head}\n   :percepts ({pattern}))"
 
 
-def _condition(lit: Lit) -> str:
+def negations(model: DomainModel, task: Task | None = None) -> dict[str, str]:
+    """predicate -> the name of its negation's concept (``not-p``), for each predicate that a
+    precondition (or ``task``'s goal) requires false: the solver pursues only positive
+    literals, so ``(not (broken ?v))`` becomes the concept ``(not-broken ?v)``, which the
+    operators deleting ``broken`` achieve."""
+    names = {p for p, _ in model.predicates}
+    lits = [lit for op in model.operators for lit in op.pre] + list(task.goal if task else ())
+    out: dict[str, str] = {}
+    for lit in lits:
+        if lit.negated and lit.pred != "=" and lit.pred not in out:
+            name = f"not-{lit.pred}"
+            while name in names:
+                name += "-"
+            out[lit.pred] = name
+    return out
+
+
+def negation_clause(model: DomainModel, pred: str, name: str) -> str:
+    """The concept of ``pred``'s negation over the objects of its parameters' types."""
+    params = dict(model.predicates)[pred]
+    names = [v for v, _ in params]
+    percepts = " ".join(f"({OBJECT} {v} type {t[0] if len(t) == 1 else 'object'})"
+                        for v, t in params)
+    head = "(" + " ".join([name, *names]) + ")"
+    core = "(" + " ".join([pred, *names]) + ")"
+    lines = [f"  ({head}"] + ([f"   :percepts ({percepts})"] if percepts else [])
+    return "\n".join(lines) + f"\n   :relations ((not {core})))"
+
+
+def _condition(lit: Lit, neg: dict[str, str]) -> str:
     if lit.pred == "=":
         return f"({'<>' if lit.negated else '='} {lit.args[0]} {lit.args[1]})"
+    if lit.negated and lit.pred in neg:
+        return "(" + " ".join([neg[lit.pred], *lit.args]) + ")"
     return lit.text()
 
 
-def skill_clauses(op: Operator) -> list[str]:
-    """The primitive skills of one operator (one per add effect and `either` choice)."""
+def skill_clauses(op: Operator, neg: dict[str, str] | None = None) -> list[str]:
+    """The primitive skills of one operator: one per add effect, and one per delete effect of a
+    predicate with a negation concept in ``neg`` (for each `either` choice)."""
+    neg = neg or {}
     adds = " ".join(a.text() for a in op.add) or "nothing"
     dels = " ".join(d.text() for d in op.delete) or "nothing"
     action = "(" + " ".join([f"*{op.name}", *[v for v, _ in op.params]]) + ")"
+    made = [a.text() for a in op.add] + \
+        ["(" + " ".join([neg[d.pred], *d.args]) + ")" for d in op.delete
+         if d.pred in neg and d not in op.add]
+    unmade = [f"(not {d.text()})" for d in op.delete if d not in op.add] + \
+        ["(not (" + " ".join([neg[a.pred], *a.args]) + "))" for a in op.add if a.pred in neg]
     note = f"{action}: adds {adds}; deletes {dels}"
-    if not op.add:
+    if not made:
         note += " (no skill: it achieves no concept)"
     out = ["\n".join(textwrap.wrap(note, 95, initial_indent="  ; ", subsequent_indent="  ;   ",
                                    break_on_hyphens=False))]
-    if not op.add:
+    if not made:
         return out
-    start = " ".join(_condition(p) for p in op.pre)
+    start = " ".join(_condition(p, neg) for p in op.pre)
     for types in product(*[t for _, t in op.params]):
         percepts = " ".join(f"({OBJECT} {v} type {t})" for (v, _), t in zip(op.params, types,
                                                                              strict=True))
-        for add in op.add:
-            lines = [f"  ({add.text()}"]
+        for head in made:
+            lines = [f"  ({head}"]
             if percepts:
                 lines.append(f"   :percepts ({percepts})")
             if start:
                 lines.append(f"   :start ({start})")
             lines.append(f"   :actions ({action})")
-            effects = [a.text() for a in op.add if a != add] + \
-                [f"(not {d.text()})" for d in op.delete if d not in op.add]
+            effects = [m for m in made if m != head] + unmade
             if effects:
                 lines[-1] += f"\n   :effects ({' '.join(effects)})"
             lines[-1] += ")"
@@ -75,16 +112,19 @@ def skill_clauses(op: Operator) -> list[str]:
 
 
 def goal_text(task: Task) -> str:
-    """The problem's goal as one teleo goal: ``(and L1 L2 ...)``, a single literal as itself."""
-    lits = [g.text() for g in task.goal]
+    """The problem's goal as one teleo goal: ``(and L1 L2 ...)``, a single literal as itself;
+    a negated literal as its negation concept's (``negations``)."""
+    neg = negations(task.domain, task)
+    lits = [_condition(g, neg) for g in task.goal]
     if len(lits) == 1:
         return lits[0]
     return "(and " + " ".join(lits) + ")"
 
 
 def program_text(model: DomainModel, task: Task | None = None, extra: str = "",
-                 source: str = "") -> str:
-    """The whole program; with ``task`` its goal as the goals section; ``extra`` appended."""
+                 source: str = "", goals: bool = True) -> str:
+    """The whole program; with ``task`` the negations its goal needs and (``goals``) its goal
+    as the goals section; ``extra`` appended."""
     types = " ".join(sorted({t for t, _ in model.types} | {"object"}))
     actions = " ".join("(" + " ".join([f"*{o.name}", *[v for v, _ in o.params]]) + ")"
                        for o in model.operators)
@@ -96,11 +136,13 @@ def program_text(model: DomainModel, task: Task | None = None, extra: str = "",
     head = [line for text in head for line in textwrap.wrap(
         text, 97, initial_indent="; ", subsequent_indent=";   ", break_on_hyphens=False)]
     head.append("")
-    concepts = [concept_clause(p, ps) for p, ps in model.predicates]
-    skills = [c for op in model.operators for c in skill_clauses(op)]
+    neg = negations(model, task)
+    concepts = [concept_clause(p, ps) for p, ps in model.predicates] + \
+        [negation_clause(model, p, name) for p, name in neg.items()]
+    skills = [c for op in model.operators for c in skill_clauses(op, neg)]
     text = "\n".join(head) + "(concepts\n" + "\n".join(concepts) + ")\n\n"
     text += "(skills\n" + "\n".join(skills) + ")\n"
-    if task is not None and task.goal:
+    if task is not None and task.goal and goals:
         text += f"\n; the goal of problem {task.name}\n(goals\n  {goal_text(task)})\n"
     if extra:
         text += "\n" + extra.rstrip() + "\n"
