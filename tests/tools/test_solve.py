@@ -72,6 +72,8 @@ def test_learned_skills_make_the_same_problem_need_less_problem_solving(tmp_path
     learned = tmp_path / "learned.tlp"
     code, first = _solve(BLOCKS, "--learned-out", str(learned))
     assert code == 0 and learned.exists() and first["learned_file"] == str(learned)
+    checked = CliRunner().invoke(cli, ["check", str(learned)])   # names its program, kept
+    assert checked.exit_code == 0 and "learned-program.tlp" in checked.output
     code, again = _solve(BLOCKS, "--learned", str(learned))
     assert (code, again["status"]) == (0, "achieved")
     assert again["solving_cycles"] < first["solving_cycles"]
