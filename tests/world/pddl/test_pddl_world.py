@@ -5,6 +5,7 @@ action a cycle; snapshots, percepts, checkpoints and pictures."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 from pddl_helpers import BLOCKS, TRUCKS, world_of
@@ -157,3 +158,14 @@ def test_the_view_shows_the_worlds_own_picture():
     snaps = [w.snapshot_dict()]
     assert map_of(snaps[-1])["drawn"] is False     # the page asks for the domain's PNG
     assert render_png(snaps, "ME")[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_teleo_render_draws_a_pddl_scenario(tmp_path):
+    from click.testing import CliRunner
+
+    from tools.cli import cli
+
+    scenario = Path(__file__).resolve().parents[3] / "scenarios" / "pddl" / "sussman.toml"
+    out = CliRunner().invoke(cli, ["render", str(scenario), "--out", str(tmp_path / "s.png")])
+    assert out.exit_code == 0, out.output
+    assert (tmp_path / "s.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
