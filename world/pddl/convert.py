@@ -8,7 +8,7 @@ import re
 from typing import Any
 
 from world.errors import ConfigError
-from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate
+from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate, uncommented
 
 _UNSUPPORTED = {
     "When": "conditional effects (when)", "Forall": "universal quantifiers (forall)",
@@ -34,7 +34,7 @@ def domain_model(d: Any, path: str, text: str) -> DomainModel:
                           f"named 'object' is not supported: the world's object percepts "
                           f"are (object NAME type T)")
     ops = []
-    low = text.lower()
+    low = uncommented(text).lower()
     for a in sorted(d.actions, key=lambda a: (_find(low, rf"\(\s*:action\s+"
                                                         rf"{re.escape(str(a.name).lower())}"
                                                         rf"(?![\w-])"), str(a.name))):
@@ -79,7 +79,8 @@ def task_of(model: DomainModel, p: Any, path: str, text: str) -> Task:
         _check_lit(lit, arity, set(objects), path, "the initial state", text, ":init")
         init.add((lit.pred, *lit.args))
     goal = _literals(p.goal, path, "the goal") if p.goal is not None else []
-    goal = in_text_order(goal, text.lower(), _find(text.lower(), r"\(\s*:goal\b"))
+    low = uncommented(text).lower()
+    goal = in_text_order(goal, low, _find(low, r"\(\s*:goal\b"))
     for lit in goal:
         _check_lit(lit, arity, set(objects), path, "the goal", text, ":goal")
     return Task(model, str(p.name).lower(), tuple(sorted(objects.items())), frozenset(init),

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from world.errors import ConfigError
 from world.pddl.convert import domain_model, task_of
-from world.pddl.task import DomainModel, Task, locate, position
+from world.pddl.task import DomainModel, Task, locate, position, uncommented
 
 INSTALL = "pip install 'teleo[pddl]'"
 SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality"})
@@ -44,11 +44,12 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
     for anything it cannot run."""
     parse_domain, _ = _library()
     text = _read(path) if text is None else text
-    _check_requirements(text, path)
+    code = uncommented(text)
+    _check_requirements(code, path)
     for construct, name in (("durative-action", "durative actions (:durative-action)"),
                             ("functions", "numeric fluents (:functions)"),
                             ("derived", "derived predicates (:derived)")):
-        m = re.search(rf"\(\s*:{construct}\b", text, re.I)
+        m = re.search(rf"\(\s*:{construct}\b", code, re.I)
         if m:
             raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not "
                               f"supported; the pddl world runs STRIPS with {_fragment()}")
@@ -63,7 +64,7 @@ def load_task(domain_path: str | Path, problem_path: str | Path,
     model = load_domain(domain_path, texts[0] if texts else None)
     _, parse_problem = _library()
     text = _read(problem_path) if texts is None else texts[1]
-    _check_requirements(text, problem_path)
+    _check_requirements(uncommented(text), problem_path)
     p = _parsed(parse_problem, problem_path, text)
     return task_of(model, p, str(problem_path), text)
 
