@@ -167,3 +167,19 @@ def test_simulate_writes_its_summary_file_as_launch_does(tmp_path, monkeypatch):
     assert refused.exit_code == 2 and "Traceback" not in refused.output
     assert f"Error: Invalid value for '--summary': File '{tmp_path}' is a directory." \
         in refused.output
+
+
+def test_the_summary_names_the_run_id_that_explain_takes(tmp_path, monkeypatch):
+    """Issue 31 (N11): simulate printed `run driving-demo completed`, the scenario's name,
+    and `teleo explain driving-demo` found no record: the summary names the run id."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n')
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "4"])
+    assert done.exit_code == 0, done.output
+    run = done.output.split()[1]
+    assert run.startswith("driving-demo-sim-") and f"runs/{run}/record.mcap" in done.output
+    explained = CliRunner().invoke(cli, ["explain", run, "--cycle", "2", "--brief"])
+    assert explained.exit_code == 0, explained.output
+    assert f"(run {run})" in explained.output
+    bare = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "4", "--no-record"])
+    assert bare.output.startswith("run driving-demo completed")   # no record, no run id

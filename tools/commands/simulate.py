@@ -317,6 +317,8 @@ def _write_outputs(run: SimRun, sc: Scenario, out: _Outputs, seed: int | None,
     result = sim_summary.build(run, sc, sc.run.seed if seed is None else seed,
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
+    if record is not None:   # the run id `teleo explain`, `view` and `plot` take (N11)
+        result["run"] = Path(record).parent.name
     result["record_missing"] = None if record is None else 0  # written in the loop: all of it
     result["record_gaps"], result["record_failed"] = (None if record is None else []), None
     if out.summary:
