@@ -135,3 +135,23 @@ def test_a_program_goal_cannot_be_cancelled_or_reprioritised_and_says_so(entry, 
     assert not ok and reason == "no goal 'p3': the program goals of ME are p1..p2"
     assert ask(entry, "post", "(package-delivered PACKET1)", 5)[0]
     assert ask(entry, op, priority=7, goal_id="g1")[0]      # a user goal still can
+
+
+def test_a_refused_scripted_request_is_kept_for_the_summary(tmp_path):
+    """Issue 31 (N13): a launch's refused scripted request was only a line in goals.log; the
+    goal store keeps it (goals.json "refused"), and the launch's summary reads it there."""
+    from tools.records.summary import _goals
+
+    text = DEMO.read_text().replace('"programs/driving.tlp"', f'"{ROOT}/programs/driving.tlp"')
+    path = tmp_path / "s.toml"
+    path.write_text(text + '[[goals]]\nop = "cancel"\ngoal_id = "g1"\nat_cycle = 2\n'
+                           '[[goals]]\nop = "cancel"\ngoal_id = "g1"\nat_cycle = 3\n')
+    scenario = load_scenario(path)
+    entry = GoalEntry(scenario, tmp_path / "goals.json", engine_validator(scenario),
+                      logging.getLogger("test"), standing=standing_goals(scenario))
+    for cycle in range(5):
+        entry.cycle = cycle
+        entry._scripted(cycle)
+    expected = ["scripted cancel of g1 at cycle 3 refused: g1: already cancelled"]
+    assert list(entry.store.refused) == expected
+    assert _goals(tmp_path / "goals.json")[2] == expected

@@ -257,7 +257,7 @@ def test_check_reports_every_error_of_a_scenario_at_once(tmp_path):
     doc = json.loads(invoke("check", "--json", typo).output)
     assert [e["message"] for e in doc["files"][0]["errors"]] == [
         f"{typo}: [run]: unknown field(s) ['typo_key']; expected ['cycles', 'deadline', "
-        "'goals_respawn', 'mode', 'name', 'render_every', 'secure', 'seed']",
+        "'goals_respawn', 'mode', 'name', 'render_every', 'secure', 'seed', 'status']",
         f"{typo}: [[agents]]: agent ids must be unique, got ['ME', 'ME']"]
 
 

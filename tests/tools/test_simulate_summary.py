@@ -183,3 +183,53 @@ def test_the_summary_names_the_run_id_that_explain_takes(tmp_path, monkeypatch):
     assert f"(run {run})" in explained.output
     bare = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "4", "--no-record"])
     assert bare.output.startswith("run driving-demo completed")   # no record, no run id
+
+
+def test_the_scenario_chooses_whether_a_goal_not_kept_fails_the_run(tmp_path, monkeypatch):
+    """Issue 31 (N15): one goal the agent gave up on failed the whole run. The default
+    (`[run] status = "goals"`) still fails it; `status = "system"` reports the goal and
+    completes; a value that is neither is refused naming the field."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET9)"\npriority = 6\n')
+    args = ["simulate", str(path), "--cycles", "6", "--no-record"]
+    failed = CliRunner().invoke(cli, [*args, "--json"])
+    assert failed.exit_code == 1 and json.loads(failed.stdout)["status"] == "failed"
+    kept = CliRunner().invoke(cli, [*args, "--set", "run.status='system'"])
+    assert kept.exit_code == 0, kept.output
+    assert kept.output.startswith("run driving-demo completed")
+    assert "  not kept (not a failure of the run, status = system): goal g1 " \
+           "(package-delivered PACKET9) could not be kept: failed (" in kept.output
+    data = json.loads(CliRunner().invoke(cli, [*args, "--json", "--set",
+                                               "run.status='system'"]).stdout)
+    assert (data["status"], data["failures"], data["status_policy"]) == ("completed", [],
+                                                                         "system")
+    assert data["goals_not_kept"][0].startswith("goal g1 (package-delivered PACKET9)")
+    wrong = CliRunner().invoke(cli, [*args, "--set", "run.status='lenient'"])
+    assert wrong.exit_code == 1 and "[run].status: expected one of ['goals', 'system'], " \
+        "got 'lenient'" in wrong.output
+
+
+def test_a_refused_scripted_request_is_in_the_summary(tmp_path, monkeypatch):
+    """Issue 31 (N13): a scripted cancel the goal store refused was one log line; the
+    summary says which request, when and why."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, """
+[[goals]]
+goal = "(package-delivered PACKET1)"
+priority = 5
+[[goals]]
+op = "cancel"
+goal_id = "g1"
+at_cycle = 2
+[[goals]]
+op = "cancel"
+goal_id = "g1"
+at_cycle = 3
+""")
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5", "--no-record"])
+    assert done.exit_code == 0, done.output
+    line = next(x for x in done.output.splitlines() if "refused" in x)
+    assert line.startswith("  scripted cancel of g1 at cycle 3 refused: "), done.output
+    data = json.loads(CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5",
+                                               "--no-record", "--json"]).stdout)
+    assert data["requests_refused"] == [line.strip()]

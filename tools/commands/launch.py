@@ -151,7 +151,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         raise SystemExit(summary.EXIT_CODES["interrupted"]) from None
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
-            "secured": plan.secrets is not None, "overrides": list(scenario.overrides)}
+            "secured": plan.secrets is not None, "overrides": list(scenario.overrides),
+            "status_policy": scenario.run.status}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
         if per_process:
             click.echo(_layout(len(scenario.agents), per_process, cpus))

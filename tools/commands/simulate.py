@@ -22,7 +22,7 @@ import click
 from agents.lang import Engine, EngineState, LangError, load_program
 from agents.lang.loader import read_text
 from agents.lang.registry import learned_text, memory_of, read_learned
-from agents.processes.goal_store import GoalStore, GoalStoreError
+from agents.processes.goal_store import GoalStore, GoalStoreError, refused_text
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
 from tools.commands.plot import plot_check
@@ -100,8 +100,8 @@ def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalSto
             return store.cancel(g.goal_id, cycle, g.force)
         return store.set_priority(g.goal_id, g.priority, cycle)
     except GoalStoreError as exc:
-        log.warning("scripted request refused: %s", exc)
-        return store
+        log.info("scripted request refused: %s", exc)   # the summary says it
+        return store.refusing(refused_text(g.op, g.goal_id, g.goal, cycle, exc))
 
 
 @dataclass(frozen=True)

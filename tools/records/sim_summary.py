@@ -38,6 +38,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g["status"] == "achieved"),
         "goal_store_incidents": [], "goals_lost": False,
+        "requests_refused": list(run.goals.refused), "status_policy": scenario.run.status,
         "domain": scenario.domain,
         "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
                          for a, c in counters.items()},
