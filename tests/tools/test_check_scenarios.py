@@ -331,3 +331,29 @@ def test_a_scenario_whose_program_is_empty_is_refused(tmp_path, monkeypatch):
         assert f"agent ME: program {empty}:\n{empty}:1:1: the file holds no forms (an empty " \
                "program)" in result.output
     assert not (tmp_path / "runs").exists()
+
+
+def test_schema_errors_do_not_hide_the_world_and_goal_errors(tmp_path):
+    """Issue 31 (N14): an unknown [world] key hid the unknown street after it, and a goal
+    whose agent was missing hid the goal's own syntax error; a concept misspelt in a
+    scenario's goal gets the "did you mean" a program's error has."""
+    agents = DEMO[DEMO.index("[[agents]]"):DEMO.index("[[goals]]")]
+    text = (DEMO.replace("[run]\n", "[run]\ntypo_key = 1\n")
+            .replace("pedestrians = 12", "pedestrains = 3")
+            .replace('street = "B", from', 'street = "Z", from')
+            .replace('agent = "ME"\ngoal = "(package-delivered PACKET1)"',
+                     'goal = "(package-delivered PACKET1"')
+            .replace('goal = "(package-delivered PACKET2)"', 'goal = "(package-delivred ME)"')
+            .replace("[[goals]]", agents.replace('"ME"', '"YOU"') + "[[goals]]", 1))
+    bad = scenario(tmp_path, text.replace(
+        'cars = [{ agent = "ME", street = "Z", from = "FIRST", toward = "SECOND", along = 20.0 }]',
+        'cars = [{ agent = "ME", street = "Z", from = "FIRST", toward = "SECOND", along = 20.0 },'
+        ' { agent = "YOU", street = "A", from = "FIRST", toward = "SECOND", along = 5.0 }]'))
+    lines = invoke("check", bad).output.splitlines()
+    assert f"{bad}: [world] car ME: unknown street 'Z'" in lines, lines
+    assert any(x.startswith(f"{bad}: [world] unknown keys ['pedestrains']") for x in lines)
+    assert f"{bad}: [[goals]] #1.agent: required, expected str" in lines
+    assert f"{bad}: [[goals]] #1: goal '(package-delivered PACKET1': column 1: '(' is never " \
+           "closed (missing ')')" in lines
+    assert f"{bad}: [[goals]] #2: goal (package-delivred ME): undefined concept " \
+           "'package-delivred' (did you mean 'package-delivered'?)" in lines

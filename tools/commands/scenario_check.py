@@ -6,6 +6,8 @@ the field, never a crash 10 s into a run."""
 
 from __future__ import annotations
 
+import difflib
+import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -15,6 +17,7 @@ import click
 from agents.lang import Engine, GoalError, ProgramError, load_program
 from agents.lang.core.program import Program
 from agents.lang.engine import SOLVERS
+from agents.lang.reading.goals import parse_goal
 from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
 from world.domain import get_domain
 from world.errors import WorldError
@@ -50,8 +53,8 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
     if "world" not in spoilt:
         try:
             domain.check_config(scenario.world_table, scenario.agent_ids)
-        except WorldError as exc:
-            errors.append(f"{where}: {exc}")
+        except WorldError as exc:   # a line each (the table's other errors too)
+            errors += [f"{where}: {line}" for line in str(exc).splitlines()]
     programs: dict[str, Program] = {}
     for agent in scenario.agents:
         if f"agent {agent.id}" not in spoilt:
@@ -64,6 +67,12 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
             problem = _goal_problem(goal, programs[goal.agent])
             if problem:
                 errors.append(f"{where}: [[goals]] #{k + 1}: {problem}")
+    for k, goal in enumerate(scenario.goals):   # in error elsewhere: its text alone
+        if f"goal {k + 1}" in spoilt and goal.op == "post" and goal.goal:
+            try:
+                parse_goal(goal.goal)
+            except GoalError as exc:
+                errors.append(f"{where}: [[goals]] #{k + 1}: {exc}")
     if len(checked) == len(scenario.goals):  # the ids g1, g2, ... count every post
         errors += _goal_id_problems(scenario)
     for k, event in enumerate(scenario.events):
@@ -134,12 +143,23 @@ def _goal_problem(goal: ScriptedGoal, program: Program) -> str:
         try:
             engine.add_goal(engine.initial_state(), goal.goal, priority=goal.priority)
         except GoalError as exc:
-            return str(exc)
+            return _with_suggestion(str(exc), program)
     if goal.op != "cancel" and not goal.force:
         problem = rank_problem(tuple(str(g.literal) for g in program.goals), goal.priority)
         if problem:
             return f"{problem} (force = true)"
     return ""
+
+
+def _with_suggestion(message: str, program: Program) -> str:
+    """``message`` with "did you mean" for an undefined concept close to one the program
+    has, as a program's own errors have it (issue 31, N14)."""
+    found = re.search(r"undefined concept '([^']+)'", message)
+    if not found or "did you mean" in message:
+        return message
+    names = sorted(program.concepts)
+    close = difflib.get_close_matches(found.group(1), names, n=1)
+    return f"{message} (did you mean '{close[0]}'?)" if close else message
 
 
 def _is_file(path: Path) -> bool:
