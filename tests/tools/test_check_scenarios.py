@@ -357,3 +357,22 @@ def test_schema_errors_do_not_hide_the_world_and_goal_errors(tmp_path):
            "closed (missing ')')" in lines
     assert f"{bad}: [[goals]] #2: goal (package-delivred ME): undefined concept " \
            "'package-delivred' (did you mean 'package-delivered'?)" in lines
+
+
+def test_check_warns_of_a_goal_naming_an_object_the_world_has_not(tmp_path):
+    """Issue 31 (N12): `(delivered mail-reid r-5399)` passed check (there is no r-5399) and
+    failed 130 cycles into the run; check warns, naming the goal and the object, and says
+    nothing of a goal whose objects all exist."""
+    text = (ROOT / "scenarios" / "office_errand.toml").read_text().replace(
+        '"programs/office_errand.tlp"', f'"{ROOT}/programs/office_errand.tlp"')
+    good = scenario(tmp_path, text, "good.toml")
+    result = invoke("check", good)
+    assert result.exit_code == 0 and "warning" not in result.output, result.output
+    bad = scenario(tmp_path, text.replace("(delivered mail-reid reid)",
+                                          "(delivered mail-reid r-5399)"), "bad.toml")
+    result = invoke("check", bad)
+    assert result.exit_code == 0, result.output
+    assert f"{bad}: warning: [[goals]] #1: goal (delivered mail-reid r-5399): no object " \
+           "'r-5399' in the office world as it starts, nor in ME's program (the goal would " \
+           "wait for a percept of it, then fail)" in result.output.splitlines()
+    assert "'mail-reid'" not in result.output
