@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import json
 import logging
+import textwrap
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
@@ -35,7 +36,15 @@ import click
 
 from tools.records import run_record as records
 from tools.records.record_coverage import coverage, ranges_text
-from tools.records.summary_agents import agent_sections, echo_agents, read_json_file
+from tools.records.summary_agents import (
+    agent_sections,
+    echo_agents,
+    fold_lines,
+    natural,
+    read_json_file,
+    shares_text,
+    summary_agents,
+)
 from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, complete_lines_bytes, read_jsonl
 
 log = logging.getLogger(__name__)
@@ -162,7 +171,7 @@ def cycle_time(timing: Any, cycles: int) -> dict[str, Any]:
     means = {"world": float(timing.get("world", 0.0)) / cycles}
     order = {"goals": 0, "perception": 1, "inference": 2, "executive": 3}
     stages = sorted((timing.get("stages") or {}).items(),
-                    key=lambda kv: (order.get(kv[0].rpartition(".")[2], 4), kv[0]))
+                    key=lambda kv: (order.get(kv[0].rpartition(".")[2], 4), natural(kv[0])))
     means.update({name: float(ms) / cycles for name, ms in stages})
     shares = {name: round(100 * ms / cycle_ms, 1) for name, ms in means.items()}
     shares["bus and waits"] = round(max(0.0, 100 - sum(shares.values())), 1)
@@ -265,8 +274,9 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
     timing = summary.get("cycle_time") or {}
     if timing:
-        parts = ", ".join(f"{name} {pct} %" for name, pct in timing["shares"].items())
-        click.echo(f"  cycle time {timing['ms']} ms: {parts}")
+        click.echo(textwrap.fill(f"  cycle time {timing['ms']} ms: "
+                                 + ", ".join(shares_text(timing["shares"])), width=100,
+                                 subsequent_indent="    ", break_on_hyphens=False))
     for r in summary["world_resumes"]:
         click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
                    f"{r['replayed']} cycles replayed)")
@@ -277,10 +287,14 @@ def echo(summary: dict[str, Any]) -> None:
         fields = [str(goal.get(k, "?")) for k in ("id", "agent", "goal", "priority", "status")]
         click.echo("    {} {} {} p{}: {}".format(*fields)
                    + records.history_text(goal.get("history", [])))
-    for agent, laws in summary["law_violations"].items():
+    lines = []
+    for agent in sorted(summary["law_violations"], key=natural):
+        laws = summary["law_violations"][agent]
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
-        click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+        lines.append(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+    for line in fold_lines(lines, summary_agents(summary)):
+        click.echo(line)
     echo_agents(summary)
     if summary.get("record_missing"):
         gaps = summary.get("record_gaps") or []
