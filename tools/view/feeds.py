@@ -32,13 +32,15 @@ def load_file(model: ViewModel, path: Path) -> None:
         model.add(key, record)
 
 
-def scenario_of(run: str | None) -> str:
-    """The scenario file of the running launch of `run`, from the run registry ("" when no
-    launch of it is registered: a replay, or a router named with --connect)."""
+def scenario_of(run: str | None) -> tuple[str, str]:
+    """The scenario file of the running launch of `run` and the folder the launch ran in,
+    from the run registry (both "" when no launch of it is registered: a replay, or a
+    router named with --connect)."""
     try:
-        return runfile.find(run).scenario if run else ""
+        info = runfile.find(run) if run else None
     except runfile.NoRunningLaunch:
-        return ""
+        info = None
+    return (info.scenario, info.cwd) if info else ("", "")
 
 
 class BusFeed:
