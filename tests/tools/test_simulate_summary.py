@@ -233,3 +233,21 @@ at_cycle = 3
     data = json.loads(CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5",
                                                "--no-record", "--json"]).stdout)
     assert data["requests_refused"] == [line.strip()]
+
+
+def test_an_empty_learned_file_is_refused_by_check_simulate_and_launch_alike(tmp_path,
+                                                                             monkeypatch):
+    """Issue 31: launch and simulate took an empty learned file, check refused it."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n')
+    empty = tmp_path / "learned.tlp"
+    empty.write_text("\n")
+    checked = CliRunner().invoke(cli, ["check", str(DRIVING), str(empty)])
+    assert checked.exit_code == 1
+    for command in (["simulate", str(path), "--cycles", "2"], ["launch", str(path)]):
+        refused = CliRunner().invoke(cli, [*command, "--learned", str(empty)])
+        assert refused.exit_code == 1, (command, refused.output)
+        assert refused.output == f"Error: {empty}:1:1: the file is empty: expected learned " \
+            "skills as a run writes them (learned-AGENT.tlp, its first line naming the " \
+            f"program; teleo check PROGRAM {empty})\n"
+    assert not (tmp_path / "runs").exists() or not list((tmp_path / "runs").rglob("*.mcap"))

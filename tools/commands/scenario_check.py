@@ -281,3 +281,25 @@ override_option = click.option(
          "(docs/scenarios.md, \"Overrides\"); repeatable.")
 """`--set KEY=VALUE` of `teleo launch`, `simulate` and `check` (world/overrides.py)."""
 
+
+def check_learned(scenario: Scenario, learned: str) -> None:
+    """Refuse a learned file that does not fit every agent's program, before any process
+    starts (the message names file:line:col, e.g. a concept the program does not define),
+    and an empty one, as `teleo check` refuses it (issue 31: launch and simulate took an
+    empty file, check did not; a run's learned file is never empty, its first line names
+    its program). `teleo launch --learned` and `teleo simulate --learned` call it."""
+    from agents.lang import LangError
+    from agents.lang.loader import read_text
+    from agents.lang.registry import read_learned
+
+    try:
+        text = read_text(learned)
+        if not text.strip():
+            raise click.ClickException(
+                f"{learned}:1:1: the file is empty: expected learned skills as a run writes "
+                f"them (learned-AGENT.tlp, its first line naming the program; "
+                f"teleo check PROGRAM {learned})")
+        for agent in scenario.agents:
+            read_learned(load_program(agent.program), text, learned)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from exc

@@ -26,7 +26,7 @@ from agents.processes.goal_store import GoalStore, GoalStoreError, refused_text
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
 from tools.commands.plot import plot_check
-from tools.commands.scenario_check import load_checked, override_option
+from tools.commands.scenario_check import check_learned, load_checked, override_option
 from tools.launching.progress import progress_cycles
 from tools.paths import OutputPath, picture_check
 from tools.records import sim_summary, summary
@@ -269,6 +269,8 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
                                    f"simulation needs a number: give --cycles N")
         if plot and no_record:
             raise click.UsageError("--plot draws the run record: leave out --no-record")
+        if learned:
+            check_learned(sc, str(learned))
         recorder = None if no_record else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
                        learned=learned, recorder=recorder, show_progress=True)
