@@ -20,6 +20,7 @@ from agents.lang.core.limits import MAX_STATE_CHARS, MAX_STATE_STRING, read_json
 from agents.lang.core.outcomes import as_outcomes
 from agents.lang.core.terms import sort_key
 from agents.lang.loader import read_text
+from agents.lang.reading.extend import extend_program
 from agents.processes.goal_store import MAX_PRIORITY, rank_problem
 from tools.paths import OutputPath
 
@@ -142,6 +143,8 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     outcomes = _outcomes(outcomes_file) if outcomes_file else ()
     try:
         state = read_state(state_file) if state_file else engine.initial_state()
+        if state_file:
+            _check_learned_entries(engine, state, state_file)
         for g in goals:
             text, priority = _goal_option(g)
             _ranked(engine, text, priority, force)
@@ -163,6 +166,14 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     for b in beliefs:
         click.echo(f"  {b}")
     click.echo(result.decision.explain())
+
+
+def _check_learned_entries(engine: Engine, state: EngineState, path: str) -> None:
+    """Each learned skill of a state file read against the program on its own, so that a
+    bad one is named by the file and its entry (`s.json: learned[2]:1:7: ...`), not as
+    `<learned>` (issue 31, drill n9); raises LangError."""
+    for k, clause in enumerate(state.learned):
+        extend_program(engine.program, (clause,), f"{path}: learned[{k}]")
 
 
 def read_state(path: str) -> EngineState:
