@@ -251,3 +251,29 @@ def test_an_empty_learned_file_is_refused_by_check_simulate_and_launch_alike(tmp
             "skills as a run writes them (learned-AGENT.tlp, its first line naming the " \
             f"program; teleo check PROGRAM {empty})\n"
     assert not (tmp_path / "runs").exists() or not list((tmp_path / "runs").rglob("*.mcap"))
+
+
+def test_step_replays_a_recorded_decision_with_the_runs_goal_ids(tmp_path, monkeypatch):
+    """Issue 31 (N21): the `teleo step` command `explain --percepts` suggests gave the
+    run's g1 and g2 the ids g3 and g4 (numbered after the program's two goals)."""
+    import shlex
+
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n'
+                    '[[goals]]\ngoal = "(package-delivered PACKET2)"\npriority = 6\n'
+                    'at_cycle = 2\n')
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5", "--json"])
+    run = json.loads(done.stdout)["run"]
+    told = CliRunner().invoke(cli, ["explain", run, "--cycle", "4", "--percepts"]).stdout
+    percepts = tmp_path / "p.txt"
+    percepts.write_text(told)
+    hint = next(x for x in told.splitlines() if "replay the decision: " in x)
+    command = shlex.split(hint.split("replay the decision: ", 1)[1].replace("FILE",
+                                                                            str(percepts)))
+    assert "g1=(package-delivered PACKET1):5" in command
+    assert "g2=(package-delivered PACKET2):6" in command
+    stepped = CliRunner().invoke(cli, [*command[1:], "--json"])
+    assert stepped.exit_code == 0, stepped.output
+    goals = json.loads(stepped.stdout)["decision"]["goals"]
+    assert [(g["id"], g["goal"]) for g in goals if g["id"].startswith("g")] == [
+        ("g1", "(package-delivered PACKET1)"), ("g2", "(package-delivered PACKET2)")]
