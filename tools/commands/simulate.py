@@ -180,7 +180,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             decided = seen.decision.to_dict()
             run.history.feed({"kind": "Intention", "agent": a, "env": {"cycle": cycle},
                               "decision": decided})
-            goals.after(a, with_hints(decided, seen.percepts), cycle)
+            goals.after(a, with_hints(decided, seen.percepts, programs[a]), cycle)
             record[a] = {"actions": actions,
                          "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
             for name in ("solver", "planner"):
