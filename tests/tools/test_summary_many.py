@@ -72,3 +72,17 @@ def test_a_cycle_time_of_150_stages_is_folded_and_wrapped(capsys):
     timing = [x for x in printed if x.startswith("  cycle time") or x.startswith("    ")]
     assert 1 < len(timing) and all(len(x) <= 100 for x in timing)
     assert " ".join(x.strip() for x in timing).startswith("cycle time 9.0 ms: world 2.0 %")
+
+
+def test_the_cycle_time_of_one_agent_stays_on_one_line(capsys):
+    """The README's and the tutorial's summaries print it on one line, as before."""
+    shares = {"world": 6.7, "goals": 1.8, "ME.perception": 9.9, "ME.inference": 11.8,
+              "ME.executive": 16.9, "bus and waits": 52.9}
+    summary.echo({"run": "r", "status": "completed", "cycles": 1, "elapsed_s": 1.0,
+                  "cycles_per_s": 1.0, "mode": "lockstep", "seed": 1, "failures": [],
+                  "late_stages": {}, "dead_stages": {}, "stalls": [], "restarts": {},
+                  "cycle_time": {"ms": 11.025, "shares": shares}, "world_resumes": [],
+                  "goals_achieved": 0, "goals": [], "law_violations": {}, "achievements": {}})
+    assert "  cycle time 11.025 ms: world 6.7 %, goals 1.8 %, ME.perception 9.9 %, " \
+           "ME.inference 11.8 %, ME.executive 16.9 %, bus and waits 52.9 %" \
+           in capsys.readouterr().out.splitlines()

@@ -37,6 +37,7 @@ import click
 from tools.records import run_record as records
 from tools.records.record_coverage import coverage, ranges_text
 from tools.records.summary_agents import (
+    SHARES_SHOWN,
     agent_sections,
     echo_agents,
     fold_lines,
@@ -274,9 +275,10 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
     timing = summary.get("cycle_time") or {}
     if timing:
-        click.echo(textwrap.fill(f"  cycle time {timing['ms']} ms: "
-                                 + ", ".join(shares_text(timing["shares"])), width=100,
-                                 subsequent_indent="    ", break_on_hyphens=False))
+        line = f"  cycle time {timing['ms']} ms: " + ", ".join(shares_text(timing["shares"]))
+        folded = len(timing["shares"]) > 3 + 2 * SHARES_SHOWN   # many agents: wrapped too
+        click.echo(textwrap.fill(line, width=100, subsequent_indent="    ",
+                                 break_on_hyphens=False) if folded else line)
     for r in summary["world_resumes"]:
         click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
                    f"{r['replayed']} cycles replayed)")
