@@ -24,6 +24,7 @@ from world.scenario_paths import resolve as _resolve
 from world.scenario_types import (
     AGENT_STAGES,
     GOAL_OPS,
+    RUN_STATUSES,
     AgentSpec,
     RunSettings,
     Scenario,
@@ -37,7 +38,7 @@ __all__ = ["AGENT_STAGES", "GOAL_OPS", "AgentSpec", "Draft", "RunSettings", "Sce
            "ScenarioError", "ScriptedEvent", "ScriptedGoal", "load_scenario", "read_draft",
            "read_document", "scenario_from_dict"]
 RUN_FIELDS = ("name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every",
-              "secure")
+              "secure", "status")
 
 def load_scenario(path: str | Path, overrides: Sequence[str] = ()) -> Scenario:
     """Read and check a scenario file, with ``overrides`` (`--set KEY=VALUE` texts,
@@ -158,6 +159,8 @@ def _run(table: Any, errors: Errors) -> RunSettings:
         goals_respawn=field(table, "goals_respawn", int, 3, where, errors, at_least(0)),
         render_every=field(table, "render_every", int, 5, where, errors, at_least(1)),
         secure=field(table, "secure", bool, False, where, errors),
+        status=field(table, "status", str, "goals", where, errors,
+                     (RUN_STATUSES.__contains__, f"one of {list(RUN_STATUSES)}")),
     )
 
 

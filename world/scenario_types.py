@@ -37,6 +37,13 @@ class RunSettings:
     goals_respawn: int = 3
     render_every: int = 5
     secure: bool = False
+    status: str = "goals"   # what fails a run: RUN_STATUSES (docs/faults.md)
+
+
+RUN_STATUSES = {
+    "goals": "a goal that could not be kept fails the run, as a fault of the system does",
+    "system": "only a fault of the system fails the run; a goal not kept is reported",
+}
 
 
 @dataclass(frozen=True)

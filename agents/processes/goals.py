@@ -31,7 +31,13 @@ import click
 from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError, rank_problem
+from agents.processes.goal_store import (
+    MAX_ID_CHARS,
+    GoalStore,
+    GoalStoreError,
+    rank_problem,
+    refused_text,
+)
 from agents.processes.goal_sync import validator
 from agents.processes.request_limits import RequestLimiter
 from bus import keys
@@ -220,6 +226,7 @@ class GoalEntry:
             self.log.info("scripted request at cycle %d: %s", self.cycle, reason)
         except GoalStoreError as exc:
             self.log.warning("scripted request refused: %s", exc)
+            self.store = self.store.refusing(refused_text(g.op, g.goal_id, g.goal, self.cycle, exc))
 
     def on_intention(self, msg: Intention) -> None:
         """Mirror the statuses the executive reported; saved later (flush), not every cycle.

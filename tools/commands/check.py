@@ -94,7 +94,7 @@ def _its_program(path: str, text: str, includes: tuple[str, ...]) -> Any:
 
 
 def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
-    from tools.commands.scenario_check import load_checked
+    from tools.commands.scenario_check import goal_warnings, load_checked
     from world.run_scenario import ScenarioError
 
     result = {"file": path, "kind": "scenario", "ok": False, "warnings": [],
@@ -107,7 +107,9 @@ def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     return {**result, "ok": True, "errors": [], "domain": scenario.domain,
             "agents": {a.id: str(a.program) for a in scenario.agents},
             "goals": len(scenario.goals), "events": len(scenario.events),
-            "warnings": [_diag(w) for p in programs.values() for w in p.warnings]}
+            "warnings": [_diag(w) for p in programs.values() for w in p.warnings]
+            + [{"file": path, "line": 0, "col": 0, "message": w}
+               for w in goal_warnings(scenario)]}
 
 
 def _is_learned(path: str) -> bool:

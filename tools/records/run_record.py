@@ -80,6 +80,18 @@ class GoalHistory:
                 self._add(agent, gid, cycle, goal.get("status"), goal, goal.get("note", ""),
                           after)
 
+    def ended_before(self, agent: str, record: dict[str, Any]) -> None:
+        """A user goal the goal store says failed or was cancelled (a record of its list:
+        id, goal, priority, status, updated_cycle, note), taken as one change when nothing
+        of it was fed: a view opened after it ended saw no message of it (issue 31, N5)."""
+        gid, status = record.get("id"), record.get("status")
+        if status not in self.FINAL or not isinstance(gid, str) or \
+                gid in self.changes.get(agent, {}):
+            return
+        cycle = record.get("updated_cycle")
+        self._add(agent, gid, cycle if isinstance(cycle, int) else 0, status, record,
+                  str(record.get("note", "")))
+
     def _gap_before(self, agent: str, cycle: int, has_state: Callable[[int], bool] | None
                     ) -> int | None:
         """The last cycle known before `cycle` when the record lacks some cycle between it
