@@ -37,6 +37,7 @@ _COMMAND_MODULES = {
     "tools.commands.explain": ("explain",),     # run records
     "tools.commands.plot": ("plot",),           # run records
     "tools.view": ("view",),                    # live web view
+    "tools.commands.examples": ("examples",),   # shipped programs and scenarios
 }
 _MODULE_OF = {name: module for module, names in _COMMAND_MODULES.items() for name in names}
 SUMMARY_CHARS = 66
