@@ -157,8 +157,9 @@ def check(files: tuple[str, ...], includes: tuple[str, ...], overrides: tuple[st
     Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
     fully: world table, programs, scripted goals and events. A file of learned skills is
     checked against the program named before it (PROGRAM LEARNED), else against the one its
-    first line names. A shipped scenario may be named without a path (blocks_figure3). `--set KEY=VALUE` changes a field of every scenario checked, as
-    `teleo launch --set` does."""
+    first line names. A shipped scenario may be named without a path (blocks_figure3).
+    `--set KEY=VALUE` changes a field of every scenario checked, as `teleo launch --set`
+    does."""
     results, program = [], None
     files = tuple(p if p.endswith(".tlp") else scenario_path(p) for p in files)
     kinds = ["learned" if _is_learned(p) else "scenario" if is_scenario(p) else "program"
