@@ -184,7 +184,7 @@ def test_any_spoilt_field_is_decoded_as_valid_or_refused_naming_kind_and_field(k
     import sys
     from pathlib import Path
 
-    sys.path.append(str(Path(__file__).resolve().parents[2] / "bench"))
+    sys.path.append(str(Path(__file__).resolve().parents[2] / "bench" / "faults"))
     from fuzz_values import mutate, wire
 
     key_fn, strategy = MESSAGES[kind]

@@ -129,7 +129,7 @@ def per_core(agents: int, cores: int) -> int:
     evenly as consecutive groups allow (1 agent or 2 on two cores: a process each; 8: two of
     4). In lockstep the world steps while the agents wait and the agents work while the world
     waits, so the agents' processes can have every core; on two cores 8 cars ran 1.3 times as
-    many cycles a second as in one process, and 4 cars 1.3 times (bench/cycle.py)."""
+    many cycles a second as in one process, and 4 cars 1.3 times (bench/speed/cycle.py)."""
     return max(1, -(-agents // max(1, cores)))
 
 
