@@ -3,8 +3,8 @@ their figures): its record through a router kill, its files and summary on a dis
 fills, and how long `teleo stop` takes to stop a long run.
 
 - `router-record`: SIGKILL the router at a random cycle; does the record hold every cycle,
-  and does the summary's goal history equal the undisturbed run's? (drill N1 of 2026-12-02:
-  313 to 353 of the demo's 650 cycles lacking, g1 "achieved 486" for 216);
+  and does the summary's goal history equal the undisturbed run's? (drill N1, docs/faults.md:
+  the record once lacked about half the demo's cycles after a router kill);
 - `full-disk`: the run folder on a small tmpfs (root only: it mounts one), either left to
   fill or filled at once from outside at a cycle; is the run stopped in order, the summary
   written elsewhere, what it says was lost, the exit code 1? (drill n3_tiny_disk);
