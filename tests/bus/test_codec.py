@@ -79,6 +79,26 @@ def test_every_kind_round_trips(kind):
     round_trip()
 
 
+@pytest.mark.parametrize("kind", sorted(MESSAGES))
+def test_every_kind_carries_the_major_version_and_is_refused_under_another(kind):
+    """docs/bus.md, "Envelope and protocol version": every message's env.v is the major
+    version, an int, and the same message under major version 2 is refused naming both."""
+    key_fn, strategy = MESSAGES[kind]
+
+    @settings(max_examples=5, deadline=None,
+              suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+    @given(strategy)
+    def carries(msg):
+        raw = msgpack.unpackb(encode(msg))
+        assert type(raw["env"]["v"]) is int and raw["env"]["v"] == 1
+        raw["env"]["v"] = 2
+        with pytest.raises(CodecError, match="unknown schema version 2: this reader speaks "
+                                             "major version 1 only"):
+            decode(key_fn(), msgpack.packb(raw))
+
+    carries()
+
+
 ENV = Envelope(1, "r", 3, "ME.perception", 123)
 KEY = keys.percepts("r", "ME")
 
