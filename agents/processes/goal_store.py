@@ -23,10 +23,10 @@ MAX_PRIORITY = 1_000_000
 """Priorities are 1..MAX_PRIORITY (lower is more important); program goals have 1..n."""
 MAX_LIVE_GOALS = 16
 """User goals per agent still to be achieved (pending, active, suspended, impasse: the
-executive looks for a path for each every cycle, at a cost of about 1-2 ms per goal per
-cycle); a post beyond it is refused. Achieved goals do not count: checking that one still
-holds is cheap, and an agent that has done 16 errands takes a 17th (seed 003's office
-robot serves requests all day)."""
+executive looks for a path for each every cycle, a cost per goal and cycle); a post
+beyond it is refused. Achieved goals do not count: checking that one still holds is cheap,
+and an agent that has done 16 errands takes a 17th (seed 003's office robot serves requests
+all day)."""
 MAX_KEPT_WITHDRAWN = 100
 """Cancelled and failed goals kept per agent (for `teleo goal list`); older ones are dropped."""
 MAX_ID_CHARS = 32

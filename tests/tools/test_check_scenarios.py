@@ -134,7 +134,7 @@ def test_check_json_gives_each_files_verdict_and_errors(tmp_path):
     (b"[[events]]\nat_cycle = 1\nwhen = 1979-05-27\n", r"#1.when: expected a string, number"),
     (b"[run]\nseed = 99999999999999999999\n", r"\[run\].seed: integer out of range"),
     (b"[run]\ncycles = 1\n" + b"# " + b"x" * (1 << 20) + b"\n", r"longer than the limit"),
-    # found by bench/fuzz.py's scenario reader: Python refuses to convert the number
+    # found by bench/faults/fuzz.py's scenario reader: Python refuses to convert the number
     (b"[run]\nseed = " + b"9" * 5000 + b"\n", r"an integer of more than 4300 digits"),
 ])
 def test_hostile_scenario_files_get_one_line_naming_where(tmp_path, data, message):
@@ -155,7 +155,7 @@ def test_nesting_inside_strings_and_comments_is_not_counted(tmp_path):
 
 
 def test_a_program_path_too_long_to_look_up_is_not_found(tmp_path):
-    """Found by bench/fuzz.py: a name over the system's limit raised OSError from pathlib."""
+    """Found by bench/faults/fuzz.py: a name over the system's limit raised OSError from pathlib."""
     path = scenario(tmp_path, DEMO.replace('"programs/driving.tlp"',
                                            '"programs/driving.' + "7" * 400 + 'tlp"'))
     with pytest.raises(ScenarioError, match="program programs/driving.777.* not found"):

@@ -89,7 +89,7 @@ def test_a_scripted_event_the_world_refuses_fails_the_run(tmp_path, monkeypatch)
 
 
 def test_a_run_stops_at_the_end_of_the_first_cycle_its_until_accepts():
-    """simulate(until=...) ends a run once its work is done (bench/office.py)."""
+    """simulate(until=...) ends a run once its work is done (bench/office/office.py)."""
     from tools.commands.simulate import simulate
     from world.run_scenario import load_scenario
 

@@ -21,7 +21,7 @@ from world.domain import DOMAINS, get_domain
 from world.run_scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.append(str(ROOT / "bench"))
+sys.path.append(str(ROOT / "bench" / "faults"))
 from fuzz_events import EVENT_BASES  # noqa: E402
 
 SCENARIOS = {"driving": "driving_demo.toml", "blocks": "blocks_mishaps.toml",
@@ -114,7 +114,8 @@ def test_a_refused_event_that_is_not_plain_data_is_recorded_as_its_text():
 
 
 def load_fuzz():
-    spec = importlib.util.spec_from_file_location("fuzz_drill", ROOT / "bench" / "fuzz.py")
+    spec = importlib.util.spec_from_file_location("fuzz_drill",
+                                                  ROOT / "bench" / "faults" / "fuzz.py")
     module = sys.modules["fuzz_drill"] = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -122,7 +123,7 @@ def load_fuzz():
 
 @pytest.mark.parametrize("domain", DOMAINS)
 def test_a_world_stays_alive_through_100000_random_events(domain, tmp_path):
-    """Drill d4e at full size, in-process, on a real pymunk world (bench/fuzz.py's
+    """Drill d4e at full size, in-process, on a real pymunk world (bench/faults/fuzz.py's
     world-events reader: half the events come through the codec, the world steps every 50
     and its state and trace line are made); about 10 s per world on the 2-core machine."""
     fuzz = load_fuzz()

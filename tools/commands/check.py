@@ -21,6 +21,7 @@ import click
 from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
 from agents.lang.registry import is_learned_text, program_named, read_learned
+from tools.commands.examples import scenario_path
 from tools.commands.lang import include_option
 from tools.commands.scenario_check import override_option
 from tools.records.tree import shown_path
@@ -158,9 +159,11 @@ def check(files: tuple[str, ...], includes: tuple[str, ...], overrides: tuple[st
     Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
     fully: world table, programs, scripted goals and events. A file of learned skills is
     checked against the program named before it (PROGRAM LEARNED), else against the one its
-    first line names. `--set KEY=VALUE` changes a field of every scenario checked, as
-    `teleo launch --set` does."""
+    first line names. A shipped scenario may be named without a path (blocks_figure3).
+    `--set KEY=VALUE` changes a field of every scenario checked, as `teleo launch --set`
+    does."""
     results, program = [], None
+    files = tuple(p if p.endswith(".tlp") else scenario_path(p) for p in files)
     kinds = ["learned" if _is_learned(p) else "scenario" if is_scenario(p) else "program"
              for p in files]
     if overrides and "scenario" not in kinds:

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import click
 
+from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
 from tools.commands.scenario_check import check_learned, load_checked, override_option
 from tools.launching import stop_signals
@@ -73,7 +74,7 @@ class PerProcess(click.ParamType):
 
 
 @click.command()
-@click.argument("scenario_file", metavar="SCENARIO", type=click.Path(dir_okay=False))
+@click.argument("scenario_file", metavar="SCENARIO", type=ScenarioArg())
 @click.option("--cycles", type=click.IntRange(min=0), help="Cycles to run (0: forever).")
 @click.option("--seed", type=int, help="World seed (overrides [run].seed).")
 @click.option("--mode", type=click.Choice(["lockstep", "realtime"]), help="Clock mode.")

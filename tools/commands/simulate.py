@@ -25,6 +25,7 @@ from agents.lang.registry import learned_text, memory_of, read_learned
 from agents.processes.goal_store import GoalStore, GoalStoreError, refused_text
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
+from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
 from tools.commands.scenario_check import check_learned, load_checked, override_option
 from tools.launching.progress import progress_cycles
@@ -228,7 +229,7 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 
 
 @click.command("simulate")
-@click.argument("scenario", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.argument("scenario", type=ScenarioArg())
 @click.option("--cycles", type=click.IntRange(min=1), default=None,
               help="Cycles to run (default: the scenario's; one whose cycles = 0, a launch's "
                    "'until Ctrl-C', needs this).")
@@ -250,7 +251,7 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 @override_option
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object (a launch's --json form) instead.")
-def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
+def simulate_command(scenario: str, cycles: int | None, seed: int | None, trace: Path | None,
                      render: Path | None, learned: Path | None, learned_out: Path | None,
                      plot: Path | None, no_record: bool, summary_file: Path | None,
                      overrides: tuple[str, ...], as_json: bool) -> None:

@@ -93,7 +93,7 @@ class WorldSnapshot:
             "domain": "driving", "cycle": self.cycle, "time": self.time,
             "config": self.config.to_dict(),
             "cars": [dict(vars(c)) for c in self.cars],  # flat records of atoms: a copy is
-            "pedestrians": [dict(vars(p)) for p in self.pedestrians],  # asdict, 10x faster
+            "pedestrians": [dict(vars(p)) for p in self.pedestrians],  # asdict, far cheaper
             "packages": [dict(vars(p)) for p in self.packages],
             "counters": {a: dict(c) for a, c in self.counters.items()},
             "events": [dict(e) for e in self.events],

@@ -159,7 +159,7 @@ def test_a_failed_goal_blocks_the_goals_after_it_until_withdrawn(blocks):
 
 
 def test_a_way_whose_test_reads_a_variable_nothing_bound_is_no_way_and_no_crash():
-    """bench/fuzz.py (executive, 2026-12-02): a concept's :tests read ?d, which only its
+    """bench/faults/fuzz.py (executive, 2026-12-02): a concept's :tests read ?d, which only its
     relation (near ?x ?d) binds; with no (near A ...) belief the solver's candidate binding
     left ?d open and the test raised KeyError in the executive. A test nothing bound cannot
     hold: the way is passed over and the goal ends failed with its reason."""
