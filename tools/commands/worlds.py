@@ -31,11 +31,11 @@ def worlds(as_json: bool) -> None:
     if not rows:
         click.echo("no worlds found (no package registers a `teleo.worlds` entry point)")
         return
-    width = max(len(f.entry.name) for f in rows)
-    for f in rows:
-        source = f"{f.entry.dist} {f.entry.version}".strip() or "?"
+    sources = [f"{f.entry.dist} {f.entry.version}".strip() or "?" for f in rows]
+    width, wide = max(len(f.entry.name) for f in rows), max(len(s) for s in sources)
+    for f, source in zip(rows, sources, strict=True):
         text = f"FAILED: {f.error}" if f.error else f.summary
-        click.echo(f"{f.entry.name:<{width}}  {source:<16}  {text}")
+        click.echo(f"{f.entry.name:<{width}}  {source:<{wide}}  {text}")
     failed = sum(1 for f in rows if f.error)
     if failed:
         click.echo(f"{failed} world(s) failed to load; the others run as ever")
