@@ -171,3 +171,11 @@ def survey(kind: type) -> list[Found]:
     rows += [Found(e, "", f"name already registered by {_provider(entries()[e.name])}")
              for e in conflicts()]
     return rows
+
+
+def forget() -> None:
+    """Read the entry points again on next use (a package installed or removed meanwhile:
+    tests, a long-lived tool); a world already imported stays imported."""
+    entries.cache_clear()
+    _load.cache_clear()
+    _conflicts.clear()

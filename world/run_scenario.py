@@ -17,7 +17,8 @@ from typing import Any
 from bus.cycle import CycleMode as Mode
 from bus.errors import KeyFormatError
 from bus.keys import check_chunk
-from world.domain import DEFAULT_DOMAIN
+from world.domain import DEFAULT_DOMAIN, get_domain
+from world.errors import ConfigError
 from world.overrides import TABLES, Override, OverrideError, apply_overrides, parse_override
 from world.registry import names, unknown
 from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only, shown
@@ -122,6 +123,11 @@ def read_draft(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ())
         if not isinstance(domain, str) or domain not in names():
             errors.add(unknown(domain, "[world].domain") if isinstance(domain, str) else
                        f"[world].domain: expected one of {list(names())}, got {shown(domain)}")
+        else:
+            try:                      # a registered world that fails to import: say so here
+                get_domain(domain)
+            except ConfigError as exc:
+                errors.add(str(exc).replace("[world] domain:", "[world].domain:", 1))
     if len(errors) > before:
         spoilt.add("world")
         world = {}
