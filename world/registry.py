@@ -53,10 +53,13 @@ class Found:
     error: str = ""       # one line, no traceback; "" when the world loaded
 
 
-def _source_entries() -> list[Entry]:
-    """The table of teleo's own pyproject.toml when teleo runs from a checkout (none when it
-    is installed from a wheel: there is no pyproject.toml beside the packages)."""
-    path = Path(__file__).resolve().parent.parent / "pyproject.toml"
+CHECKOUT = Path(__file__).resolve().parent.parent / "pyproject.toml"
+"""teleo's pyproject.toml when teleo runs from a checkout (absent beside an installed wheel)."""
+
+
+def source_entries(path: Path = CHECKOUT) -> list[Entry]:
+    """The `teleo.worlds` table of teleo's own pyproject.toml at ``path`` (none when there is
+    no such file, or it is another project's)."""
     try:
         project = tomllib.loads(path.read_text(encoding="utf-8")).get("project", {})
     except (OSError, tomllib.TOMLDecodeError, UnicodeDecodeError):
@@ -83,7 +86,7 @@ def entries() -> dict[str, Entry]:
                 _conflicts.append(entry)
             continue
         found[ep.name] = entry
-    for entry in _source_entries():
+    for entry in source_entries():
         found.setdefault(entry.name, entry)
     return found
 

@@ -136,3 +136,20 @@ def _scenario(folder: Path, domain: str) -> Path:
     path.write_text(f'[run]\nname = "x"\ncycles = 3\n\n[world]\ndomain = "{domain}"\n\n'
                     f'[[agents]]\nid = "ME"\nprogram = "{ROOT / "programs" / "blocks.tlp"}"\n')
     return path
+
+
+def test_a_checkout_reads_its_own_table_so_a_world_added_there_needs_no_reinstall(tmp_path):
+    """teleo's pyproject.toml table and its installed entry points agree (`make setup`
+    writes the latter from the former); a line added to the table (a merge) is read from it."""
+    table = {e.name: e.target for e in registry.source_entries()}
+    installed = {e.name: e.target for e in registry.entries().values() if e.dist == "teleo"}
+    assert table == installed and set(table) >= {"driving", "blocks", "office"}
+    text = registry.CHECKOUT.read_text()
+    marker = '[project.entry-points."teleo.worlds"]\n'
+    added = tmp_path / "pyproject.toml"
+    added.write_text(text.replace(marker, marker + 'pddl = "world.pddl:DOMAIN"\n'))
+    assert {e.name: e.target for e in registry.source_entries(added)} == {
+        **table, "pddl": "world.pddl:DOMAIN"}
+    other = tmp_path / "other.toml"
+    other.write_text(text.replace('name = "teleo"', 'name = "someone-else"'))
+    assert registry.source_entries(other) == []
