@@ -7,7 +7,7 @@ below. Perception and rendering are pure functions of a snapshot dict, so an age
 perception process and the tools need nothing but the snapshot and the domain's name, which
 every snapshot carries under "domain".
 
-    domain = get_domain(scenario.world_domain)                # a `teleo.worlds` entry point
+    domain = get_domain(scenario.world_domain)               # a `teleo.worlds` entry point
     world = domain.create(scenario.world, seed, ["ME"])      # raises ConfigError naming the key
     outcomes = world.apply_actions("ME", [["*gas", 30]])     # never raises
     world.step()

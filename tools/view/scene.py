@@ -39,7 +39,9 @@ def map_of(snapshot: dict[str, Any]) -> dict[str, Any]:
     """The static map of a snapshot's world, with an id that changes when the world does:
     "drawn" when its Domain has a ``scene`` hook (the page's own drawer of that domain draws
     it, with what the hook adds); otherwise the page shows the domain's PNG render."""
-    domain = str(snapshot.get("domain", "driving"))
+    from world.domain import DEFAULT_DOMAIN
+
+    domain = str(snapshot.get("domain", DEFAULT_DOMAIN))
     spec = _domain(snapshot)
     static, _ = split(snapshot)
     ident = hashlib.sha256(json.dumps(static, sort_keys=True).encode()).hexdigest()[:12]
