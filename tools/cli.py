@@ -28,6 +28,7 @@ _COMMAND_MODULES = {
     "tools.commands.bus": ("router", "echo", "record", "replay"),  # bus
     "tools.commands.rate": ("hz",),             # bus rates
     "tools.commands.world": ("render",),        # world
+    "tools.commands.worlds": ("worlds",),       # the worlds found (entry points)
     "tools.commands.launch": ("launch",),       # processes
     "tools.commands.run": ("ps", "stop"),       # runs on this host
     "tools.commands.goal": ("goal",),           # goal post/list/cancel/priority

@@ -17,8 +17,10 @@ from typing import Any
 from bus.cycle import CycleMode as Mode
 from bus.errors import KeyFormatError
 from bus.keys import check_chunk
-from world.domain import DEFAULT_DOMAIN, DOMAINS
+from world.domain import DEFAULT_DOMAIN, get_domain
+from world.errors import ConfigError
 from world.overrides import TABLES, Override, OverrideError, apply_overrides, parse_override
+from world.registry import names, unknown
 from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only, shown
 from world.scenario_paths import resolve as _resolve
 from world.scenario_types import (
@@ -120,8 +122,14 @@ def read_draft(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ())
     before = len(errors)
     if is_table(world, "[world]", errors):
         domain = world.get("domain", DEFAULT_DOMAIN)
-        if not isinstance(domain, str) or domain not in DOMAINS:
-            errors.add(f"[world].domain: expected one of {list(DOMAINS)}, got {shown(domain)}")
+        if not isinstance(domain, str) or domain not in names():
+            errors.add(unknown(domain, "[world].domain") if isinstance(domain, str) else
+                       f"[world].domain: expected one of {list(names())}, got {shown(domain)}")
+        else:
+            try:                      # a registered world that fails to import: say so here
+                get_domain(domain)
+            except ConfigError as exc:
+                errors.add(str(exc).replace("[world] domain:", "[world].domain:", 1))
     if len(errors) > before:
         spoilt.add("world")
         world = {}

@@ -13,6 +13,7 @@ import pytest
 
 from tools.cli import cli
 from world.domain import DOMAINS, get_domain
+from world.registry import entries
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
@@ -29,8 +30,9 @@ def section(text: str, heading: str) -> str:
     return text[start:end if end > 0 else None]
 
 
-@pytest.mark.parametrize("domain", DOMAINS)
+@pytest.mark.parametrize("domain", [d for d in DOMAINS if entries()[d].dist == "teleo"])
 def test_each_worlds_table_and_events_are_documented_in_scenarios_md(domain):
+    """teleo's own worlds (a plug-in installed beside teleo documents itself)."""
     text = section((ROOT / "docs" / "scenarios.md").read_text(), HEADINGS[domain])
     keys = importlib.import_module(CONFIGS[domain])._KNOWN
     missing = sorted(k for k in keys if f"`{k}`" not in text and f"{k} =" not in text)
