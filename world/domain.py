@@ -125,12 +125,27 @@ class Domain:
     check_event: Callable[[Any], str] | None = None
 
 
+def episode_of(world: Any) -> dict[str, Any] | None:
+    """The episode of an episodic world ({"terminated", "truncated", "reward", "steps"}: a
+    Gymnasium environment's), or None for a world without episodes (it has no `episode`)."""
+    episode = getattr(world, "episode", None)
+    return dict(episode) if isinstance(episode, dict) else None
+
+
+def episode_over(world: Any) -> bool:
+    """The world's episode has terminated or been truncated: the run ends after the cycle
+    that publishes its last state (world/process.py, `teleo simulate`)."""
+    episode = episode_of(world)
+    return bool(episode and (episode.get("terminated") or episode.get("truncated")))
+
+
 # name -> module whose DOMAIN attribute is the Domain (imported on first use, so a process
 # that runs one domain never imports the others' physics).
 _MODULES = {
     "driving": "world.driving",
     "blocks": "world.blocks",
     "office": "world.office",
+    "gymnasium": "world.gym",
 }
 DOMAINS: tuple[str, ...] = tuple(_MODULES)
 DEFAULT_DOMAIN = "driving"

@@ -1,0 +1,157 @@
+"""Shortest paths on a grid world for an agent with a heading (MiniGrid's moves), a pure
+function of plain data: what perception computes so that a program's skills need only follow
+an affordance ("the next step toward the red key is forward").
+
+A state is (x, y, dir) with MiniGrid's directions (0 east +x, 1 south +y, 2 west, 3 north).
+The moves are `left`, `right` (turn, 1 step each) and `forward`; a closed door ahead is opened
+on the way (`toggle` then `forward`: 2 steps), a locked one too when the agent carries the key
+of its colour. A locked door without its key, or an object that could be picked up and put
+aside (key, ball, box), is crossed only at a PENALTY, so a target behind one is still found,
+with that first obstacle named (`via`): what the program must deal with first. Walls, lava,
+moving obstacles and the grid's edge are never crossed. Ties are broken in a fixed order
+(forward, left, right), so the same grid gives the same answer.
+"""
+
+from __future__ import annotations
+
+import heapq
+from collections import deque
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+DIRS = ((1, 0), (0, 1), (-1, 0), (0, -1))
+PENALTY = 1000          # [steps] the price of crossing an obstacle that must be dealt with first
+OPEN_KINDS = frozenset({"empty", "floor", "goal", "door-open"})
+MOVABLE = frozenset({"key", "ball", "box"})
+
+
+@dataclass(frozen=True)
+class Cell:
+    """What stands on a cell: kind (wall, lava, floor, goal, door-open, door-closed,
+    door-locked, key, ball, box, obstacle), colour, and the name of the object there ("")."""
+
+    kind: str
+    color: str = ""
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Reach:
+    """The best way to a target: `steps` [moves] (penalties left out), `next` (the move to
+    make now; "here" when the agent is already there), `via` (the first obstacle the path
+    crosses, "" when none), `reachable` (no obstacle on the way)."""
+
+    steps: int
+    next: str
+    via: str
+
+    @property
+    def reachable(self) -> bool:
+        return not self.via
+
+
+State = tuple[int, int, int]
+
+
+class Grid:
+    """A grid's cells as plain data: `cells[(x, y)]` for every non-empty cell."""
+
+    def __init__(self, width: int, height: int, cells: dict[tuple[int, int], Cell]) -> None:
+        self.width, self.height, self.cells = width, height, cells
+
+    def at(self, x: int, y: int) -> Cell:
+        if not (0 <= x < self.width and 0 <= y < self.height):
+            return Cell("wall")
+        return self.cells.get((x, y), Cell("empty"))
+
+
+def ahead(state: State) -> tuple[int, int]:
+    """The cell in front of a state."""
+    dx, dy = DIRS[state[2]]
+    return state[0] + dx, state[1] + dy
+
+
+def _forward(grid: Grid, state: State, key_color: str) -> tuple[int, str, str] | None:
+    """(cost, first action, obstacle) of moving forward from `state`; None: never."""
+    cell = grid.at(*ahead(state))
+    if cell.kind in OPEN_KINDS:
+        return 1, "forward", ""
+    if cell.kind == "door-closed" or (cell.kind == "door-locked" and cell.color == key_color):
+        return 2, "toggle", ""
+    if cell.kind == "door-locked" or cell.kind in MOVABLE:
+        return PENALTY + 2, "toggle" if cell.kind == "door-locked" else "pickup", cell.name
+    return None
+
+
+class Search:
+    """Every state's cheapest path from `start` (Dijkstra), carrying a key of `key_color`
+    ("" when none)."""
+
+    def __init__(self, grid: Grid, start: State, key_color: str = "") -> None:
+        self.grid, self.start = grid, start
+        self.best: dict[State, tuple[int, str, str]] = {}
+        heap: list[tuple[int, int, State, str, str]] = [(0, 0, start, "here", "")]
+        seq = 1
+        while heap:
+            cost, _, state, first, via = heapq.heappop(heap)
+            if state in self.best:
+                continue
+            self.best[state] = (cost, first, via)
+            x, y, d = state
+            moves: list[tuple[int, State, str, str]] = []
+            fwd = _forward(grid, state, key_color)
+            if fwd is not None:
+                fx, fy = ahead(state)
+                moves.append((fwd[0], (fx, fy, d), fwd[1], fwd[2]))
+            moves.append((1, (x, y, (d - 1) % 4), "left", ""))
+            moves.append((1, (x, y, (d + 1) % 4), "right", ""))
+            for step, nxt, act, obstacle in moves:
+                if nxt in self.best:
+                    continue
+                heapq.heappush(heap, (cost + step, seq, nxt, act if state == start else first,
+                                      via or obstacle))
+                seq += 1
+
+    def to_states(self, targets: Iterable[State]) -> Reach | None:
+        """The best way to any of `targets`, or None when none can be reached at all."""
+        found = [(self.best[t], i) for i, t in enumerate(targets) if t in self.best]
+        if not found:
+            return None
+        (cost, first, via), _ = min(found, key=lambda f: (f[0][0], f[1]))
+        return Reach(cost % PENALTY, first, via)
+
+    def to_stand_on(self, x: int, y: int) -> Reach | None:
+        """The best way onto cell (x, y), in any heading."""
+        return self.to_states((x, y, d) for d in range(4))
+
+    def to_face(self, x: int, y: int) -> Reach | None:
+        """The best way to stand next to (x, y), facing it."""
+        return self.to_states((x - dx, y - dy, d) for d, (dx, dy) in enumerate(DIRS))
+
+    def to_drop(self, fits) -> Reach | None:
+        """The best way to a state with no obstacle on the way whose cell ahead passes
+        `fits(x, y)` (the move at it: "drop")."""
+        order = sorted((c, i, s) for i, (s, c) in enumerate(
+            (s, v[0]) for s, v in self.best.items() if v[0] < PENALTY))
+        for cost, _, state in order:
+            if fits(*ahead(state)):
+                first = self.best[state][1]
+                return Reach(cost, "drop" if first == "here" else first, "")
+        return None
+
+
+def walkable_count(grid: Grid, start: tuple[int, int], blocked: tuple[int, int] | None) -> int:
+    """How many cells can be walked to from `start` (doors count as passable, objects and
+    lava not), with the cell `blocked` filled."""
+    seen, todo = {start}, deque([start])
+    while todo:
+        x, y = todo.popleft()
+        for dx, dy in DIRS:
+            n = (x + dx, y + dy)
+            if n in seen or n == blocked:
+                continue
+            kind = grid.at(*n).kind
+            if kind in OPEN_KINDS or kind.startswith("door"):
+                seen.add(n)
+                todo.append(n)
+    return len(seen)
