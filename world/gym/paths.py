@@ -129,15 +129,18 @@ class Search:
         return self.to_states((x - dx, y - dy, d) for d, (dx, dy) in enumerate(DIRS))
 
     def to_drop(self, fits) -> Reach | None:
-        """The best way to a state with no obstacle on the way whose cell ahead passes
-        `fits(x, y)` (the move at it: "drop")."""
-        order = sorted((c, i, s) for i, (s, c) in enumerate(
-            (s, v[0]) for s, v in self.best.items() if v[0] < PENALTY))
-        for cost, _, state in order:
-            if fits(*ahead(state)):
-                first = self.best[state][1]
-                return Reach(cost, "drop" if first == "here" else first, "")
-        return None
+        """The best way to a state with no obstacle on the way whose cell ahead `fits(x, y)`
+        (a rank, lower is better, or None: not there; the move at it: "drop"): the best rank
+        first, then the nearest."""
+        found = []
+        for i, (state, (cost, first, _)) in enumerate(self.best.items()):
+            rank = fits(*ahead(state)) if cost < PENALTY else None
+            if rank is not None:
+                found.append((rank, cost, i, first))
+        if not found:
+            return None
+        _, cost, _, first = min(found)
+        return Reach(cost, "drop" if first == "here" else first, "")
 
 
 def walkable_count(grid: Grid, start: tuple[int, int], blocked: tuple[int, int] | None) -> int:

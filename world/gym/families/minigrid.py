@@ -172,24 +172,27 @@ def _next(reach: Any) -> str:
 
 
 def _drop_fits(grid: Grid, me: tuple[int, int, int]):
-    """Where a carried object may be put down out of the way: an empty cell next to no door,
-    whose filling leaves every other cell the agent can walk to reachable."""
+    """Where a carried object may be put down out of the way, best first: rank 0, an empty
+    cell next to no door whose filling leaves every other cell the agent can walk to
+    reachable; rank 1, such a cell next to a door; rank 2, any empty cell."""
     start = (me[0], me[1])
     total = walkable_count(grid, start, None)
 
-    def fits(x: int, y: int) -> bool:
+    def fits(x: int, y: int) -> int | None:
         if grid.at(x, y).kind != "empty" or (x, y) == start:
-            return False
-        if any(grid.at(x + dx, y + dy).kind.startswith("door") for dx, dy in DIRS):
-            return False
-        return walkable_count(grid, start, (x, y)) == total - 1
+            return None
+        if walkable_count(grid, start, (x, y)) != total - 1:
+            return 2
+        return 1 if any(grid.at(x + dx, y + dy).kind.startswith("door") for dx, dy in DIRS) \
+            else 0
     return fits
 
 
 def _near_fits(grid: Grid, tx: int, ty: int):
     """An empty cell next to (tx, ty), diagonals included (MiniGrid's PutNear)."""
-    def fits(x: int, y: int) -> bool:
-        return grid.at(x, y).kind == "empty" and max(abs(x - tx), abs(y - ty)) == 1
+    def fits(x: int, y: int) -> int | None:
+        return 0 if grid.at(x, y).kind == "empty" and max(abs(x - tx), abs(y - ty)) == 1 \
+            else None
     return fits
 
 
