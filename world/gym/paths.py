@@ -143,9 +143,12 @@ class Search:
         return Reach(cost, "drop" if first == "here" else first, "")
 
 
-def walkable_count(grid: Grid, start: tuple[int, int], blocked: tuple[int, int] | None) -> int:
-    """How many cells can be walked to from `start` (doors count as passable, objects and
+def walkable_region(grid: Grid, start: tuple[int, int] | None,
+                    blocked: tuple[int, int] | None) -> set[tuple[int, int]]:
+    """The cells that can be walked to from `start` (doors count as passable, objects and
     lava not), with the cell `blocked` filled."""
+    if start is None:
+        return set()
     seen, todo = {start}, deque([start])
     while todo:
         x, y = todo.popleft()
@@ -157,4 +160,4 @@ def walkable_count(grid: Grid, start: tuple[int, int], blocked: tuple[int, int] 
             if kind in OPEN_KINDS or kind.startswith("door"):
                 seen.add(n)
                 todo.append(n)
-    return len(seen)
+    return seen

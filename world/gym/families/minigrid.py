@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from world.gym.paths import DIRS, Cell, Grid, Search, ahead, walkable_count
+from world.gym.paths import DIRS, Cell, Grid, Search, ahead, walkable_region
 
 NAME = "minigrid"
 ACTIONS = ("left", "right", "forward", "pickup", "drop", "toggle", "done")
@@ -175,13 +175,14 @@ def _drop_fits(grid: Grid, me: tuple[int, int, int]):
     """Where a carried object may be put down out of the way, best first: rank 0, an empty
     cell next to no door whose filling leaves every other cell the agent can walk to
     reachable; rank 1, such a cell next to a door; rank 2, any empty cell."""
-    start = (me[0], me[1])
-    total = walkable_count(grid, start, None)
+    region = walkable_region(grid, (me[0], me[1]), None)
+    first, second = sorted(region)[:2] if len(region) > 1 else (None, None)
 
-    def fits(x: int, y: int) -> int | None:
-        if grid.at(x, y).kind != "empty" or (x, y) == start:
+    def fits(x: int, y: int) -> int | None:   # the same wherever the agent stands in region
+        if grid.at(x, y).kind != "empty":
             return None
-        if walkable_count(grid, start, (x, y)) != total - 1:
+        if len(walkable_region(grid, first if (x, y) != first else second, (x, y))) \
+                != len(region) - 1:
             return 2
         return 1 if any(grid.at(x + dx, y + dy).kind.startswith("door") for dx, dy in DIRS) \
             else 0
