@@ -161,3 +161,39 @@ def walkable_region(grid: Grid, start: tuple[int, int] | None,
                 seen.add(n)
                 todo.append(n)
     return seen
+
+
+def cut_cells(region: set[tuple[int, int]]) -> set[tuple[int, int]]:
+    """The cells of a connected `region` whose filling would cut it in two (its articulation
+    points: Hopcroft and Tarjan's depth-first search, without recursion)."""
+    def around(c: tuple[int, int]) -> list[tuple[int, int]]:
+        return [(c[0] + dx, c[1] + dy) for dx, dy in DIRS if (c[0] + dx, c[1] + dy) in region]
+
+    cuts: set[tuple[int, int]] = set()
+    disc: dict[tuple[int, int], int] = {}
+    low: dict[tuple[int, int], int] = {}
+    for root in sorted(region):
+        if root in disc:
+            continue
+        disc[root] = low[root] = len(disc)
+        children = 0
+        stack = [(root, None, iter(around(root)))]
+        while stack:
+            v, parent, todo = stack[-1]
+            for w in todo:
+                if w not in disc:
+                    disc[w] = low[w] = len(disc)
+                    children += v == root
+                    stack.append((w, v, iter(around(w))))
+                    break
+                if w != parent:
+                    low[v] = min(low[v], disc[w])
+            else:
+                stack.pop()
+                if parent is not None:
+                    low[parent] = min(low[parent], low[v])
+                    if parent != root and low[v] >= disc[parent]:
+                        cuts.add(parent)
+        if children > 1:
+            cuts.add(root)
+    return cuts

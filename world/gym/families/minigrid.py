@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from world.gym.paths import DIRS, Cell, Grid, Search, ahead, walkable_region
+from world.gym.paths import DIRS, Cell, Grid, Search, ahead, cut_cells, walkable_region
 
 NAME = "minigrid"
 ACTIONS = ("left", "right", "forward", "pickup", "drop", "toggle", "done")
@@ -133,7 +133,7 @@ def perceive(state: dict[str, Any], agent: str, episode: dict[str, Any]) -> list
     out: list[list[Any]] = [
         ["agent", agent, "x", me[0], "y", me[1], "dir", me[2],
          "carrying", carried["name"] if carried else "none", "ahead", front.kind,
-         "drop-next", _next(search.to_drop(_drop_fits(grid, me)))],
+         "drop-next", _next(search.to_drop(_drop_fits(grid, me))) if carried else "none"],
         ["mission", "M", "kind", goal["kind"], "type", goal["type"], "color", goal["color"],
          "type2", goal["type2"], "color2", goal["color2"]],
         ["episode", "E", "won", "yes" if episode.get("terminated") and
@@ -175,14 +175,18 @@ def _drop_fits(grid: Grid, me: tuple[int, int, int]):
     """Where a carried object may be put down out of the way, best first: rank 0, an empty
     cell next to no door whose filling leaves every other cell the agent can walk to
     reachable; rank 1, such a cell next to a door; rank 2, any empty cell."""
-    region = walkable_region(grid, (me[0], me[1]), None)
-    first, second = sorted(region)[:2] if len(region) > 1 else (None, None)
+    cuts = cut_cells(walkable_region(grid, (me[0], me[1]), None))
+    known: dict[tuple[int, int], int | None] = {}
 
-    def fits(x: int, y: int) -> int | None:   # the same wherever the agent stands in region
+    def fits(x: int, y: int) -> int | None:
+        if (x, y) not in known:
+            known[(x, y)] = rank(x, y)
+        return known[(x, y)]
+
+    def rank(x: int, y: int) -> int | None:   # the same wherever the agent stands in region
         if grid.at(x, y).kind != "empty":
             return None
-        if len(walkable_region(grid, first if (x, y) != first else second, (x, y))) \
-                != len(region) - 1:
+        if (x, y) in cuts:
             return 2
         return 1 if any(grid.at(x + dx, y + dy).kind.startswith("door") for dx, dy in DIRS) \
             else 0
