@@ -90,27 +90,28 @@ class Search:
     def __init__(self, grid: Grid, start: State, key_color: str = "") -> None:
         self.grid, self.start = grid, start
         self.best: dict[State, tuple[int, str, str]] = {}
+        best, push, pop = self.best, heapq.heappush, heapq.heappop
+        forward: dict[State, tuple[int, str, str] | None] = {}   # a cell's entry, by heading
         heap: list[tuple[int, int, State, str, str]] = [(0, 0, start, "here", "")]
         seq = 1
         while heap:
-            cost, _, state, first, via = heapq.heappop(heap)
-            if state in self.best:
+            cost, _, state, first, via = pop(heap)
+            if state in best:
                 continue
-            self.best[state] = (cost, first, via)
+            best[state] = (cost, first, via)
             x, y, d = state
-            moves: list[tuple[int, State, str, str]] = []
-            fwd = _forward(grid, state, key_color)
+            if state not in forward:
+                forward[state] = _forward(grid, state, key_color)
+            fwd = forward[state]
+            moves = ((1, (x, y, (d - 1) % 4), "left", ""), (1, (x, y, (d + 1) % 4), "right", ""))
             if fwd is not None:
-                fx, fy = ahead(state)
-                moves.append((fwd[0], (fx, fy, d), fwd[1], fwd[2]))
-            moves.append((1, (x, y, (d - 1) % 4), "left", ""))
-            moves.append((1, (x, y, (d + 1) % 4), "right", ""))
+                dx, dy = DIRS[d]
+                moves = ((fwd[0], (x + dx, y + dy, d), fwd[1], fwd[2]), *moves)
             for step, nxt, act, obstacle in moves:
-                if nxt in self.best:
-                    continue
-                heapq.heappush(heap, (cost + step, seq, nxt, act if state == start else first,
-                                      via or obstacle))
-                seq += 1
+                if nxt not in best:
+                    push(heap, (cost + step, seq, nxt, act if state == start else first,
+                                via or obstacle))
+                    seq += 1
 
     def to_states(self, targets: Iterable[State]) -> Reach | None:
         """The best way to any of `targets`, or None when none can be reached at all."""
