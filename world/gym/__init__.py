@@ -23,7 +23,7 @@ from world.gym.families.minigrid import ACTIONS as _MINIGRID_ACTIONS
 
 VIOLATIONS = ("lava", "collisions")
 ACHIEVEMENTS = ("missions",)
-ACTIONS = tuple("*" + a for a in _MINIGRID_ACTIONS)
+ACTIONS = tuple("*" + a for a in _MINIGRID_ACTIONS) + ("*wait",)
 
 
 def create(table: dict[str, Any], seed: int, agents: list[str]):

@@ -1,6 +1,7 @@
 """The `[world]` table of a Gymnasium scenario: `env` (a registered id, such as
-"MiniGrid-DoorKey-8x8-v0") and `env_kwargs` (a table passed to gymnasium.make). Errors are
-one line naming the key and value, and the families known (docs/minigrid.md)."""
+"MiniGrid-DoorKey-8x8-v0", the default) and `env_kwargs` (a table passed to
+gymnasium.make). Errors are one line naming the key and value, and the families known
+(docs/minigrid.md)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from world.errors import ConfigError
 from world.gym.families import FAMILIES, family_of_entry_point
 
 _KNOWN = {"domain", "env", "env_kwargs"}
+DEFAULT_ENV = "MiniGrid-DoorKey-8x8-v0"   # what an empty [world] table runs
 
 
 @dataclass(frozen=True)
@@ -32,7 +34,7 @@ def load_gym_config(table: dict[str, Any]) -> GymConfig:
     if extra:
         raise ConfigError(f"[world] {extra[0]}: unknown key for the gymnasium domain; "
                           f"known: {', '.join(sorted(_KNOWN - {'domain'}))}")
-    env_id = table.get("env")
+    env_id = table.get("env", DEFAULT_ENV)
     if not isinstance(env_id, str) or not env_id:
         raise ConfigError(f"[world] env: expected a registered environment id such as "
                           f"'MiniGrid-DoorKey-8x8-v0', got {env_id!r}")

@@ -5,7 +5,8 @@ reproducible (same seed, same trace), and it ends the run when the episode is ov
 An action is one of the environment's own, by name: `*left`, `*right`, `*forward`,
 `*pickup`, `*drop`, `*toggle`, `*done` (MiniGrid's), without arguments, one a cycle. A
 malformed one fails with a reason and the environment is not stepped (the episode goes on).
-A cycle without an action does not step the environment either.
+A cycle without an action, or with teleo's own `*wait` (the safe action of an agent whose
+actions did not arrive), does not step the environment either.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from world.errors import ConfigError
 from world.gym.config import GymConfig, make_env
 from world.gym.families import family
 
+WAIT = "*wait"   # teleo's own: this cycle does not step the environment (the safe action)
 COUNTERS = ("steps", "actions_failed", "lava", "collisions", "missions")
 
 
@@ -61,7 +63,8 @@ class GymWorld:
                 outcomes.append({"action": list(action) if isinstance(action, list | tuple)
                                  else [repr(action)], "status": "failed", "reason": reason})
                 continue
-            self.pending = self.family.ACTIONS.index(str(action[0])[1:])
+            if action[0] != WAIT:
+                self.pending = self.family.ACTIONS.index(str(action[0])[1:])
             outcomes.append({"action": list(action), "status": "done", "reason": ""})
         return outcomes
 
@@ -73,16 +76,16 @@ class GymWorld:
         if not isinstance(action, list | tuple) or not action or not isinstance(action[0], str):
             return f"malformed action {action!r}: expected [\"*name\"]"
         name = action[0]
-        if not name.startswith("*") or name[1:] not in self.family.ACTIONS:
+        if name != WAIT and (not name.startswith("*") or name[1:] not in self.family.ACTIONS):
             return (f"unknown action {name!r}; known: "
-                    f"{', '.join('*' + a for a in self.family.ACTIONS)}")
+                    f"{', '.join('*' + a for a in self.family.ACTIONS)}, {WAIT}")
         if len(action) > 1:
             return f"{name} takes no arguments, got {list(action[1:])!r}"
         return ""
 
     def safe_actions(self, agent: str) -> list[list[Any]]:
-        """No action: the environment is not stepped."""
-        return []
+        """*wait: the environment is not stepped."""
+        return [[WAIT]]
 
     def inject(self, event: dict[str, Any]) -> dict[str, Any]:
         from world.domain import event_outcome

@@ -81,7 +81,7 @@ def test_a_second_action_in_one_cycle_fails():
     ({"env": "MiniGrid-DoorKey-8x8-v0", "env_kwargs": {"bogus": 1}},
      "[world] env_kwargs = {'bogus': 1}: MiniGrid-DoorKey-8x8-v0 refuses them"),
     ({"env": "MiniGrid-DoorKey-8x8-v0", "env_kwargs": 3}, "[world] env_kwargs: expected a table"),
-    ({}, "[world] env: expected a registered environment id"),
+    ({"env": ""}, "[world] env: expected a registered environment id"),
     ({"env": "MiniGrid-DoorKey-8x8-v0", "size": 8}, "[world] size: unknown key"),
 ])
 def test_bad_input_is_one_line_naming_it(table, says):
