@@ -138,3 +138,11 @@ def test_the_picture_is_the_environments_own_frame(tmp_path):
     drawn = np.asarray(Image.open(tmp_path / "f.png").convert("RGB"))
     own = world.env.unwrapped.get_frame(highlight=False, tile_size=32)
     assert drawn.shape == own.shape and (drawn == own).all()
+
+
+def test_the_view_shows_the_environments_frame():
+    from tools.view.scene import map_of, render_png
+
+    snap = _world(seed=2).snapshot_dict()
+    assert map_of(snap)["drawn"] is False                 # the page asks for the PNG
+    assert render_png([snap], "ME")[:8] == b"\x89PNG\r\n\x1a\n"
