@@ -65,13 +65,13 @@ def shortest(env_name: str, seed: int) -> int | None:
     if goal["kind"] == "goal":
         target = next(o for o in state["objects"] if o["type"] == "goal")
         return _chain(grid, me, target, objs, stand=True)
-    if goal["kind"] in ("pickup", "open"):
+    if goal["kind"] in ("pickup", "open", "goto"):
         targets = [o for o in state["objects"] if o["type"] == goal["type"]
                    and goal["color"] in ("any", o["color"])]
         if len(targets) != 1:
             return None
         steps = _chain(grid, me, targets[0], objs, stand=False)
-        return None if steps is None else steps + 1     # the pickup or the toggle
+        return None if steps is None else steps + 1     # the pickup, the toggle or done
     return None
 
 
