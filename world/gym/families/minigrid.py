@@ -71,6 +71,8 @@ def _object(obj: Any, counts: dict[str, int], x: int, y: int, moving: bool) -> d
 _OBJ = r"(?:(?P<color>red|green|blue|purple|yellow|grey) )?(?P<type>key|ball|box|door)"
 _MISSIONS = (
     ("goal", re.compile(r"\bgoal\b")),
+    ("open", re.compile(r"open the (?P<color>\w+) (?P<type>door) then the (?P<color2>\w+) "
+                        r"(?P<type2>door)")),
     ("putnear", re.compile(r"put the (?P<color>\w+) (?P<type>\w+) near the (?P<color2>\w+) "
                            r"(?P<type2>\w+)")),
     ("pickup", re.compile(r"(?:pick up|fetch|get) (?:the|a) " + _OBJ)),
@@ -86,6 +88,8 @@ def mission(text: str) -> dict[str, str]:
 
     >>> mission("use the key to open the door and then get to the goal")["kind"]
     'goal'
+    >>> mission("open the red door then the blue door")["color2"]
+    'blue'
     >>> sorted(mission("you must fetch a blue key").items())
     [('color', 'blue'), ('color2', 'none'), ('kind', 'pickup'), ('type', 'key'), ('type2', 'none')]
     """
