@@ -63,8 +63,10 @@ def _object(obj: Any, counts: dict[str, int], x: int, y: int, moving: bool) -> d
     state = "none"
     if obj.type == "door":
         state = "locked" if obj.is_locked else "open" if obj.is_open else "closed"
+    inside = getattr(obj, "contains", None) if obj.type == "box" else None
     return {"name": name, "type": obj.type, "color": obj.color, "x": x, "y": y,
-            "state": state, "moving": moving}
+            "state": state, "moving": moving,
+            "inside": [inside.type, inside.color] if inside is not None else None}
 
 
 # --- the mission ------------------------------------------------------------------------
@@ -163,6 +165,8 @@ def _thing(o: dict[str, Any], grid: Grid, search: Search, bare: Search,
     percept = ["thing", o["name"], "type", o["type"], "color", o["color"], "x", x, "y", y,
                "state", o["state"], "moving", "yes" if o["moving"] else "no",
                "carried", "yes" if carried else "no",
+               "inside-type", (o.get("inside") or ["none"])[0],
+               "inside-color", (o.get("inside") or ["none", "none"])[1],
                "dist", reach.steps if reach else -1, "next", _next(reach),
                "via", (reach.via or "none") if reach else "none",
                "free", "yes" if bare_reach is not None and bare_reach.reachable else "no"]
