@@ -21,6 +21,7 @@ import argparse
 import statistics
 import sys
 import time
+import warnings
 from multiprocessing import Pool
 from pathlib import Path
 
@@ -34,7 +35,9 @@ CORE = ["DoorKey-8x8", "KeyCorridorS3R3", "Unlock", "UnlockPickup", "MultiRoom-N
 HARDER = ["DoorKey-16x16", "KeyCorridorS4R3", "KeyCorridorS5R3", "BlockedUnlockPickup",
           "LavaCrossingS11N5", "SimpleCrossingS11N5", "MultiRoom-N6", "Dynamic-Obstacles-16x16",
           "GoToObject-8x8-N2", "GoToDoor-8x8", "Fetch-8x8-N3", "PutNear-8x8-N3", "LockedRoom",
-          "Empty-16x16", "LavaGapS7", "DistShift2"]
+          "Empty-16x16", "LavaGapS7", "DistShift2", "ObstructedMaze-1Dl", "ObstructedMaze-1Dlh",
+          "ObstructedMaze-1Dlhb", "RedBlueDoors-8x8", "Dynamic-Obstacles-16x16",
+          "KeyCorridorS5R3"]
 CORE_RATE, HARDER_RATE, RATIO = 0.99, 0.90, 1.5
 
 
@@ -118,6 +121,7 @@ def one(job: tuple[str, int]) -> dict:
     from tools.commands.simulate import simulate
     from world.run_scenario import load_scenario
 
+    warnings.filterwarnings("ignore", category=DeprecationWarning)   # gymnasium's "v0 is old"
     name, seed = job
     sc = load_scenario(SCENARIO, [f"world.env={env_id(name)}"])
     limit = shortest_world(name, seed).snapshot_dict()["state"]["max_steps"]
