@@ -55,7 +55,7 @@ def shortest_world(env_name: str, seed: int):
 def shortest(env_name: str, seed: int) -> int | None:
     """A shortest solution's length [steps] on the level as reset (module doc), or None."""
     from world.gym.families.minigrid import grid_of, mission
-    from world.gym.paths import Cell, Grid
+    from world.gym.paths import Cell, Grid, Search
 
     state = shortest_world(env_name, seed).snapshot_dict()["state"]
     goal = mission(state["mission"])
@@ -74,8 +74,25 @@ def shortest(env_name: str, seed: int) -> int | None:
         if len(targets) != 1:
             return None
         steps = _chain(grid, me, targets[0], objs, stand=False)
+        if steps is not None and goal["type2"] == "door":   # then a second door
+            second = [o for o in state["objects"] if o["type"] == "door"
+                      and o["color"] == goal["color2"]]
+            first = targets[0]
+            opened = Grid(grid.width, grid.height, {**grid.cells, (first["x"], first["y"]):
+                                                    Cell("door-open", first["color"])})
+            pose = _pose_facing(Search(grid, me), first)
+            more = Search(opened, pose).to_face(second[0]["x"], second[0]["y"]) \
+                if second and pose else None
+            steps = steps + 1 + more.steps if more and more.reachable else None
         return None if steps is None else steps + 1     # the pickup, the toggle or done
     return None
+
+
+def _pose_facing(search, o):
+    """The cheapest state of `search` facing object `o`, or None."""
+    states = [(search.best[s][0], s) for s in search.best
+              if (s[0] + (1, 0, -1, 0)[s[2]], s[1] + (0, 1, 0, -1)[s[2]]) == (o["x"], o["y"])]
+    return min(states)[1] if states else None
 
 
 def _chain(grid, me, target, objs, stand: bool) -> int | None:
