@@ -22,6 +22,8 @@ DOORKEY = ROOT / "scenarios" / "minigrid_doorkey.toml"
     ("MiniGrid-LavaCrossingS9N2-v0", range(2)),
     ("MiniGrid-Dynamic-Obstacles-8x8-v0", range(2)),
     ("MiniGrid-GoToDoor-8x8-v0", range(2)),
+    ("MiniGrid-ObstructedMaze-1Dlh-v0", (45,)),        # the key's box carried aside first
+    ("MiniGrid-RedBlueDoors-8x8-v0", (0,)),            # two doors in order
 ])
 def test_the_program_wins_the_episode(env, seeds):
     scenario = load_scenario(DOORKEY, [f"world.env={env}"])
