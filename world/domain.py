@@ -147,6 +147,20 @@ class RunSeries(Protocol):
         """The world time [s] of each cycle."""
 
 
+def episode_of(world: Any) -> dict[str, Any] | None:
+    """The episode of an episodic world ({"terminated", "truncated", "reward", "steps"}: a
+    Gymnasium environment's), or None for a world without episodes (it has no `episode`)."""
+    episode = getattr(world, "episode", None)
+    return dict(episode) if isinstance(episode, dict) else None
+
+
+def episode_over(world: Any) -> bool:
+    """The world's episode has terminated or been truncated: the run ends after the cycle
+    that publishes its last state (world/process.py, `teleo simulate`)."""
+    episode = episode_of(world)
+    return bool(episode and (episode.get("terminated") or episode.get("truncated")))
+
+
 DEFAULT_DOMAIN = "driving"
 
 

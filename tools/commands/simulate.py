@@ -32,7 +32,7 @@ from tools.launching.progress import progress_cycles
 from tools.paths import OutputPath, picture_check
 from tools.records import sim_summary, summary
 from tools.records.run_record import GoalHistory
-from world.domain import get_domain
+from world.domain import episode_over, get_domain
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
 from world.trace import trace_line
@@ -164,6 +164,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             for a in agents:
                 recorder.goal_list(cycle, a, goals.store.goal_list(a))
         snap = sim.snapshot_dict()
+        over = episode_over(sim)   # this state is the episode's last: the run's last cycle
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
         if recorder is not None:
@@ -200,7 +201,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         sim.step()
         if recorder is not None:
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
-        if until is not None and until(states):
+        if over or (until is not None and until(states)):
             break
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}

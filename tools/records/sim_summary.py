@@ -13,7 +13,7 @@ from typing import Any
 
 from agents.lang.registry import AgentRecord, summary_sections
 from tools.records import run_record as records
-from tools.records.summary import finish_status, refused_events
+from tools.records.summary import episode_ended, finish_status, refused_events
 from tools.records.summary_agents import natural_sections
 from world.domain import get_domain
 
@@ -48,10 +48,11 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         "counters": counters,
         **natural_sections(summary_sections(_agents(run, scenario, counters, learned_files))),
         "trace": str(trace) if trace else "",
-        "world_reason": "done",
+        "world_reason": "the episode is over" if episode_ended(run.final) else "done",
         "cycle_time": {},   # one process, no bus: no stage shares
         "events_refused": refused_events(
             (json.loads(line) for line in run.trace if '"events"' in line), scenario.events),
+        **({"episode": run.final["episode"]} if "episode" in run.final else {}),  # gymnasium's
     }
     return finish_status(summary)
 

@@ -122,6 +122,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "world_reason": final.get("reason", "the world did not finish (killed)"),
         "cycle_time": cycle_time(final.get("timing_ms"), cycles),
         "events_refused": refused_events(trace, scripted),
+        **({"episode": final["episode"]} if "episode" in final else {}),  # gymnasium's
     }
     return finish_status(summary, ended, requested_stop)
 
@@ -234,13 +235,19 @@ def _status(s: dict[str, Any], requested_stop: bool) -> str:
     if s["failures"]:
         return "failed"
     wanted = int(s.get("cycles_requested") or 0)
-    if wanted and s["cycles"] < wanted:
+    if wanted and s["cycles"] < wanted and not episode_ended(s):
         if requested_stop:
             return "interrupted"
         s["failures"].append(f"the world stopped at cycle {s['cycles']} of {wanted}: "
                              f"{s['world_reason']}")
         return "failed"
     return "completed"
+
+
+def episode_ended(s: dict[str, Any]) -> bool:
+    """The run ended with its world's episode (terminated or truncated): not early."""
+    episode = s.get("episode") or {}
+    return bool(episode.get("terminated") or episode.get("truncated"))
 
 
 def exit_code(summary: dict[str, Any]) -> int:
@@ -283,6 +290,8 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
                    f"{r['replayed']} cycles replayed)")
     click.echo(f"  goals achieved: {summary['goals_achieved']} of {len(summary['goals'])}")
+    if summary.get("episode"):   # an episodic world's (gymnasium)
+        click.echo("  episode: " + ", ".join(f"{k} {v}" for k, v in summary["episode"].items()))
     for incident in summary.get("goal_store_incidents", ()):
         click.echo(f"  GOAL STORE: {incident}")
     for goal in summary["goals"]:
