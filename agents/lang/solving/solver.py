@@ -71,9 +71,12 @@ class MeansEndsSolver:
             return []
         stack = walk.current("solver").stack_of(entry.id)
         mine = stack is not None and stack.entries[0].goal == str(conj)
+        conds = ways[0].conditions
         if mine:
             current = stack.entries[1].goal if len(stack.entries) > 1 else ""
-        conds = ways[0].conditions
+            chosen = stack.entries[0].decision   # the binding the search works on (issue
+            if chosen is not None:               # 31: not a new best one each cycle)
+                conds = chosen.conditions
         items = agenda(task, conds, current)
         if current and current in items:   # in passing: a conjunct one action achieves (a
             # block in the hand to its place); not a part of another's plan, which would
