@@ -21,6 +21,7 @@ from ..core.matcher import ground, solve, unify_head
 from ..core.program import Program
 from ..core.store import FactStore, PerceptIndex
 from ..core.terms import Literal, Var
+from ..reading.goals import instances
 
 MAX_EXPAND = 3     # levels of single-clause definitions expanded to find a contradiction
 MAX_DEPTH = 3      # levels of concept decomposition judged for possibility
@@ -214,3 +215,25 @@ def objects(pidx: PerceptIndex) -> list:
     a variable that no belief binds may take."""
     return sorted({pid for (_, pid) in pidx.by_id}, key=lambda v: (isinstance(v, str), v))
 
+
+
+def never_true(program: Program, goal, pidx: PerceptIndex, store: FactStore) -> list:
+    """The instances of ``goal`` (a literal with variables: "every instance", docs/language.md)
+    this cycle that do not hold and that no skill or concept can make true, such as
+    ``(on D D)`` among ``(on D ?x)``'s; empty for a conjunction or a goal without variables
+    (a user wrote those)."""
+    if not isinstance(goal, Literal) or not goal.variables():
+        return []
+    reach = Reach(program, pidx, store)
+    return [i for i in instances(goal, program, pidx) if not reach.possible(i)]
+
+
+def instances_warning(goal, bad: list) -> str:
+    """One line for ``teleo check`` and ``teleo goal post``: ``goal``'s instances include
+    ``bad``, which nothing can make true; "" when ``bad`` is empty."""
+    if not bad:
+        return ""
+    shown = " ".join(map(str, bad[:3])) + (f" and {len(bad) - 3} more" if len(bad) > 3 else "")
+    return (f"{goal} means every instance, and its instances include {shown}, which no skill "
+            f"or concept can make true (left out when the agent pursues it); for some "
+            f"instance, write (and {goal})")

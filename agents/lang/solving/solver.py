@@ -90,6 +90,12 @@ class MeansEndsSolver:
             #                                        plan still needs it)
         return [literal(c) for c in items]
 
+    def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
+        """False when no skill or concept can make the goal instance ``inst`` true (issue 31:
+        ``(on D D)`` among ``(on D ?x)``'s; agents/lang/solving/bindings.py): the executive
+        leaves it out of the goal's instances."""
+        return self.task(finder, walk).reach.possible(inst)
+
     def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
         """Back off after a circle (agents/lang/execution/loops.py): the top of the goal's stack
         fails
