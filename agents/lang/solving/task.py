@@ -233,16 +233,20 @@ class Task(WayFilters, BindingChoice):
         b0 = unify_head(clause.head, goal, {})
         if b0 is None or not clause.relations:
             return []
-        ranked = []
-        for b in self._candidates(list(clause.percepts), list(clause.relations), b0, True):
-            if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
-                    None) is None:
-                continue
-            ground = _ground(clause.relations, b)
-            if ground is not None and self._chainable(ground) and \
-                    self._possible(ground, f"concept {clause.head.pred}#{clause.index} "
-                                           f"{show(clause.head, b)}"):
-                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        ranked: list = []
+        for anything in (False, True):   # any object only when the beliefs give no way
+            for b in self._candidates(list(clause.percepts), list(clause.relations), b0,
+                                      anything):
+                if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
+                        None) is None:
+                    continue
+                ground = _ground(clause.relations, b)
+                if ground is not None and self._chainable(ground) and \
+                        self._possible(ground, f"concept {clause.head.pred}#{clause.index} "
+                                               f"{show(clause.head, b)}"):
+                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+            if ranked:
+                break
         name = f"{clause.head.pred}#{clause.index}"
         open_ = len(ranked) > 1 and any(set(r[2]) - set(b0) for r in ranked)
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
@@ -251,12 +255,15 @@ class Task(WayFilters, BindingChoice):
                                         self._best(ranked))]
 
     def _by_conjunction(self, conj: Conjunction) -> list[Alternative]:
-        ranked = []
-        for b in self._candidates([], list(conj.literals), {}, True):
-            ground = _ground(list(conj.conds), b)
-            if ground is not None and self._chainable(ground) and \
-                    not self.impossible(ground):   # (most bindings are: not noted)
-                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        ranked: list = []
+        for anything in (False, True):   # any object only when the beliefs give no way
+            for b in self._candidates([], list(conj.literals), {}, anything):
+                ground = _ground(list(conj.conds), b)
+                if ground is not None and self._chainable(ground) and \
+                        not self.impossible(ground):   # (most bindings are: not noted)
+                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+            if ranked:
+                break
         return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
                             "the conjunction")
                 for _, _, b, ground in (cheapest(self, ranked) if len(ranked) > 1 else
@@ -306,12 +313,12 @@ class Task(WayFilters, BindingChoice):
     def _candidates(self, percepts: list, conds: list, b0: dict, anything: bool = False
                     ) -> list[dict]:
         """Bindings of the clause's variables: its :percepts matched, then any variable left
-        taken from beliefs matching a positive condition (in written order), then, with
-        ``anything`` (a concept's or a conjunction's relations), any variable still left from
-        the objects perceived (``(on ?x A)`` with nothing on A: each block may be put there;
-        ``Task.possible`` then leaves out what nothing can make true). A variable the
-        goal does not fix names an object of its own: one the goal or another such variable
-        names is not taken (no (unstack B B) to clear B)."""
+        taken from beliefs matching a positive condition (in written order), and, with
+        ``anything`` (a concept's or a conjunction's relations, when the beliefs give no
+        way), also each variable from the objects perceived (``(on ?x A)`` with nothing on
+        A: each block may be put there; ``Task.impossible`` then leaves out what nothing can
+        make true). A variable the goal does not fix names an object of its own: one the goal
+        or another such variable names is not taken (no (unstack B B) to clear B)."""
         sols = list(islice(solve(percepts, b0, self.pidx, self.store), MAX_BINDINGS)) \
             if percepts else [b0]
         lits = [c for c in conds if isinstance(c, Literal) and not c.negated]
