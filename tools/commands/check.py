@@ -110,7 +110,23 @@ def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
             "goals": len(scenario.goals), "events": len(scenario.events),
             "warnings": [_diag(w) for p in programs.values() for w in p.warnings]
             + [{"file": path, "line": 0, "col": 0, "message": w}
-               for w in goal_warnings(scenario)]}
+               for w in goal_warnings(scenario)]
+            + _instance_warnings(path, scenario, programs)}
+
+
+def _instance_warnings(path: str, scenario: Any, programs: dict) -> list[dict[str, Any]]:
+    """A warning for each goal, the scenario's [[goals]] and its agents' programs' (goals
+    ...), whose instances in the world as the scenario starts include one that no skill or
+    concept can make true (agents/processes/goal_warnings.py, issue 31)."""
+    from agents.processes.goal_warnings import engine_warner
+
+    warn = engine_warner(scenario, programs)
+    out = [(f"[[goals]] #{k + 1}", g.agent, g.goal) for k, g in enumerate(scenario.goals)
+           if g.op == "post" and g.goal]
+    out += [(f"agent {a}'s program goal p{k + 1}", a, str(g.literal))
+            for a, p in programs.items() for k, g in enumerate(p.goals)]
+    return [{"file": path, "line": 0, "col": 0, "message": f"{where}: {line}"}
+            for where, agent, goal in out if (line := warn(agent, goal))]
 
 
 def _is_learned(path: str) -> bool:
