@@ -40,10 +40,6 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
     return [p if isinstance(p, Percept) else Percept.from_list(p) for p in percepts]
 
 
-_HANDOFF = 64  # percepts up to which infer keeps them and its reading of them for decide:
-# kept until decide or the next infer, a larger list would be freed in that next call, a
-# cost bench/speed/engine.py shows at 1000 objects (docs/benchmarks.md, "Engine")
-
 SOLVERS: dict[str, type] = handlers(MECHANISMS)
 """Impasse handlers by name, from the registered mechanisms: seed 000's means-ends problem
 solver and learner, seed 003's ROGUE planner (agents/lang/planning). A handler may also
@@ -75,7 +71,6 @@ class Engine:
         self._framer = Framer()  # last cycle's grouping, for SharedRows
         self._shared = SharedPercepts()  # and the Percepts of its rows
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
-        self._read: tuple | None = None  # (percepts, Frame) of the last infer, for decide
         readers = [r for r in (m.model_reader(program) for m in self.mechanisms) if r]
         self._read_model = readers[0] if readers else None  # what a world model may hold
 
@@ -146,32 +141,25 @@ class Engine:
         if model and self._read_model is None:
             raise LangError("Engine.infer: no mechanism of this engine keeps a world model")
         facts = self._read_model(model) if model else ()
-        self._read = None
         beliefs = self.inference.beliefs(percepts, facts)
-        frame, self.inference.frame = self.inference.frame, None
-        if isinstance(percepts, (list, tuple)) and len(percepts) <= _HANDOFF:
-            self._read = (percepts, frame)  # checked and read: decide on them reuses that
+        self.inference.frame = None  # nothing of this reading is kept for decide
         return beliefs
 
     def decide(self, state: EngineState, percepts: Iterable, beliefs: Iterable,
                outcomes: Iterable = ()) -> tuple[Decision, EngineState]:
         """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
-        on the previous cycle's actions (Outcome values or neutral dicts). Given the very
-        percept list or tuple (of up to 64) the last ``infer`` was given, not changed in
-        between (infer + decide on the same percepts, as ``cycle``), it takes them as infer
-        checked and read them."""
-        read, self._read = self._read, None
-        if read is not None and read[0] is percepts:
-            index = read[1].index
-        else:
-            index = self._index(percepts)
-        return self._decide(state, index, store_of(beliefs), outcomes)
+        on the previous cycle's actions (Outcome values or neutral dicts). It reads ``percepts``
+        itself, whatever ``infer`` was given before: no state passes from ``infer`` to
+        ``decide``, so a list changed in place between the two is read as it is now (code
+        review 2026-12-04, 3.2)."""
+        return self._decide(state, self._index(percepts), store_of(beliefs), outcomes)
 
     def cycle(self, state: EngineState, percepts: Iterable,
               outcomes: Iterable = ()) -> CycleResult:
         """infer + decide on the same percepts; the state's world model (facts asserted by
-        SCS bodies in earlier cycles) joins inference as base facts."""
-        self._read = None
+        SCS bodies in earlier cycles) joins inference as base facts. Within this one call
+        the executive takes inference's reading of the percepts (nothing can change them in
+        between)."""
         beliefs = self.inference.beliefs(percepts, self.facts(state))
         index, self.inference.frame = self.inference.frame.index, None
         decision, new_state = self._decide(state, index, beliefs.store, outcomes)

@@ -141,9 +141,8 @@ def test_cycle_decisions_equal_fresh_engine(blocks):
 
 
 def test_decide_after_infer_on_the_same_percepts_equals_a_fresh_reading(blocks):
-    """decide given the very list infer was given reuses infer's reading of it; given another
-    list (equal, or other percepts) it reads its own: every decision is the same as ``cycle``'s
-    and a fresh engine's."""
+    """decide after infer, given the very list infer was given, an equal one, or other
+    percepts: every decision is the same as ``cycle``'s and a fresh engine's."""
     from .test_blocks import percepts as block_percepts
 
     engine, fresh = Engine(blocks.program), Engine(blocks.program)
@@ -176,3 +175,22 @@ def test_blocks_program_evaluates_nothing_for_an_unchanged_world():
     engine.infer(ps)
     engine.infer(list(ps))
     assert engine.last_infer_stats.evaluated == 0
+
+
+def test_decide_after_infer_reads_a_list_changed_in_place_afresh(blocks):
+    """Code review 2026-12-04 section 3.2 (issue 36): ``infer(p)``, then one element of the
+    same list ``p`` replaced in place (block A becomes block X), then ``decide(state, p, ...)``
+    must decide on what ``p`` holds now, as a fresh engine does, not on infer's reading of it
+    (that gave an impasse, 'no executable skill path')."""
+    from .test_blocks import percepts as block_percepts
+
+    engine = Engine(blocks.program)
+    state = engine.add_goal(engine.initial_state(), "(clear B)", priority=0)
+    p = block_percepts({"A": "B", "B": "T", "C": "T"})
+    engine.infer(p)
+    k = next(i for i, row in enumerate(p) if row[:2] == ["block", "A"])
+    p[k] = ["block", "X"] + p[k][2:]
+    decision, _ = engine.decide(state, p, Engine(blocks.program).infer(p))
+    want = Engine(blocks.program).cycle(state, list(p))
+    assert decision.to_dict() == want.decision.to_dict()
+    assert want.decision.actions, "the fresh engine acts: the test must compare an action"

@@ -146,6 +146,10 @@ def test_the_office_floor_is_the_domains_own_picture(tmp_path) -> None:
     assert model.map["domain"] == "office" and not model.map["drawn"]
     assert "config" not in model.frame(11)["world"]
     assert scene.render_png(model.snapshots_for_render(11), "ME")[:4] == b"\x89PNG"
+    for cycle in range(12):   # issue 31, N17: the picture's caption at the cycle shown
+        shown = model.snapshots_for_render(cycle)[-1]
+        frame = model.frame(cycle)
+        assert (shown["cycle"], shown["time"]) == (frame["cycle"], frame["time"])
 
 
 def _cycle(model: ViewModel, cycle: int, goals: list[dict]) -> None:

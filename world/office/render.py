@@ -24,6 +24,7 @@ from world.office.snapshot import OfficeSnapshot
 from world.pictures import MAX_FRAMES, save_animation, save_still, scale_bar, thinning
 
 LEGEND_W = 300     # [px]
+LEGEND_BELOW_H = 220  # [px] the legend's height under a wide floor (caption | key columns)
 MARGIN = 1.0       # [m]
 KIND_COLORS = {"office": (236, 226, 206), "conference": (206, 222, 240),
                "mailroom": (240, 214, 226), "kitchen": (222, 240, 206),
@@ -152,10 +153,13 @@ def _lerp(a: tuple[float, float], b: tuple[float, float], t: float) -> tuple[flo
     return a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])
 
 
-def _legend(img: Image.Image, snap: OfficeSnapshot, agent: str | None) -> None:
+def _legend(img: Image.Image, snap: OfficeSnapshot, agent: str | None,
+            top: int = 0) -> None:
+    """The caption and key: beside the floor (``top`` 0), or below it from ``top`` [px] with
+    the key in a second column."""
     draw = ImageDraw.Draw(img)
-    x0 = img.width - LEGEND_W
-    draw.rectangle([x0, 0, img.width, img.height], fill=COLORS["legend"])
+    x0 = img.width - LEGEND_W if not top else 0
+    draw.rectangle([x0, top, img.width, img.height], fill=COLORS["legend"])
     big, font = _font(15), _font(12)
     lines = [(f"cycle {snap.cycle}   t = {snap.time:.1f} s", big)]
     if agent is not None:
@@ -169,11 +173,16 @@ def _legend(img: Image.Image, snap: OfficeSnapshot, agent: str | None) -> None:
                   (f"travelled {me.travelled:.1f} m", font)]
         lines += [(f"{k.replace('_', ' ')}: {n}", font)
                   for k, n in snap.counters.get(agent, {}).items() if n and k != "travel_cm"]
-    lines += [("", font), ("key", big)]
-    y = 10
+    if not top:
+        lines += [("", font), ("key", big)]
+    y = top + 10
     for text, f in lines:
         draw.text((x0 + 10, y), text, fill=COLORS["text"], font=f)
         y += 20 if f is big else 16
+    if top:   # the key in its own column
+        x0, y = x0 + LEGEND_W, top + 10
+        draw.text((x0 + 10, y), "key", fill=COLORS["text"], font=big)
+        y += 20
     for color, text in ((COLORS["me"], f"robot {agent or ''}, its path"),
                         (COLORS["route"], "route ahead (dashed)"), (COLORS["person"], "person"),
                         (COLORS["open"], "door open"), (COLORS["closed"], "door closed"),
@@ -196,13 +205,17 @@ def render_image(snap: OfficeSnapshot, agent: str | None = None, px_per_m: float
         raise WorldError(f"render: no robot {agent!r} in cycle {snap.cycle}; robots: {robots}")
     floor = build_floor(snap.config)
     v = _View(floor, px_per_m)
-    img = Image.new("RGB", (v.size[0] + LEGEND_W, max(v.size[1], 440)), COLORS["floor"])
+    below = v.size[0] > v.size[1] + LEGEND_W   # a wide floor: the legend goes under it,
+    # so the picture is nearer a square and fits the view's panel without shrinking its text
+    size = (max(v.size[0], 2 * LEGEND_W), v.size[1] + LEGEND_BELOW_H) if below else \
+        (v.size[0] + LEGEND_W, max(v.size[1], 440))
+    img = Image.new("RGB", size, COLORS["floor"])
     draw = ImageDraw.Draw(img)
     _floor(draw, v, floor)
     _doors(draw, v, floor, snap.doors)
     _things(draw, v, floor, snap)
     _robots(draw, v, snap, agent, trail or [])
-    _legend(img, snap, agent)
+    _legend(img, snap, agent, v.size[1] if below else 0)
     scale_bar(draw, 12, img.height - 14, v.s, max_px=v.size[0] / 4)
     return img
 

@@ -28,6 +28,7 @@ from .syntax import (
     expr_vars,
     walk_steps,
 )
+from .unreached import cut_off
 
 
 class CheckerLike(Protocol):
@@ -73,6 +74,11 @@ class BodyChecks:
     def check(self, s: Skill, bound: set[Var]) -> None:
         self.skill = s
         self.step(s.body, set(bound))
+        for update, never in cut_off(s):
+            self.c.err(update.loc, f"{update} makes the goal {s.head} of skill {s.name} "
+                       f"true: the body ends when its goal holds (from the next cycle), so "
+                       f"these steps after it never run: {', '.join(map(str, never))} (put "
+                       f"them before the assert, or assert another fact)", "warning")
 
     def conds(self, conds: tuple, bound: set[Var], where: str, binds: bool) -> set[Var]:
         """Check conditions; return ``bound`` plus what their positive literals bind (when

@@ -9,6 +9,7 @@ from office_helpers import OFFICE, office
 from PIL import Image
 
 from world.errors import WorldError
+from world.office.floor import build_floor
 from world.office.render import COLORS, render_image
 from world.office.snapshot import OfficeSnapshot
 
@@ -52,7 +53,7 @@ def test_a_png_and_a_gif_of_a_run(tmp_path):
     assert OFFICE.render(snaps, tmp_path / "run.png", "ME") == 1
     assert (tmp_path / "run.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     png = Image.open(tmp_path / "run.png")
-    assert png.width > 900 and png.height >= 440
+    assert png.width > 800 and png.height >= 440
     assert OFFICE.render(snaps[::5], tmp_path / "run.gif", "ME") == 8
     gif = Image.open(tmp_path / "run.gif")
     assert gif.n_frames == 8
@@ -71,3 +72,15 @@ def test_rendering_an_unknown_robot_is_refused():
     snap = OfficeSnapshot.from_dict(office().snapshot_dict())
     with pytest.raises(WorldError, match="no robot 'R9'"):
         render_image(snap, "R9")
+
+
+def test_a_wide_floor_has_its_legend_below_so_the_picture_fits_a_view_panel():
+    """Issue 31, N17: beside the floor the legend made a 1196 x 440 picture, which the web
+    view's panel (about 740 x 820 in a 1400 x 900 window) shrank to 0.6, its 12 px text to
+    7 px. Under the floor the picture is 896 x 612: shrunk to 0.83 at most there."""
+    snap = OfficeSnapshot.from_dict(_run()[-1])
+    img = render_image(snap, "ME")
+    assert img.width / img.height < 1.6
+    assert min(740 / img.width, 820 / img.height) > 0.8
+    floor_h = round((build_floor(snap.config).height + 2) * PX)
+    assert img.getpixel((img.width - 5, floor_h + 5)) == COLORS["legend"]   # under the floor
