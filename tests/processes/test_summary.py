@@ -134,3 +134,17 @@ def test_the_summary_gives_each_process_share_of_the_cycle():
     assert got["shares"] == {"world": 20.0, "goals": 5.0, "ME.perception": 10.0,
                              "ME.executive": 30.0, "bus and waits": 35.0}
     assert cycle_time(None, 100) == {} and cycle_time(timing, 0) == {}
+
+
+def test_state_and_learned_files_set_aside_are_named_and_the_run_still_completes(tmp_path):
+    """Drills 2026-12-04 D1/D4: an unreadable state file is kept, renamed, and named."""
+    write_run(tmp_path, 50)
+    (tmp_path / "learned-ME.tlp").write_bytes(b"\xff\xfe")   # read, not a crash
+    (tmp_path / "state-ME.json.bad").write_bytes(b"\xff\xfe\x00binary")
+    (tmp_path / "learned-ME.tlp.bad-2").write_text("(")
+    s = summary.build(tmp_path, BASE, {})
+    assert s["status"] == "completed"
+    assert s["set_aside"] == [str(tmp_path / "learned-ME.tlp.bad-2"),
+                              str(tmp_path / "state-ME.json.bad")]
+    out = CliRunner().invoke(click.command()(lambda: summary.echo(s))).output
+    assert f"SET ASIDE: {tmp_path / 'state-ME.json.bad'} could not be read back" in out

@@ -32,7 +32,7 @@ import click
 
 from tools.records import run_record as records
 from tools.records.record_coverage import coverage, ranges_text
-from tools.records.summary_agents import agent_sections, echo_agents, read_json_file
+from tools.records.summary_agents import agent_sections, echo_agents, read_json_file, set_aside
 from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, complete_lines_bytes, read_jsonl
 
 log = logging.getLogger(__name__)
@@ -103,6 +103,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
                            for a, c in counters.items()},
         "counters": counters,
         **agent_sections(run_dir, counters, memory),
+        **set_aside(run_dir),
         "trace": str(run_dir / TRACE),
         **_record(run_dir, cycles, record, recorder or {}),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
