@@ -52,6 +52,12 @@ class GoalHistory:
     sighting included). A user goal that leaves the agent's goal list without having failed
     was cancelled: the executive never reports that, as it no longer has the goal.
 
+    The records are kept by cycle and the changes worked out from them in cycle order (the
+    goal list of a cycle before the intention decided from it), so the history is the same
+    whatever order the records arrived in (drills 2026-12-04 D2: the goal list of cycle t+1
+    reaching the recorder before the intention of t that said "failed" turned the failure
+    into "cancelled", and a failed run into a completed one).
+
     A change seen after a gap in the record (cycles whose world state it lacks, between the
     agent's previous intention and this one) happened at some cycle of the gap or at the one
     seen: its entry has "after", the last cycle known before it, so that nobody takes the
@@ -60,56 +66,74 @@ class GoalHistory:
     FINAL = frozenset({"failed", "cancelled"})
 
     def __init__(self) -> None:
-        self.changes: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
-        self._last: dict[tuple[str, str], str] = {}
-        self._listed: dict[str, dict[str, dict[str, Any]]] = {}  # agent -> id -> entry
-        self._seen: dict[str, int] = {}  # agent -> cycle of its latest intention fed
+        # agent -> cycle -> that cycle's goals (a tuple shared between equal cycles: a run of
+        # 65,000 cycles keeps one reference per cycle)
+        self._lists: dict[str, dict[int, tuple]] = defaultdict(dict)
+        self._intents: dict[str, dict[int, tuple]] = defaultdict(dict)
+        self._shared: dict[tuple, tuple] = {}
+        self._has_state: Callable[[int], bool] | None = None
 
     def feed(self, record: dict[str, Any], has_state: Callable[[int], bool] | None = None
              ) -> None:
         """Take one intention or goal-list record; `has_state(cycle)`: whether the record
-        holds that cycle's world state (None: no gaps are looked for)."""
+        holds that cycle's world state (None: no gaps are looked for), asked when the
+        changes are worked out."""
         agent, cycle = record.get("agent", ""), record["env"]["cycle"]
+        self._has_state = has_state
         if record.get("kind") == "GoalList":
-            self._goal_list(agent, cycle, record.get("goals", ()))
+            goals = record.get("goals", ())
+            self._lists[agent][cycle] = self._share(tuple(
+                (g.get("id"), g.get("goal", ""), g.get("priority"))
+                for g in goals if isinstance(g, dict)))
             return
-        after = self._gap_before(agent, cycle, has_state)
-        for goal in record.get("decision", {}).get("goals", ()):
-            gid = goal.get("id")
-            if self._last.get((agent, gid)) not in (goal.get("status"), "cancelled"):
-                self._add(agent, gid, cycle, goal.get("status"), goal, goal.get("note", ""),
-                          after)
+        self._intents[agent][cycle] = self._share(tuple(
+            (g.get("id"), g.get("status"), g.get("goal", ""), g.get("priority"),
+             g.get("note", "")) for g in record.get("decision", {}).get("goals", ())
+            if isinstance(g, dict)))
 
-    def _gap_before(self, agent: str, cycle: int, has_state: Callable[[int], bool] | None
-                    ) -> int | None:
-        """The last cycle known before `cycle` when the record lacks some cycle between it
-        and this agent's previous intention (or the run's start); else None."""
-        seen = self._seen.get(agent, -1)
-        if cycle <= seen:
-            return None  # a re-sent cycle
-        self._seen[agent] = cycle
-        if has_state is None or all(has_state(c) for c in range(seen + 1, cycle)):
-            return None
-        return seen
+    def _share(self, item: tuple) -> tuple:
+        return self._shared.setdefault(item, item)
 
-    def _goal_list(self, agent: str, cycle: int, goals: Any) -> None:
-        now = {g.get("id"): g for g in goals if isinstance(g, dict)}
-        for gid, goal in self._listed.get(agent, {}).items():
-            if gid not in now and self._last.get((agent, gid)) not in self.FINAL:
-                self._add(agent, gid, cycle, "cancelled", goal, "withdrawn from the goal list")
-        self._listed[agent] = now
+    @property
+    def changes(self) -> dict[str, dict[str, list[dict[str, Any]]]]:
+        """agent -> goal id -> its changes, worked out from every record fed so far."""
+        out: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
+        for agent in sorted({*self._lists, *self._intents}):
+            self._changes_of(agent, out[agent])
+        return out
 
-    def _add(self, agent: str, gid: str, cycle: int, status: str, goal: dict[str, Any],
-             note: str, after: int | None = None) -> None:
-        self._last[(agent, gid)] = status
-        changes = self.changes[agent].setdefault(gid, [])
-        change = {"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
-                  "priority": goal.get("priority"), "note": note}
-        if after is not None:
-            change["after"] = after
-        changes.append(change)
-        if len(changes) > 1 and changes[-2]["cycle"] > cycle:  # records of two keys crossed
-            changes.sort(key=lambda c: c["cycle"])
+    def _changes_of(self, agent: str, out: dict[str, list[dict[str, Any]]]) -> None:
+        lists, intents, has_state = self._lists[agent], self._intents[agent], self._has_state
+        last: dict[str, str] = {}
+        listed: dict[str, tuple] = {}
+        seen = -1   # the cycle of the agent's previous intention
+
+        def add(gid: str, cycle: int, status: str, goal: str, priority: Any, note: str,
+                after: int | None = None) -> None:
+            last[gid] = status
+            change = {"cycle": cycle, "status": status, "goal": goal, "priority": priority,
+                      "note": note}
+            if after is not None:
+                change["after"] = after
+            out.setdefault(gid, []).append(change)
+
+        for cycle in sorted({*lists, *intents}):
+            if cycle in lists:   # the goal list of a cycle comes before its decision
+                now = {g[0]: g for g in lists[cycle]}
+                for gid, (_, goal, priority) in listed.items():
+                    if gid not in now and last.get(gid) not in self.FINAL:
+                        add(gid, cycle, "cancelled", goal, priority,
+                            "withdrawn from the goal list")
+                listed = now
+            if cycle not in intents:
+                continue
+            after = None
+            if has_state is not None and not all(has_state(c) for c in range(seen + 1, cycle)):
+                after = seen
+            seen = cycle
+            for gid, status, goal, priority, note in intents[cycle]:
+                if last.get(gid) not in (status, "cancelled"):
+                    add(gid, cycle, status, goal, priority, note, after)
 
     def to_meta(self) -> dict[str, str]:
         return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
@@ -385,7 +409,8 @@ def reconcile(goal: dict[str, Any], changes: list[dict[str, Any]]) -> dict[str, 
       within the gap ("source": "goal store");
     - a final status the record never saw (its end was lost) is added from the store;
     - a status the record saw after the store's last change (a store that could not be
-      saved since: a full disk) is the goal's status, with a note saying so."""
+      saved since: a full disk) is the goal's status, with a note saying so; but never over
+      a failure the store holds (failed is final: a failed run is never reported completed)."""
     out = []
     for c in changes:
         entry = {"cycle": c["cycle"], "status": USER_STATUS.get(c["status"], c["status"])}
@@ -398,7 +423,7 @@ def reconcile(goal: dict[str, Any], changes: list[dict[str, Any]]) -> dict[str, 
     last = out[-1]
     if last["status"] == status and "after" in last and last["after"] < when <= last["cycle"]:
         out[-1] = {"cycle": when, "status": status, "source": "goal store"}
-    elif last["status"] != status and last["cycle"] > when:
+    elif last["status"] != status and last["cycle"] > when and status != "failed":
         return {**goal, "status": last["status"], "updated_cycle": last["cycle"],
                 "note": f"from the run record: the goal store was last saved with {status} "
                         f"(cycle {when})", "history": out}
