@@ -20,6 +20,7 @@ processes never started; as clients of the router, 10.6 and 3.5 cycles/s.
 from __future__ import annotations
 
 import json
+import secrets
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -229,3 +230,27 @@ def check_secrets(plan: Plan) -> None:
         plan.secrets.check([*plan.local, "launch", "operator"])
     except FileNotFoundError as exc:
         raise PlanError(f"--secrets: {exc}") from exc
+
+
+def claim_run_dir(run: str, run_dir: Path, given: bool, name: str, secure: bool
+                  ) -> tuple[str, Path]:
+    """Make the run's new folder, which no other launch can then take: a launch never writes
+    into an earlier run's folder (drills 2026-12-04 D3: a second `--run r1` overwrote the
+    first run's trace and record and replayed its executive's state). A `--run` id whose
+    folder exists is refused, not renamed: the id is what the user's tools (`goal post --run`,
+    `explain`) will ask for, so a launch under another id would answer them with another
+    run; a generated id that is taken is drawn again."""
+    while True:
+        try:
+            run_dir.mkdir(parents=True, mode=0o700 if secure else 0o777)
+            return run, run_dir
+        except OSError as exc:
+            if not isinstance(exc, FileExistsError):
+                raise PlanError(f"cannot make the run folder {run_dir}: "
+                                f"{exc.strerror or exc}") from None
+            if given:
+                raise PlanError(f"--run {run}: the folder {run_dir} holds an earlier run, and "
+                                f"a launch never writes into one; give another id, or move "
+                                f"that folder away first") from None
+        run = f"{name}-{secrets.token_hex(3)}"
+        run_dir = run_dir.with_name(run)
