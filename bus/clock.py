@@ -34,7 +34,8 @@ from collections.abc import Callable, Mapping, Sequence
 
 from bus import keys
 from bus.cycle import CycleBook, CycleMode, CycleReport, DeadPolicy, culprit
-from bus.errors import BusError, ClockStopped, NotReady
+from bus.errors import BusError, ClockStopped, NotReady, PaceLost
+from bus.load import scaled
 from bus.messages import ProcessStats, WorldState
 from bus.node import Node
 
@@ -126,28 +127,54 @@ class Clock:
         return report
 
     def keep_pace(self, process: str, cycle: int, stuck_s: float = 10.0,
-                  resend: WorldState | None = None) -> float:
+                  resend: WorldState | None = None, required_s: float | None = None
+                  ) -> float:
         """Wait until `process` (not a stage: the launch's recorder) has reported, in its
         ProcessStats, cycle `cycle` or a later one (-1: it has begun); returns the seconds
-        waited [s]. No wait while its token is absent (no recorder, or it died), nor once it
-        has made no progress for `stuck_s` [s]; a stop interrupts it (CycleInterrupted).
+        waited [s]. A stop interrupts it (CycleInterrupted).
+
+        Not `required_s` (None): no wait while its token is absent (no recorder, or it
+        died), nor once it has made no progress for `stuck_s` [s] (until it moves again).
+        `required_s` [s]: the run must not outrun it (a launch that records: drills
+        2026-12-04 D9, a world that ran on while its record lost 64,734 cycles): it is
+        waited for as a stage is, while it is absent or not moving, and when it has been
+        absent or still for `required_s` (stretched by the machine's load, bus/load.py)
+        PaceLost is raised: the run stops rather than run cycles it would not record.
+
         `resend`: the state to publish again every `resend_s` while it waits (a state it
         may have missed: the stages answer it from their caches). Lockstep only: what a run
         sends while a subscriber lags waits in the senders' queues, and a process that stops
         drops what its queue still holds (tests/e2e/test_record_drain.py)."""
         self._note_stats()
         seen = self.last_seen.get(process, -2)
-        if seen >= cycle or self._stuck.get(process) == seen \
-                or process not in self.node.presence.snapshot():
+        present = process in self.node.presence.snapshot()
+        if seen >= cycle or required_s is None and (self._stuck.get(process) == seen
+                                                    or not present):
             return 0.0  # there, stuck at the cycle it was given up at (until it moves), gone
         start = moved = sent = time.monotonic()
+        gone_since = None if present else start
         while self.last_seen.get(process, -2) < cycle:
             if self.stop.is_set():
                 raise CycleInterrupted(cycle, {process})
-            if process not in self.node.presence.snapshot():
-                break
             now = time.monotonic()
-            if now - moved > stuck_s:
+            if process not in self.node.presence.snapshot():
+                if required_s is None:
+                    break
+                if gone_since is None:
+                    log.warning("%s left the bus at cycle %d: the world waits for it", process,
+                                cycle)
+                    gone_since = now
+                if now - gone_since > scaled(required_s):
+                    raise PaceLost(f"{process} left the bus at cycle {cycle} and was not back "
+                                   f"within {now - gone_since:.0f} s: no cycle runs that it "
+                                   f"would not record")
+            elif gone_since is not None:
+                gone_since, moved = None, now   # back: its time to move starts again
+            if required_s is not None and gone_since is None \
+                    and now - moved > scaled(required_s):
+                raise PaceLost(f"{process} has not moved from cycle {seen} for "
+                               f"{now - moved:.0f} s: no cycle runs that it would not record")
+            if required_s is None and now - moved > stuck_s:
                 log.warning("%s has not moved from cycle %d for %.0f s: not waited for",
                             process, seen, stuck_s)
                 self._stuck[process] = seen

@@ -148,3 +148,42 @@ def test_state_and_learned_files_set_aside_are_named_and_the_run_still_completes
                               str(tmp_path / "state-ME.json.bad")]
     out = CliRunner().invoke(click.command()(lambda: summary.echo(s))).output
     assert f"SET ASIDE: {tmp_path / 'state-ME.json.bad'} could not be read back" in out
+
+
+def _record_of(folder: Path, cycles: range) -> None:
+    """A run record holding the world states of `cycles` only."""
+    from bus import keys
+    from bus.messages import Envelope, WorldState
+    from bus.record import message_record
+    from tools.records.run_record import RECORD_FILE, RecordWriter
+
+    with RecordWriter(folder / RECORD_FILE, "r1") as rec:
+        for t in cycles:
+            msg = WorldState(Envelope(1, "r1", t, "world", 99), {"time": t}, {}, [])
+            rec.add(keys.world_state("r1"), message_record(keys.world_state("r1"), msg))
+
+
+def test_a_record_that_dropped_cycles_fails_the_run(tmp_path):
+    """Drills 2026-12-04 D9: the record lacked 64,734 of 65,712 cycles and the run ended
+    "completed"."""
+    write_run(tmp_path, 50)
+    goals(tmp_path, goal("g1", "achieved"))
+    _record_of(tmp_path, range(0, 20))
+    s = summary.build(tmp_path, BASE, {})
+    assert (s["status"], s["record_missing"], s["record_gaps"]) == ("failed", 30, [[20, 49]])
+    assert any("lacks the world states of 30 of 50 cycles (cycles 20-49)" in f
+               for f in s["failures"])
+    whole = tmp_path / "whole"
+    whole.mkdir()
+    write_run(whole, 50)
+    goals(whole, goal("g1", "achieved"))
+    _record_of(whole, range(0, 50))
+    assert summary.build(whole, BASE, {})["status"] == "completed"
+
+
+def test_a_drain_cut_short_on_request_leaves_the_run_interrupted(tmp_path):
+    write_run(tmp_path, 30, finish=False)
+    _record_of(tmp_path, range(0, 20))
+    s = summary.build(tmp_path, BASE, {}, requested_stop=True,
+                      recorder={"cut_short": True, "failed": {}})
+    assert s["status"] == "interrupted"

@@ -173,7 +173,8 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
                 "world.process", *common, "--scenario", path, *changed,
                 "--cycles", str(plan.cycles),
                 "--seed", str(plan.seed), "--run-mode", plan.mode, "--out", str(plan.run_dir),
-                "--ready-timeout", str(plan.ready_timeout)), 3, restart_args=RESUME_ARGS))
+                "--ready-timeout", str(plan.ready_timeout),
+                *(["--recorded"] if plan.record else [])), 3, restart_args=RESUME_ARGS))
         else:
             agent, _, stage = name.rpartition(".")
             spec = sc.agent(agent)

@@ -89,6 +89,8 @@ def _start(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
         plan = _start_router(plan, sup)
     if plan.record and plan.runs_world:
         _start_recorder(plan, held)  # subscribed before any process starts: cycle 0 is in
+        if held.recorder is None:    # the world does not wait for a recorder that is not
+            plan = replace(plan, record=False)
     specs = process_specs(plan)
     for spec in specs:
         sup.start(spec)

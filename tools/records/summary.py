@@ -13,7 +13,8 @@ The run's status (docs/faults.md, "What counts as a failed run"):
   reported it failed), or the world stopped before its cycles were done for any other reason
   than a stop asked for. A goal still at an impasse at the end (no skill path yet; the
   problem solver may have been working on it) is listed as not achieved, not as failed.
-  Goals the goal store lost (a damaged file it could not recover) fail the run too;
+  Goals the goal store lost (a damaged file it could not recover) fail the run too, and
+  so does a run record that lacks cycles (unless a stop asked for cut its drain short);
 - interrupted (exit 130): stopped on request (Ctrl-C, `teleo stop`) before its cycles were
   done, with nothing failed; a run without a cycle limit ends this way and counts as completed;
 - completed (exit 0): otherwise. Stalls, late stages and restarts that recovered are shown
@@ -141,7 +142,7 @@ def finish_status(summary: dict[str, Any], ended: str = "",
     """Add `failures`, `status` and `completed` to a summary (launch's or simulate's): a run
     is failed when an agent went uncontrolled, a process gave up, a goal could not be kept,
     goals were lost or the world stopped early."""
-    summary["failures"] = _failures(summary, ended)
+    summary["failures"] = _failures(summary, ended, requested_stop)
     summary["status"] = _status(summary, requested_stop)
     summary["completed"] = summary["status"] == "completed"
     return summary
@@ -191,7 +192,7 @@ def _elapsed(health: list[dict[str, Any]]) -> float:
     return max(times) - (ready[0] if ready else min(times)) if times else 0.0
 
 
-def _failures(s: dict[str, Any], ended: str) -> list[str]:
+def _failures(s: dict[str, Any], ended: str, requested_stop: bool) -> list[str]:
     out = [f"{agent} uncontrolled for {n} cycle(s) (the world applied its safe action)"
            for agent, n in s["uncontrolled"].items()]
     out += [f"{name} gave up (left down after {s['restarts'].get(name, 0)} restart(s))"
@@ -209,6 +210,11 @@ def _failures(s: dict[str, Any], ended: str) -> list[str]:
             f"nothing was written from about cycle {failed.get('cycle')} on"
         out.append(f"the run record {s.get('record')} could not be written "
                    f"({failed.get('reason')}): {lacks}")
+    elif s.get("record_missing") and not (requested_stop and s.get("record_cut_short")):
+        out.append(f"the run record {s.get('record')} lacks the world states of "  # D9
+                   f"{s['record_missing']} of {s['cycles']} cycles (cycles "
+                   f"{ranges_text(s.get('record_gaps') or [])}): a run that dropped cycles "
+                   f"from its record is not complete")
     if ended:
         out.append(ended)
     return out
@@ -297,7 +303,8 @@ def _record(run_dir: Path, cycles: int, record: records.RunRecord | None,
     kept = coverage(run_dir, cycles, record)
     return {"record": kept and kept["file"], "record_missing": kept and kept["missing"],
             "record_gaps": kept and kept["gaps"],
-            "record_failed": recorder.get("failed") or None}
+            "record_failed": recorder.get("failed") or None,
+            "record_cut_short": bool(recorder.get("cut_short"))}
 
 
 def _pairs(d: dict[str, Any]) -> str:
