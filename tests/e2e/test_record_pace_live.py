@@ -38,3 +38,5 @@ def test_a_stopped_recorder_holds_the_world_back_and_the_record_stays_whole(tele
     assert waits and max(w["seconds"] for w in waits) >= 5.0   # held back, not run on
     assert s["status"] == "failed" or s["record_missing"] == 0, s
     assert s["status"] != "completed" or not s["record_gaps"], s
+    world_log = (Path(info["run_dir"]) / "logs" / "world.log").read_text()
+    assert "launch.record: malformed" not in world_log   # trial N8: progress at cycle -2

@@ -213,6 +213,8 @@ class BusRecorder:
         it has the first), for the world to keep pace with."""
         whole = self.writer.cycles - 2
         now = time.monotonic()
+        if whole < -1:   # nothing recorded yet: -2 is no cycle (trial 2026-12-04 N8)
+            return
         if self._node is None or now - self._told_at < (
                 PROGRESS_S if whole > self._told else AGAIN_S):  # said again now and then:
             return                                             # a restarted world learns it
