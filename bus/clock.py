@@ -87,6 +87,7 @@ class Clock:
         self._incarnations = dict(node.presence.incarnations())
         self._next_start: float | None = None
         self._stuck: dict[str, int] = {}  # keep_pace: process -> the cycle it was given up at
+        self._first = True  # run_cycle: the first cycle is a handshake (see there)
 
     def wait_ready(self, expected: set[str], timeout: float) -> None:
         """Start-up barrier: wait until every process in `expected` holds its token and
@@ -101,6 +102,7 @@ class Clock:
                                                       max(0.0, deadline - time.monotonic())):
             raise NotReady(set(), timeout, f"no subscriber on {self._state_key}")
         self._incarnations = dict(self.node.presence.incarnations())
+        self._first = True   # the next cycle is the first since every stage announced itself
 
     def run_cycle(self, cycle: int, state_msg: WorldState,
                   meanwhile: Callable[[], object] | None = None) -> CycleReport:
@@ -116,7 +118,11 @@ class Clock:
         self.node.publish(self._state_key, state_msg)
         if meanwhile is not None:
             meanwhile()
-        run = _CycleRun(self, cycle, state_msg, start)
+        # the first cycle after start-up waits for every stage as lockstep does, sending its
+        # state again until each answers: a token is up before its subscriptions reach every
+        # publisher, and a realtime run lost cycle 0 to that race (trial 2026-12-04 N3)
+        run = _CycleRun(self, cycle, state_msg, start, handshake=self._first)
+        self._first = False
         run.wait()
         report = run.report(time.monotonic())
         if report.late or report.dead:
@@ -215,7 +221,8 @@ class Clock:
 class _CycleRun:
     """The waiting loop of one cycle (kept apart so Clock stays small)."""
 
-    def __init__(self, clock: Clock, cycle: int, state: WorldState, start: float) -> None:
+    def __init__(self, clock: Clock, cycle: int, state: WorldState, start: float,
+                 handshake: bool = False) -> None:
         self.c, self.cycle, self.state = clock, cycle, state
         self.book = CycleBook(cycle, frozenset(clock.pipelines))
         self.waiting = set(clock.pipelines)
@@ -228,7 +235,8 @@ class _CycleRun:
         self.stopped = False
         self.start = start
         self.sent = start  # when state t was last (re)published
-        self.end = start + clock.period_s if clock.mode is CycleMode.REALTIME else None
+        self.end = start + clock.period_s \
+            if clock.mode is CycleMode.REALTIME and not handshake else None
 
     def wait(self) -> None:
         while self.waiting:
