@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from bus.config import BusConfig, Mode
+from bus.load import scaled
 from tools.launching.run_secrets import RunSecrets, host_of
 from tools.launching.supervisor import ProcSpec, module_argv
 from world.run_scenario import AGENT_STAGES, AgentSpec, Scenario
@@ -71,11 +72,13 @@ START_S = 60.0             # [s] the least time a launch's processes get to anno
 START_S_PER_PROCESS = 2.0  # [s] more per process: their start-ups share the machine's cores
 
 
-def start_timeout(processes: int) -> float:
+def start_timeout(processes: int, load: tuple[float, int] | None = None) -> float:
     """How long [s] a launch waits for ``processes`` processes started on its host to
     announce themselves: each imports zenoh, numpy and its stage's code, and on two cores
-    98 processes (32 agents, a process per stage) need more than a minute to do so."""
-    return max(START_S, START_S_PER_PROCESS * processes)
+    98 processes (32 agents, a process per stage) need more than a minute to do so; on a
+    busy machine, more again (bus/load.py: stretched by the load per CPU; `load`: (load
+    average, CPUs), else the machine's now)."""
+    return scaled(max(START_S, START_S_PER_PROCESS * processes), load=load)
 
 
 def all_processes(scenario: Scenario) -> list[str]:
