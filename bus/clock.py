@@ -46,10 +46,13 @@ _POLL_S = 0.02  # how often liveliness is rechecked while waiting for actions [s
 class CycleInterrupted(BusError):
     """The clock's stop event was set while it waited (a signal asked the world to stop)."""
 
-    def __init__(self, cycle: int, waiting: Sequence[str]) -> None:
+    def __init__(self, cycle: int, waiting: Sequence[str], stalled: Sequence[str] = (),
+                 waited_s: float = 0.0) -> None:
         what = f"waiting for {', '.join(sorted(waiting))}" if waiting else "waiting"
         super().__init__(f"cycle {cycle}: interrupted while {what}")
         self.cycle = cycle
+        self.stalled = tuple(stalled)  # a stall in progress at the stop: the stages it waited
+        self.waited_s = waited_s       # on, and how long [s] (drill d2b: it went unlisted)
 
 
 class Clock:
@@ -241,7 +244,10 @@ class _CycleRun:
     def wait(self) -> None:
         while self.waiting:
             if self.c.stop.is_set():
-                raise CycleInterrupted(self.cycle, self.waiting)
+                waited = time.monotonic() - self.start
+                if not self.stalled and self.end is None and waited > self.c.stall_s:
+                    self._note_stall(self.c.node.presence.snapshot())
+                raise CycleInterrupted(self.cycle, self.waiting, self.stalled, waited)
             self._check(time.monotonic())
             if self.stopped or not self.waiting:
                 return

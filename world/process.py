@@ -210,6 +210,9 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
+            if exc.stalled:   # a stall in progress at the stop is listed as any other
+                rec.event("stalled", cycle=exc.cycle, seconds=round(exc.waited_s, 3),
+                          stalled=list(exc.stalled), at_stop=True)
         except CannotRecord as exc:  # a full disk: no cycle runs that nothing records
             reason, unwritable = f"stopped: {exc}", exc
         except PaceLost as exc:      # nor one that the launch's recorder would not record

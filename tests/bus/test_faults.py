@@ -174,3 +174,4 @@ def test_a_stall_is_named_and_any_wait_is_interrupted_by_the_stop_event(cfg, run
             os.kill(pid, signal.SIGCONT)
     assert stalled.stalled == ("A.inference",) and stalled.actions == {AGENT: (["*pass", 1, 1],)}
     assert err.value.cycle == 2
+    assert err.value.stalled == ("A.inference",) and err.value.waited_s >= 0.3  # d2b

@@ -187,3 +187,18 @@ def test_a_drain_cut_short_on_request_leaves_the_run_interrupted(tmp_path):
     s = summary.build(tmp_path, BASE, {}, requested_stop=True,
                       recorder={"cut_short": True, "failed": {}})
     assert s["status"] == "interrupted"
+
+
+def test_a_stall_in_progress_at_the_stop_is_listed(tmp_path):
+    """Drill d2b: Ctrl-C during a stall; the stall the world was in went unlisted."""
+    from world.recorder import HEALTH
+
+    write_run(tmp_path, 30, finish=False)
+    with (tmp_path / HEALTH).open("a") as f:   # as world/process.py writes it at the stop
+        f.write(json.dumps({"kind": "stalled", "t": 1.0, "cycle": 30, "seconds": 1.04,
+                            "stalled": ["ME.inference"], "at_stop": True}) + "\n")
+    s = summary.build(tmp_path, BASE, {}, requested_stop=True)
+    assert s["stalls"] == [{"cycle": 30, "seconds": 1.04, "stages": ["ME.inference"],
+                            "at_stop": True}]
+    printed = CliRunner().invoke(_echo, [json.dumps(s)]).output
+    assert "stalls: 1 (ME.inference 1.04 s at cycle 30 (still stalled at the stop))" in printed

@@ -180,8 +180,9 @@ def _totals(health: list[dict[str, Any]]) -> dict[str, dict[str, int]]:
 
 def _stalls(health: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Cycles that waited past the stall threshold: when, how long [s], for whom."""
-    return [{"cycle": h["cycle"], "seconds": h.get("elapsed_s", 0.0), "stages": h["stalled"]}
-            for h in health if h.get("kind") == "cycle" and h.get("stalled")]
+    return [{"cycle": h["cycle"], "seconds": h.get("elapsed_s", h.get("seconds", 0.0)),
+             "stages": h["stalled"], **({"at_stop": True} if h.get("at_stop") else {})}
+            for h in health if h.get("kind") in ("cycle", "stalled") and h.get("stalled")]
 
 
 def _elapsed(health: list[dict[str, Any]]) -> float:
@@ -255,6 +256,7 @@ def echo(summary: dict[str, Any]) -> None:
     stalls = summary["stalls"]
     if stalls:
         shown = ", ".join(f"{'+'.join(s['stages'])} {s['seconds']} s at cycle {s['cycle']}"
+                          + (" (still stalled at the stop)" if s.get("at_stop") else "")
                           for s in stalls[:5])
         click.echo(f"  stalls: {len(stalls)} ({shown}{', ...' if len(stalls) > 5 else ''})")
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
