@@ -38,6 +38,8 @@ RECORD_FILE = "record.mcap"
 MCAP_MAGIC = b"\x89MCAP0\r\n"
 RUN_META = "teleo.run"
 GOALS_META = "teleo.goals"
+GOAL_HISTORY = "goal-history.json"  # a launch without a record: its goal histories
+                                    # (tools/records/goal_watch.py)
 STATE_RANGES = "world_state_cycles"  # in RUN_META: [[first, last], ...] of the states held
 _KEEP_TIMES = 4096  # cycles whose world time is remembered (a forever run must not grow)
 
@@ -386,11 +388,20 @@ def with_history(goals: list[dict[str, Any]], run_dir: Path,
         except RecordError as exc:
             log.warning("no goal history: %s", exc)
     try:
-        history = record.goal_history() if record is not None else {}
+        history = record.goal_history() if record is not None else _watched(run_dir)
     except RecordError as exc:
         log.warning("no goal history: %s", exc)
         history = {}
     return goals_with_history(goals, history)
+
+
+def _watched(run_dir: Path) -> dict[str, Any]:
+    """The goal histories a launch without a record kept (GOAL_HISTORY), or {}."""
+    try:
+        doc = json.loads((Path(run_dir) / GOAL_HISTORY).read_text())
+    except (OSError, ValueError):
+        return {}
+    return doc if isinstance(doc, dict) else {}
 
 
 def goals_with_history(goals: list[dict[str, Any]],
