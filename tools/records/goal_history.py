@@ -1,0 +1,104 @@
+"""Each agent's goals' status changes, as a run record tells them (tools/records/run_record.py
+keeps them in its metadata `teleo.goals`; `teleo explain` and the summaries read them)."""
+
+from __future__ import annotations
+
+import json
+from collections import defaultdict
+from collections.abc import Callable
+from typing import Any
+
+__all__ = ["GoalHistory"]
+
+
+class GoalHistory:
+    """Each agent's goals' status changes, fed with intention and goal-list records: agent ->
+    goal id -> [{"cycle", "status", "goal", "priority", "note"}] (one entry per change, first
+    sighting included). A user goal that leaves the agent's goal list without having failed
+    was cancelled: the executive never reports that, as it no longer has the goal.
+
+    The records are kept by cycle and the changes worked out from them in cycle order (the
+    goal list of a cycle before the intention decided from it), so the history is the same
+    whatever order the records arrived in (drills 2026-12-04 D2: the goal list of cycle t+1
+    reaching the recorder before the intention of t that said "failed" turned the failure
+    into "cancelled", and a failed run into a completed one).
+
+    A change seen after a gap in the record (cycles whose world state it lacks, between the
+    agent's previous intention and this one) happened at some cycle of the gap or at the one
+    seen: its entry has "after", the last cycle known before it, so that nobody takes the
+    cycle after a gap for the cycle of the change (drill N1: "achieved 486" for 216)."""
+
+    FINAL = frozenset({"failed", "cancelled"})
+
+    def __init__(self) -> None:
+        # agent -> cycle -> that cycle's goals (a tuple shared between equal cycles: a run of
+        # 65,000 cycles keeps one reference per cycle)
+        self._lists: dict[str, dict[int, tuple]] = defaultdict(dict)
+        self._intents: dict[str, dict[int, tuple]] = defaultdict(dict)
+        self._shared: dict[tuple, tuple] = {}
+        self._has_state: Callable[[int], bool] | None = None
+
+    def feed(self, record: dict[str, Any], has_state: Callable[[int], bool] | None = None
+             ) -> None:
+        """Take one intention or goal-list record; `has_state(cycle)`: whether the record
+        holds that cycle's world state (None: no gaps are looked for), asked when the
+        changes are worked out."""
+        agent, cycle = record.get("agent", ""), record["env"]["cycle"]
+        self._has_state = has_state
+        if record.get("kind") == "GoalList":
+            goals = record.get("goals", ())
+            self._lists[agent][cycle] = self._share(tuple(
+                (g.get("id"), g.get("goal", ""), g.get("priority"))
+                for g in goals if isinstance(g, dict)))
+            return
+        self._intents[agent][cycle] = self._share(tuple(
+            (g.get("id"), g.get("status"), g.get("goal", ""), g.get("priority"),
+             g.get("note", "")) for g in record.get("decision", {}).get("goals", ())
+            if isinstance(g, dict)))
+
+    def _share(self, item: tuple) -> tuple:
+        return self._shared.setdefault(item, item)
+
+    @property
+    def changes(self) -> dict[str, dict[str, list[dict[str, Any]]]]:
+        """agent -> goal id -> its changes, worked out from every record fed so far."""
+        out: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
+        for agent in sorted({*self._lists, *self._intents}):
+            self._changes_of(agent, out[agent])
+        return out
+
+    def _changes_of(self, agent: str, out: dict[str, list[dict[str, Any]]]) -> None:
+        lists, intents, has_state = self._lists[agent], self._intents[agent], self._has_state
+        last: dict[str, str] = {}
+        listed: dict[str, tuple] = {}
+        seen = -1   # the cycle of the agent's previous intention
+
+        def add(gid: str, cycle: int, status: str, goal: str, priority: Any, note: str,
+                after: int | None = None) -> None:
+            last[gid] = status
+            change = {"cycle": cycle, "status": status, "goal": goal, "priority": priority,
+                      "note": note}
+            if after is not None:
+                change["after"] = after
+            out.setdefault(gid, []).append(change)
+
+        for cycle in sorted({*lists, *intents}):
+            if cycle in lists:   # the goal list of a cycle comes before its decision
+                now = {g[0]: g for g in lists[cycle]}
+                for gid, (_, goal, priority) in listed.items():
+                    if gid not in now and last.get(gid) not in self.FINAL:
+                        add(gid, cycle, "cancelled", goal, priority,
+                            "withdrawn from the goal list")
+                listed = now
+            if cycle not in intents:
+                continue
+            after = None
+            if has_state is not None and not all(has_state(c) for c in range(seen + 1, cycle)):
+                after = seen
+            seen = cycle
+            for gid, status, goal, priority, note in intents[cycle]:
+                if last.get(gid) not in (status, "cancelled"):
+                    add(gid, cycle, status, goal, priority, note, after)
+
+    def to_meta(self) -> dict[str, str]:
+        return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
