@@ -5,6 +5,8 @@ cycle after the gap, unless the goal store names its cycle; a store that could n
 
 from __future__ import annotations
 
+import json
+
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -183,3 +185,24 @@ def test_a_failure_in_the_goal_store_is_never_overridden_by_the_record() -> None
     out = reconcile(goal, [{"cycle": 516, "status": "pending"},
                            {"cycle": 518, "status": "cancelled"}])
     assert out["status"] == "failed"
+
+
+JUNK = st.recursive(st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=5),
+                    lambda inner: st.lists(inner, max_size=4)
+                    | st.dictionaries(st.sampled_from(["id", "status", "goal", "priority",
+                                                      "note", "goals", "cycle", "x"]), inner,
+                                      max_size=5), max_leaves=20)
+
+
+@settings(max_examples=200, deadline=None)
+@given(kind=st.sampled_from(("Intention", "GoalList")), cycle=JUNK | st.integers(0, 9),
+       goals=JUNK, decision=JUNK)
+def test_a_record_of_any_shape_never_breaks_the_history(kind, cycle, goals, decision) -> None:
+    """A hostile peer's intention with a dict for a goal id crashed the launch's recorder
+    thread ("unhashable type: 'dict'"), and the record lost the rest of the run."""
+    history = GoalHistory()
+    history.feed({"kind": kind, "agent": "ME", "env": {"cycle": cycle}, "goals": goals,
+                  "decision": decision})
+    history.feed({"kind": kind, "agent": "ME", "env": cycle, "goals": [goals],
+                  "decision": {"goals": [decision, goals]}})
+    json.dumps(history.to_meta())

@@ -42,19 +42,25 @@ class GoalHistory:
              ) -> None:
         """Take one intention or goal-list record; `has_state(cycle)`: whether the record
         holds that cycle's world state (None: no gaps are looked for), asked when the
-        changes are worked out."""
-        agent, cycle = record.get("agent", ""), record["env"]["cycle"]
+        changes are worked out. A record of another shape (a hostile peer's) is passed over:
+        only goals with a string id are kept, their other fields as plain values."""
+        env = record.get("env")
+        cycle = env.get("cycle") if isinstance(env, dict) else None
+        if not isinstance(cycle, int) or isinstance(cycle, bool):
+            return
+        agent = str(record.get("agent", ""))
         self._has_state = has_state
         if record.get("kind") == "GoalList":
-            goals = record.get("goals", ())
             self._lists[agent][cycle] = self._share(tuple(
-                (g.get("id"), g.get("goal", ""), g.get("priority"))
-                for g in goals if isinstance(g, dict)))
+                (g["id"], _text(g.get("goal", "")), _priority(g.get("priority")))
+                for g in _goals(record.get("goals"))))
             return
+        decision = record.get("decision")
         self._intents[agent][cycle] = self._share(tuple(
-            (g.get("id"), g.get("status"), g.get("goal", ""), g.get("priority"),
-             g.get("note", "")) for g in record.get("decision", {}).get("goals", ())
-            if isinstance(g, dict)))
+            (g["id"], g["status"] if isinstance(g.get("status"), str) else None,
+             _text(g.get("goal", "")),
+             _priority(g.get("priority")), _text(g.get("note", "")))
+            for g in _goals(decision.get("goals") if isinstance(decision, dict) else ())))
 
     def _share(self, item: tuple) -> tuple:
         return self._shared.setdefault(item, item)
@@ -102,3 +108,18 @@ class GoalHistory:
 
     def to_meta(self) -> dict[str, str]:
         return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
+
+
+def _goals(goals: Any) -> list[dict[str, Any]]:
+    """The goal records of a list that have a string id."""
+    if not isinstance(goals, list | tuple):
+        return []
+    return [g for g in goals if isinstance(g, dict) and isinstance(g.get("id"), str)]
+
+
+def _text(value: Any) -> str:
+    return value if isinstance(value, str) else str(value)
+
+
+def _priority(value: Any) -> int | None:
+    return value if isinstance(value, int) and not isinstance(value, bool) else None

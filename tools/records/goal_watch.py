@@ -86,6 +86,7 @@ class GoalWatch:
             try:
                 record: dict[str, Any] = to_record(key, payload)
                 self.history.feed(record)
-            except (CodecError, KeyError, TypeError) as exc:
+            except (CodecError, AttributeError, KeyError, TypeError, ValueError,
+                    RecursionError) as exc:
                 log.warning("goal history: not taken: %s", exc)
         return len(batch)
