@@ -35,10 +35,10 @@ test: setup browser
 	$(BIN)/python -m pytest -q
 
 bench: setup
-	$(BIN)/python bench/engine.py
-	$(BIN)/python bench/bus.py
-	$(BIN)/python bench/world.py
-	$(BIN)/python bench/cycle.py
+	$(BIN)/python bench/speed/engine.py
+	$(BIN)/python bench/speed/bus.py
+	$(BIN)/python bench/speed/world.py
+	$(BIN)/python bench/speed/cycle.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

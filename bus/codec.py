@@ -2,11 +2,13 @@
 
 Wire form: one msgpack map with string keys only,
 `{"kind": "Percepts", "env": {"v", "run", "cycle", "sender", "sent_ns"}, <fields>...}`.
-A reader ignores fields it does not know (a minor version may only add fields) and
-rejects any other major version (`Envelope.v`). Every field is checked against its kind's
-schema (bus/fields.py) before the message is made. Every failure raises CodecError naming
-the key, the field and what is wrong (`teleo/r/agent/ME/goal-list: GoalList.goals[0].id:
-expected a string, got []`); receivers log it and drop the payload.
+`env.v` is the protocol's major version (bus/messages.py SCHEMA_VERSION), carried by every
+message. A reader ignores fields it does not know (a minor change may only add fields, and
+keeps `v`) and refuses any other major version with an error naming both. Every field is
+checked against its kind's schema (bus/fields.py) before the message is made. Every
+failure raises CodecError naming the key, the field and what is wrong
+(`teleo/r/agent/ME/goal-list: GoalList.goals[0].id: expected a string, got []`);
+receivers log it and drop the payload.
 
 Packed rows: the rows of `Percepts.percepts` and `Beliefs.beliefs` travel one msgpack bin a
 row, and a row seen in the last message on a key decodes to the same list (bus/rows.py).
@@ -120,9 +122,13 @@ def _envelope(key: str, env: Any) -> Envelope:
     if not isinstance(env, dict):
         raise CodecError(key, f"missing or malformed envelope: {brief(env)}")
     v = env.get("v")
-    if v != SCHEMA_VERSION or type(v) is not int:
-        raise CodecError(key, f"unknown schema version {brief(v)} (this reader knows "
-                              f"{SCHEMA_VERSION})")
+    if type(v) is not int:
+        raise CodecError(key, f"unknown schema version {brief(v)}: expected the major version "
+                              f"as an integer (this reader's is {SCHEMA_VERSION})")
+    if v != SCHEMA_VERSION:
+        raise CodecError(key, f"unknown schema version {v}: this reader speaks major version "
+                              f"{SCHEMA_VERSION} only (a minor change only adds fields, which "
+                              f"a reader ignores, and keeps the version)")
     try:
         ENVELOPE.check(env)
     except FieldError as exc:

@@ -15,9 +15,8 @@ class Collector:
     A cycle allocates in bursts (a decoded message is thousands of lists), and each burst
     would otherwise start collections in the middle of decoding or stepping. Collecting the
     young objects only every tenth cycle skips what a cycle makes and the next ones drop
-    again (indexes, belief sets): with 8 driving agents in one process a collection after
-    every cycle took 1.8 ms a cycle, one after every tenth 2.1 ms, so 0.2 ms a cycle; reference
-    cycles then wait at most ten cycles to be freed."""
+    again (indexes, belief sets), which makes a collection nearly ten times cheaper a cycle
+    (docs/benchmarks.md, "Bus"); reference cycles then wait at most ten cycles to be freed."""
 
     def __init__(self, young: int = 10, mid: int = 50, full: int = 1000) -> None:
         if mid % young or full % mid:

@@ -1,4 +1,4 @@
-"""What a stranger can do to a secured run (docs/bus.md "Security"; bench/drills.py foreign,
+"""What a stranger can do to a secured run (docs/bus.md "Security"; bench/faults/drills.py foreign,
 tests/e2e/test_secure_live.py): the checks of fault drill F10, against a run started with
 `teleo launch --secure`.
 

@@ -11,7 +11,10 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 SCHEMA_VERSION = 1
-"""Major schema version written in every envelope; a receiver drops any other version."""
+"""The bus protocol's major version, written as ``env.v`` in every message. A change that
+only adds fields (readers ignore fields they do not know) keeps it; any other change raises
+it, and a reader refuses a message of another major version (bus/codec.py; docs/bus.md,
+"Envelope")."""
 
 GOAL_OPS = ("post", "cancel", "priority", "list", "update")
 """Allowed `GoalRequest.op` values."""
@@ -21,8 +24,9 @@ GOAL_OPS = ("post", "cancel", "priority", "list", "update")
 class Envelope:
     """Who sent what for which cycle.
 
-    v: schema version; run: run id; cycle: cycle number (>= 0; -1 for messages outside
-    the cycle, e.g. goal requests); sender: process name; sent_ns: wall clock at send [ns].
+    v: the protocol's major version (SCHEMA_VERSION); run: run id; cycle: cycle number
+    (>= 0; -1 for messages outside the cycle, e.g. goal requests); sender: process name;
+    sent_ns: wall clock at send [ns].
     """
 
     v: int

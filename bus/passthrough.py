@@ -1,5 +1,5 @@
 """A pass-through agent stage: the smallest real process on the bus, used by the tests and
-bench/bus.py, and an example of a process module (subscribe, call the core, publish).
+bench/speed/bus.py, and an example of a process module (subscribe, call the core, publish).
 
     python -m bus.passthrough --run r1 --agent A --stage inference [--log FILE] [--die-at N]
 
@@ -27,8 +27,8 @@ STAGES = ("perception", "inference", "executive")
 
 
 def percepts_200() -> list[list]:
-    """The pass-through benches' load (bench/bus.py, bench/bus_hops.py): 200 percepts shaped
-    like the driving domain's (seed 000, Table 3)."""
+    """The pass-through benches' load (bench/speed/bus.py, bench/speed/bus_hops.py): 200 percepts
+    shaped like the driving domain's (seed 000, Table 3)."""
     rows: list[list] = [["self", "ME", "speed", 20.0, "limit", 25, "segment", "S2724"]]
     for i in range(199):
         rows.append(["lane-line", f"L{i}", "dist", 1.5 + i * 0.01, "angle", 2.0 * i,

@@ -21,13 +21,14 @@ from tools.paths import describe_os_error
 # module -> the commands it owns (its attribute `commands`, a list of click commands). A
 # command's module is imported only when that command is asked for (`list_commands`, as for
 # `teleo --help` or completion, imports them all): importing all of them was most of every
-# command's start-up, 3 s of a `teleo stop` at load 8 against 0.4 s for its own module.
+# command's start-up.
 _COMMAND_MODULES = {
     "tools.commands.check": ("check",),         # programs, learned files, scenarios
     "tools.commands.lang": ("infer", "step"),   # language engine
     "tools.commands.bus": ("router", "echo", "record", "replay"),  # bus
     "tools.commands.rate": ("hz",),             # bus rates
     "tools.commands.world": ("render",),        # world
+    "tools.commands.worlds": ("worlds",),       # the worlds found (entry points)
     "tools.commands.launch": ("launch",),       # processes
     "tools.commands.run": ("ps", "stop"),       # runs on this host
     "tools.commands.goal": ("goal",),           # goal post/list/cancel/priority
@@ -37,6 +38,9 @@ _COMMAND_MODULES = {
     "tools.commands.explain": ("explain",),     # run records
     "tools.commands.plot": ("plot",),           # run records
     "tools.view": ("view",),                    # live web view
+    "tools.commands.pddl": ("pddl",),           # PDDL domains as programs
+    "tools.commands.solve": ("solve",),         # a PDDL problem in one process
+    "tools.commands.examples": ("examples",),   # shipped programs and scenarios
 }
 _MODULE_OF = {name: module for module, names in _COMMAND_MODULES.items() for name in names}
 SUMMARY_CHARS = 66

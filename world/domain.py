@@ -1,4 +1,4 @@
-"""The contract every domain meets, and the registry the world process picks a domain from.
+"""The contract every domain meets, and how the world process gets a domain by name.
 
 A domain (urban driving, Blocks World, office delivery) is a simulation in HighwayEnv's
 fixed-loop-plus-hooks shape: the world process owns the loop of one cycle (inject the events
@@ -7,7 +7,7 @@ below. Perception and rendering are pure functions of a snapshot dict, so an age
 perception process and the tools need nothing but the snapshot and the domain's name, which
 every snapshot carries under "domain".
 
-    domain = get_domain(scenario.world_domain)
+    domain = get_domain(scenario.world_domain)               # a `teleo.worlds` entry point
     world = domain.create(scenario.world, seed, ["ME"])      # raises ConfigError naming the key
     outcomes = world.apply_actions("ME", [["*gas", 30]])     # never raises
     world.step()
@@ -29,14 +29,13 @@ restart time grows with the run's length).
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
 from bus.schema import FieldError, Plain, brief
-from world.errors import ConfigError
+from world.errors import ConfigError  # noqa: F401  (re-exported: get_domain raises it)
 
 Outcome = dict[str, Any]
 """{"action": [...], "status": "done" | "failed", "reason": str} (docs/architecture.md)."""
@@ -123,25 +122,65 @@ class Domain:
     restore: Callable[[bytes], World] | None = None     # the inverse of World.checkpoint
     actions: tuple[str, ...] = ()
     check_event: Callable[[Any], str] | None = None
+    static_keys: tuple[str, ...] = ()
+    """Snapshot keys that stay the same for a whole run (the view sends them once, in its map)."""
+    scene: Callable[[dict[str, Any]], dict[str, Any]] | None = None
+    """The view's hook: the static map of a snapshot's world for the page's own drawer of this
+    domain (tools/view/static/world.js), e.g. driving's streets; None: the view shows the
+    world's `render` as a PNG, which needs nothing in tools/."""
+    plot: tuple[str, Callable[[Any, Any], bool]] | None = None
+    """`teleo plot`'s hook: (title, draw(ax, run) -> drew anything) for the world's own panel;
+    ``ax`` a matplotlib Axes, ``run`` a RunSeries. None: no panel of its own."""
 
 
-# name -> module whose DOMAIN attribute is the Domain (imported on first use, so a process
-# that runs one domain never imports the others' physics).
-_MODULES = {
-    "driving": "world.driving",
-    "blocks": "world.blocks",
-    "office": "world.office",
-}
-DOMAINS: tuple[str, ...] = tuple(_MODULES)
+class RunSeries(Protocol):
+    """What a world's plot hook is given of a run record (tools/commands/plot.py's Series):
+    the cycles of its world states, each state's snapshot dict, the agents, each agent's
+    percepts by cycle ({"self": {...}, ...}), and the world time [s] of cycles."""
+
+    cycles: list[int]
+    snapshots: dict[int, dict[str, Any]]
+    agents: list[str]
+    percepts: dict[str, dict[int, dict[str, Any]]]
+
+    def t(self, cycles: list[int]) -> list[float]:
+        """The world time [s] of each cycle."""
+
+
+def episode_of(world: Any) -> dict[str, Any] | None:
+    """The episode of an episodic world ({"terminated", "truncated", "reward", "steps"}: a
+    Gymnasium environment's), or None for a world without episodes (it has no `episode`)."""
+    episode = getattr(world, "episode", None)
+    return dict(episode) if isinstance(episode, dict) else None
+
+
+def episode_over(world: Any) -> bool:
+    """The world's episode has terminated or been truncated: the run ends after the cycle
+    that publishes its last state (world/process.py, `teleo simulate`)."""
+    episode = episode_of(world)
+    return bool(episode and (episode.get("terminated") or episode.get("truncated")))
+
+
 DEFAULT_DOMAIN = "driving"
 
 
+def __getattr__(name: str) -> Any:
+    """``DOMAINS``: the registered worlds' names (world/registry.py), read on first use so
+    that importing this module reads no package metadata."""
+    if name == "DOMAINS":
+        from world.registry import names
+
+        return names()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def get_domain(name: str) -> Domain:
-    """The Domain called ``name``; raises ConfigError listing the known ones."""
-    module = _MODULES.get(name)
-    if module is None:
-        raise ConfigError(f"[world] domain: unknown domain {name!r}; known: {', '.join(DOMAINS)}")
-    return importlib.import_module(module).DOMAIN
+    """The Domain registered as ``name`` (entry-point group ``teleo.worlds``,
+    world/registry.py), imported on first use; raises ConfigError, one line, naming the near
+    and the known names for an unknown one, or why a registered one failed to load."""
+    from world.registry import load
+
+    return load(name, Domain)
 
 
 def domain_of(snapshot: dict[str, Any]) -> Domain:

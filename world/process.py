@@ -49,7 +49,7 @@ from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
-from world.domain import Domain, World, get_domain
+from world.domain import Domain, World, episode_over, get_domain
 from world.errors import CannotRecord
 from world.recorder import CHECKPOINT_EVERY, Recorder
 from world.resume import CannotResume, Resumed, can_checkpoint, resume
@@ -159,7 +159,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     if again:
         log.info("resumed at cycle %d (checkpoint %d, %d cycles replayed)", first,
                  begun.checkpoint, begun.replayed)
-    start, reason, unwritable, lost = time.monotonic(), "done", None, False
+    start, reason, unwritable, ended = time.monotonic(), "done", None, ""  # ended: episode
+    lost = False  # the launch's recorder was lost (PaceLost)
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
         asked = serve_later(node, keys.world_events(run))
@@ -192,6 +193,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 w0 = time.perf_counter()
                 injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
                 snap = sim.snapshot_dict()
+                over = episode_over(sim)  # this state is the episode's last: the last cycle
                 world_ms = (time.perf_counter() - w0) * 1e3
                 state = WorldState(node.envelope(t), snap, outcomes, injected, dict(memory))
                 report = clock.run_cycle(t, state, meanwhile=partial(_off_the_path, rec,
@@ -208,6 +210,9 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 node.publish_stats(t, world_ms)   # after the report: not a stage of the cycle
                 if saving and (t + 1) % CHECKPOINT_EVERY == 0:
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
+                if over:
+                    reason = ended = "the episode is over"
+                    break
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
             if exc.stalled:   # a stall in progress at the stop is listed as any other
@@ -220,8 +225,9 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
             log.error("%s", reason)
         collector.close()
         asked.close("the run ended before the event could be applied")
-        # a forever run ends by a stop; one whose recorder was lost did not complete
-        completed = (rec.cycles >= cycles if cycles else True) and not lost
+        # a forever run (or an episode that ended) ends by a stop; one whose recorder
+        # was lost did not complete
+        completed = (rec.cycles >= cycles if cycles and not ended else True) and not lost
         rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
              "complete" if completed else "early", reason)

@@ -242,6 +242,8 @@ class Recorder:
                           "stages": dict(self.stage_ms)},
             "memory": memory or {},
             "lost": self.lost,
+            **({"episode": self.last_snapshot["episode"]}   # an episodic world's (gymnasium)
+               if "episode" in (self.last_snapshot or {}) else {}),
         }
         tmp = self.out / (WORLD_FINAL + ".tmp")
         try:

@@ -17,12 +17,16 @@ from typing import Any
 from bus.cycle import CycleMode as Mode
 from bus.errors import KeyFormatError
 from bus.keys import check_chunk
-from world.domain import DEFAULT_DOMAIN, DOMAINS
+from world.domain import DEFAULT_DOMAIN, get_domain
+from world.errors import ConfigError
 from world.overrides import TABLES, Override, OverrideError, apply_overrides, parse_override
+from world.registry import names, unknown
 from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only, shown
+from world.scenario_paths import resolve as _resolve
 from world.scenario_types import (
     AGENT_STAGES,
     GOAL_OPS,
+    RUN_STATUSES,
     AgentSpec,
     RunSettings,
     Scenario,
@@ -36,7 +40,7 @@ __all__ = ["AGENT_STAGES", "GOAL_OPS", "AgentSpec", "Draft", "RunSettings", "Sce
            "ScenarioError", "ScriptedEvent", "ScriptedGoal", "load_scenario", "read_draft",
            "read_document", "scenario_from_dict"]
 RUN_FIELDS = ("name", "mode", "cycles", "seed", "deadline", "goals_respawn", "render_every",
-              "secure")
+              "secure", "status")
 
 def load_scenario(path: str | Path, overrides: Sequence[str] = ()) -> Scenario:
     """Read and check a scenario file, with ``overrides`` (`--set KEY=VALUE` texts,
@@ -118,8 +122,14 @@ def read_draft(doc: dict[str, Any], path: Path, overrides: tuple[str, ...] = ())
     before = len(errors)
     if is_table(world, "[world]", errors):
         domain = world.get("domain", DEFAULT_DOMAIN)
-        if not isinstance(domain, str) or domain not in DOMAINS:
-            errors.add(f"[world].domain: expected one of {list(DOMAINS)}, got {shown(domain)}")
+        if not isinstance(domain, str) or domain not in names():
+            errors.add(unknown(domain, "[world].domain") if isinstance(domain, str) else
+                       f"[world].domain: expected one of {list(names())}, got {shown(domain)}")
+        else:
+            try:                      # a registered world that fails to import: say so here
+                get_domain(domain)
+            except ConfigError as exc:
+                errors.add(str(exc).replace("[world] domain:", "[world].domain:", 1))
     if len(errors) > before:
         spoilt.add("world")
         world = {}
@@ -157,6 +167,8 @@ def _run(table: Any, errors: Errors) -> RunSettings:
         goals_respawn=field(table, "goals_respawn", int, 3, where, errors, at_least(0)),
         render_every=field(table, "render_every", int, 5, where, errors, at_least(1)),
         secure=field(table, "secure", bool, False, where, errors),
+        status=field(table, "status", str, "goals", where, errors,
+                     (RUN_STATUSES.__contains__, f"one of {list(RUN_STATUSES)}")),
     )
 
 
@@ -225,22 +237,6 @@ def agent_id_ok(agent_id: str) -> bool:
     except KeyFormatError:
         return False
     return agent_id.isprintable()
-
-
-def _resolve(program: str, scenario_path: Path) -> Path:
-    """A relative program path is looked up beside the scenario, then in each folder above
-    it (so `programs/driving.tlp` in scenarios/x.toml finds the repository's programs/ from
-    any working directory), then in the working directory."""
-    candidate = Path(program)
-    if candidate.is_absolute():
-        return candidate
-    for folder in scenario_path.resolve().parents:
-        try:
-            if (folder / candidate).exists():
-                return folder / candidate
-        except (OSError, ValueError):  # a name too long to look up, a NUL byte: not there
-            return candidate
-    return candidate
 
 
 def _goal(table: Any, index: int, agents: list[str], errors: Errors,

@@ -9,6 +9,7 @@ from typing import Any
 from bus.cycle import CycleMode
 from world.domain import DEFAULT_DOMAIN
 from world.errors import WorldError
+from world.scenario_paths import world_files
 
 AGENT_STAGES = ("perception", "inference", "executive")
 GOAL_OPS = ("post", "cancel", "priority")
@@ -36,6 +37,13 @@ class RunSettings:
     goals_respawn: int = 3
     render_every: int = 5
     secure: bool = False
+    status: str = "goals"   # what fails a run: RUN_STATUSES (docs/faults.md)
+
+
+RUN_STATUSES = {
+    "goals": "a goal that could not be kept fails the run, as a fault of the system does",
+    "system": "only a fault of the system fails the run; a goal not kept is reported",
+}
 
 
 @dataclass(frozen=True)
@@ -101,8 +109,9 @@ class Scenario:
 
     @property
     def world_table(self) -> dict[str, Any]:
-        """The `[world]` table without its `domain` key: the domain's own configuration."""
-        return {k: v for k, v in self.world.items() if k != "domain"}
+        """The `[world]` table without its `domain` key: the domain's own configuration
+        (a `*_file` path found as a program is, beside the scenario first)."""
+        return world_files({k: v for k, v in self.world.items() if k != "domain"}, self.path)
 
     @property
     def agent_ids(self) -> list[str]:

@@ -41,8 +41,8 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
 
 
 _HANDOFF = 64  # percepts up to which infer keeps them and its reading of them for decide:
-# kept until decide or the next infer, a larger list would be freed in that next call
-# (bench/engine.py's infer of new lists at 1000 objects: 0.1 ms more a call)
+# kept until decide or the next infer, a larger list would be freed in that next call, a
+# cost bench/speed/engine.py shows at 1000 objects (docs/benchmarks.md, "Engine")
 
 SOLVERS: dict[str, type] = handlers(MECHANISMS)
 """Impasse handlers by name, from the registered mechanisms: seed 000's means-ends problem

@@ -21,6 +21,7 @@ from .core.mechanism import AgentRecord, Mechanism, slot_kinds
 from .execution.state import EngineState, use_slots
 from .planning.mechanism import Planning
 from .scs.mechanism import Scs
+from .solving.bindings import instances_warning, never_true
 from .solving.learned import (
     clause_heads,
     is_learned_text,
@@ -39,6 +40,7 @@ use_slots(slot_kinds(MECHANISMS))
 __all__ = ["MECHANISMS", "AgentRecord", "Mechanism", "clause_heads", "handlers",
            "is_learned_text", "learned_text", "memory_of", "program_named", "read_learned",
            "remember", "summary_lines", "summary_sections"]
+__all__ += ["instances_warning", "never_true"]   # a goal's impossible instances (issue 31)
 
 
 def handlers(mechanisms: Iterable[Mechanism] = MECHANISMS) -> dict[str, type]:

@@ -184,7 +184,7 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
             decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         except LangError as exc:   # percepts or beliefs the engine cannot read
             raise Refused(f"{p_key}, {b_key}: the inputs of cycle {cycle}: {exc}") from None
-        intention = with_hints(decision.to_dict(), seen.percepts)
+        intention = with_hints(decision.to_dict(), seen.percepts, executive.engine.program)
         actions = [a.to_list() for a in decision.actions]
         if saver is not None:
             saver.save(Saved(cycle, executive.state, intention, actions))

@@ -23,10 +23,10 @@ MAX_PRIORITY = 1_000_000
 """Priorities are 1..MAX_PRIORITY (lower is more important); program goals have 1..n."""
 MAX_LIVE_GOALS = 16
 """User goals per agent still to be achieved (pending, active, suspended, impasse: the
-executive looks for a path for each every cycle, at a cost of about 1-2 ms per goal per
-cycle); a post beyond it is refused. Achieved goals do not count: checking that one still
-holds is cheap, and an agent that has done 16 errands takes a 17th (seed 003's office
-robot serves requests all day)."""
+executive looks for a path for each every cycle, a cost per goal and cycle); a post
+beyond it is refused. Achieved goals do not count: checking that one still holds is cheap,
+and an agent that has done 16 errands takes a 17th (seed 003's office robot serves requests
+all day)."""
 MAX_KEPT_WITHDRAWN = 100
 """Cancelled and failed goals kept per agent (for `teleo goal list`); older ones are dropped."""
 MAX_ID_CHARS = 32
@@ -116,6 +116,7 @@ class GoalStore:
     next_id: int = 1
     scripted_done: frozenset[int] = field(default_factory=frozenset)
     incidents: tuple[str, ...] = ()  # what recovery from a damaged file did (goal_file.py)
+    refused: tuple[str, ...] = ()    # the scenario's requests refused, for the summary
 
     def get(self, goal_id: str) -> GoalRecord:
         for record in self.goals:
@@ -211,6 +212,10 @@ class GoalStore:
         """The store with `incident` (what a recovery did) remembered for the run's summary."""
         return replace(self, incidents=self.incidents + (incident,))
 
+    def refusing(self, request: str) -> GoalStore:
+        """The store with a refused scripted request (what, when, why) remembered."""
+        return replace(self, refused=self.refused + (request,))
+
     def _put(self, record: GoalRecord) -> GoalStore:
         goals = tuple(record if g.id == record.id else g for g in self.goals)
         return replace(self, goals=_trimmed(goals, record.agent))
@@ -218,7 +223,8 @@ class GoalStore:
     def to_json(self) -> dict[str, Any]:
         return {"version": STORE_VERSION, "next_id": self.next_id,
                 "scripted_done": sorted(self.scripted_done),
-                "goals": [g.to_dict() for g in self.goals], "incidents": list(self.incidents)}
+                "goals": [g.to_dict() for g in self.goals], "incidents": list(self.incidents),
+                "refused": list(self.refused)}
 
     @classmethod
     def from_json(cls, doc: object) -> GoalStore:
@@ -241,9 +247,19 @@ class GoalStore:
                                  f"(g{max(numbers)})")
         done = _field(doc, "scripted_done", list, "store", [])
         incidents = _field(doc, "incidents", list, "store", [])
-        if not all(type(i) is int for i in done) or not all(isinstance(i, str) for i in incidents):
-            raise GoalStoreError("scripted_done must list integers and incidents strings")
-        return cls(records, next_id, frozenset(done), tuple(incidents))
+        refused = _field(doc, "refused", list, "store", [])
+        if not all(type(i) is int for i in done) or \
+                not all(isinstance(i, str) for i in (*incidents, *refused)):
+            raise GoalStoreError("scripted_done must list integers, incidents and refused "
+                                 "strings")
+        return cls(records, next_id, frozenset(done), tuple(incidents), tuple(refused))
+
+
+def refused_text(op: str, goal_id: str, goal: str, cycle: int, reason: object) -> str:
+    """How a run's summary tells a scripted request that was refused: `scripted cancel of
+    g1 at cycle 300 refused: ...` (issue 31, N13: it was one line in a log)."""
+    what = f"{op} of {goal_id}" if goal_id else f"{op} of {shorten(goal)}"
+    return f"scripted {what} at cycle {cycle} refused: {reason}"
 
 
 def rank_problem(standing: tuple[str, ...], priority: int) -> str:

@@ -31,8 +31,15 @@ import click
 from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError, rank_problem
+from agents.processes.goal_store import (
+    MAX_ID_CHARS,
+    GoalStore,
+    GoalStoreError,
+    rank_problem,
+    refused_text,
+)
 from agents.processes.goal_sync import validator
+from agents.processes.goal_warnings import Warner, engine_warner
 from agents.processes.request_limits import RequestLimiter
 from bus import keys
 from bus.config import BusConfig, bus_options
@@ -64,12 +71,13 @@ class GoalEntry:
     """The process's state: the store, its file, the limiter, the last goal lists published."""
 
     def __init__(self, scenario: Scenario, store_path: Path, validate, log,
-                 clock=time.monotonic, standing: dict[str, tuple[str, ...]] | None = None
-                 ) -> None:
+                 clock=time.monotonic, standing: dict[str, tuple[str, ...]] | None = None,
+                 warn: Warner | None = None) -> None:
         self.scenario = scenario
         self.standing = standing or {}  # agent -> its program goals (the priority rule)
         self.path = store_path
         self.validate = validate
+        self.warn = warn  # (agent, goal) -> "" or a warning for the reply (goal_warnings.py)
         self.log = log
         self.clock = clock  # [s], monotonic: for the rate limits and the status saves
         opened = goal_file.open_store(store_path)
@@ -146,7 +154,9 @@ class GoalEntry:
             forced = self._rank(agent, priority, force)
             store, record = self.store.post(agent, goal, priority, at, self.validate)
             self._commit(store)
-            return f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){forced}"
+            warning = self.warn(agent, record.goal) if self.warn is not None else ""
+            return (f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){forced}"
+                    + (f"; warning: {warning}" if warning else ""))
         if op in ("cancel", "priority"):
             self._not_a_program_goal(agent, goal_id, op)
         if op == "cancel":
@@ -220,6 +230,7 @@ class GoalEntry:
             self.log.info("scripted request at cycle %d: %s", self.cycle, reason)
         except GoalStoreError as exc:
             self.log.warning("scripted request refused: %s", exc)
+            self.store = self.store.refusing(refused_text(g.op, g.goal_id, g.goal, self.cycle, exc))
 
     def on_intention(self, msg: Intention) -> None:
         """Mirror the statuses the executive reported; saved later (flush), not every cycle.
@@ -239,7 +250,7 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
     log = setup_logging(PROCESS)
     stop = stop_on_signals()
     entry = GoalEntry(scenario, store_path, engine_validator(scenario), log,
-                      standing=standing_goals(scenario))
+                      standing=standing_goals(scenario), warn=engine_warner(scenario))
     with open_node(cfg, run, PROCESS) as node:
         entry.node = node
         inbox = node.subscribe(keys.world_state(run))

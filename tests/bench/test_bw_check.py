@@ -1,7 +1,7 @@
-"""The planning bench's own check of a teleo run (bench/bw_strips.py, bench/bw_check.py): the
-STRIPS rules agree with the pymunk Blocks World on random action sequences; a run with an
-illegal action, a goal left false, a summary claiming a false goal or a world that is not the
-replayed state is not solved."""
+"""The planning bench's own check of a teleo run (bench/planning/bw_strips.py,
+bench/planning/bw_check.py): the STRIPS rules agree with the pymunk Blocks World on random action
+sequences; a run with an illegal action, a goal left false, a summary claiming a false goal or a
+world that is not the replayed state is not solved."""
 
 from __future__ import annotations
 
@@ -11,10 +11,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bench import bw_strips
-from bench.bw_check import check, world_on
-from bench.bw_problems import Problem, problem
-from bench.bw_teleo import TeleoRun
+from bench.planning import bw_strips
+from bench.planning.bw_check import check, world_on
+from bench.planning.bw_problems import Problem, problem
+from bench.planning.bw_teleo import TeleoRun
 from world.domain import get_domain
 
 
@@ -124,7 +124,7 @@ def test_an_action_the_world_refused_is_left_out_of_the_replay_and_counted():
 
 
 def test_refusals_are_read_from_the_growth_of_the_failed_counter_along_the_trace():
-    from bench.bw_teleo import refusals
+    from bench.planning.bw_teleo import refusals
 
     lines = [f'{{"cycle": {c}, "counters": {{"ME": {{"actions_failed": {f}}}}}}}'
              for c, f in enumerate([0, 0, 1, 1])]

@@ -1,6 +1,6 @@
-"""The planning bench's problems (bench/bw_problems.py): states drawn uniformly, exactly, as
-Slaney and Thiebaux count them; the PDDL it writes (bench/bw_pddl.py) read by pyperplan, whose
-A* with LM-cut finds the optimum a breadth-first search finds."""
+"""The planning bench's problems (bench/planning/bw_problems.py): states drawn uniformly, exactly,
+as Slaney and Thiebaux count them; the PDDL it writes (bench/planning/bw_pddl.py) read by pyperplan,
+whose A* with LM-cut finds the optimum a breadth-first search finds."""
 
 from __future__ import annotations
 
@@ -15,10 +15,10 @@ from pyperplan.heuristics.lm_cut import LmCutHeuristic
 from pyperplan.planner import search_plan
 from pyperplan.search import astar_search
 
-from bench import bw_problems
-from bench.bw_pddl import DOMAIN, plan_steps, problem_pddl
-from bench.bw_problems import canonical, g, problem, random_state, states
-from bench.bw_strips import replay, shortest_plan
+from bench.planning import bw_problems
+from bench.planning.bw_pddl import DOMAIN, plan_steps, problem_pddl
+from bench.planning.bw_problems import canonical, g, problem, random_state, states
+from bench.planning.bw_strips import replay, shortest_plan
 
 
 def all_states(blocks: list[str]) -> set[tuple[tuple[str, ...], ...]]:

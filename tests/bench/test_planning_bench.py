@@ -1,5 +1,5 @@
-"""bench/planning.py end to end on tiny sizes (a quick run of real pyperplan subprocesses and
-real simulated Blocks World runs), its program and scenario files, and its usage errors."""
+"""bench/planning/planning.py end to end on tiny sizes (a quick run of real pyperplan subprocesses
+and real simulated Blocks World runs), its program and scenario files, and its usage errors."""
 
 from __future__ import annotations
 
@@ -10,11 +10,11 @@ from pathlib import Path
 import pytest
 
 from agents.lang import load_program_text
-from bench import bw_teleo
-from bench.bw_problems import problem
+from bench.planning import bw_teleo
+from bench.planning.bw_problems import problem
 
 ROOT = Path(__file__).resolve().parents[2]
-BENCH = ROOT / "bench" / "planning.py"
+BENCH = ROOT / "bench" / "planning" / "planning.py"
 
 
 def bench(*args: str, timeout: float = 120) -> subprocess.CompletedProcess:
@@ -78,7 +78,7 @@ def test_a_goal_state_with_every_block_on_the_table_is_an_empty_goal_solved_at_o
     """bw-3-7's goal state has no `on` fact (a uniform draw gives it 1 time in 13 at n = 3):
     its goal is empty, already held; the bench posted `(and )`, which teleo refuses, and
     counted the run as failed."""
-    from bench.bw_tasks import teleo
+    from bench.planning.bw_tasks import teleo
 
     p = problem(3, 7)
     assert p.goal() == [] and all(len(t) == 1 for t in p.goal_state)

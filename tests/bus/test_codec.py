@@ -79,6 +79,26 @@ def test_every_kind_round_trips(kind):
     round_trip()
 
 
+@pytest.mark.parametrize("kind", sorted(MESSAGES))
+def test_every_kind_carries_the_major_version_and_is_refused_under_another(kind):
+    """docs/bus.md, "Envelope and protocol version": every message's env.v is the major
+    version, an int, and the same message under major version 2 is refused naming both."""
+    key_fn, strategy = MESSAGES[kind]
+
+    @settings(max_examples=5, deadline=None,
+              suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+    @given(strategy)
+    def carries(msg):
+        raw = msgpack.unpackb(encode(msg))
+        assert type(raw["env"]["v"]) is int and raw["env"]["v"] == 1
+        raw["env"]["v"] = 2
+        with pytest.raises(CodecError, match="unknown schema version 2: this reader speaks "
+                                             "major version 1 only"):
+            decode(key_fn(), msgpack.packb(raw))
+
+    carries()
+
+
 ENV = Envelope(1, "r", 3, "ME.perception", 123)
 KEY = keys.percepts("r", "ME")
 
@@ -184,7 +204,7 @@ def test_any_spoilt_field_is_decoded_as_valid_or_refused_naming_kind_and_field(k
     import sys
     from pathlib import Path
 
-    sys.path.append(str(Path(__file__).resolve().parents[2] / "bench"))
+    sys.path.append(str(Path(__file__).resolve().parents[2] / "bench" / "faults"))
     from fuzz_values import mutate, wire
 
     key_fn, strategy = MESSAGES[kind]
@@ -206,3 +226,27 @@ def test_any_spoilt_field_is_decoded_as_valid_or_refused_naming_kind_and_field(k
             decode(key_fn(), encode(got))   # what is accepted can be sent on
 
     prop()
+
+
+def test_every_message_carries_the_major_version_and_another_major_is_refused_naming_both():
+    sent = encode(Percepts(Envelope.now("r", 3, "x"), "ME", (("a", 1),)))
+    raw = msgpack.unpackb(sent)
+    assert raw["env"]["v"] == 1 and type(raw["env"]["v"]) is int
+    raw["env"]["v"] = 2
+    with pytest.raises(CodecError) as err:
+        decode(KEY, msgpack.packb(raw))
+    assert str(err.value) == (f"{KEY}: unknown schema version 2: this reader speaks major "
+                              "version 1 only (a minor change only adds fields, which a reader "
+                              "ignores, and keeps the version)")
+    raw["env"]["v"] = "1.1"
+    with pytest.raises(CodecError, match=r"unknown schema version '1.1': expected the major "
+                                         r"version as an integer \(this reader's is 1\)"):
+        decode(KEY, msgpack.packb(raw))
+
+
+def test_a_minor_change_adding_fields_is_read_by_this_reader():
+    raw = msgpack.unpackb(encode(Percepts(Envelope.now("r", 3, "x"), "ME", (("a", 1),))))
+    raw["env"]["trace_id"] = "abc"   # new fields in the envelope and the body
+    raw["confidence"] = 0.5
+    got = decode(KEY, msgpack.packb(raw))
+    assert got.agent == "ME" and got.env.v == 1 and got.env.cycle == 3

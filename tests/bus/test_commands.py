@@ -77,3 +77,24 @@ def test_echo_prints_decoded_json_lines(cfg, run_id):
     line = json.loads(out.strip())
     assert line["key"] == key and line["kind"] == "WorldEvent"
     assert line["msg"]["event"] == {"kind": "road-blocked"} and line["msg"]["env"]["cycle"] == 5
+
+
+def test_echo_of_a_key_that_carries_nothing_says_so_as_hz_does(cfg, run_id):
+    """Issue 31 (N10): `echo nonexistent/key --seconds 3` printed nothing and exited 0,
+    where `hz` names the key and asks whether the run is going."""
+    done = python(*TELEO, "echo", f"teleo/{run_id}/nonexistent/key", "--seconds", "1",
+                  *cfg.to_args(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    out, err = done.communicate(timeout=60)
+    assert done.returncode == 1 and out == ""
+    assert f"Error: no message on teleo/{run_id}/nonexistent/key within 1 s: is the run " \
+           "going (teleo inspect), and the key expression right?" in err
+    key = keys.world_events(run_id)
+    with open_node(cfg, run_id, "test") as node:
+        echo = python(*TELEO, "echo", f"teleo/{run_id}/**", "--seconds", "4", "--filter",
+                      "nowhere", *cfg.to_args(), stdout=subprocess.PIPE,
+                      stderr=subprocess.PIPE, text=True)
+        assert not node.wait_matching([key], 30)
+        node.publish(key, WorldEvent(node.envelope(4), {"kind": "other"}))
+        out, err = echo.communicate(timeout=60)
+    assert echo.returncode == 1 and out == ""
+    assert f"message(s) on teleo/{run_id}/** within 4 s, none containing 'nowhere'" in err

@@ -1,8 +1,9 @@
-"""bench/bus_shm.py's probe over real zenoh sessions in two processes: with shared memory
+"""bench/speed/bus_shm.py's probe over real zenoh sessions in two processes: with shared memory
 enabled a 15 KB payload put in a shared-memory buffer comes back in shared memory, every time;
 with it disabled a put never does (issue 27's measurement of zenoh's shared-memory transport
 rests on this; zenoh's default copying of plain puts into shared memory is set up lazily, so
-how many of those come back in it depends on timing, and bench/bus_shm.py only counts them)."""
+how many of those come back in it depends on timing, and bench/speed/bus_shm.py only counts
+them)."""
 
 from __future__ import annotations
 

@@ -26,7 +26,7 @@ def driving_skills(name: str) -> list[str]:
 def test_the_program_files_are_up_to_date(name):
     v = VARIANTS[name]
     assert v.path.read_text(encoding="utf-8") == lp.text(v), \
-        f"{v.path} is stale: run .venv/bin/python bench/tables.py --write"
+        f"{v.path} is stale: run .venv/bin/python bench/driving/tables.py --write"
 
 
 def test_laws_cost_one_skill_each_in_the_prioritized_notation_and_a_copy_of_all_in_the_other():

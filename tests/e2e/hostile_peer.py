@@ -1,6 +1,6 @@
 """A stranger on an open run, for test_world_events_live.py (drill d4e over the bus): it
 publishes N random world events, mutated from the run's own world's events (bench/
-fuzz_events.py, bench/fuzz_values.py), asks a few of them as `teleo event` does, and puts
+fuzz_events.py, bench/faults/fuzz_values.py), asks a few of them as `teleo event` does, and puts
 spoilt copies of the run's own messages on every key it hears: stale ones (through each
 process's codec) and world states one cycle ahead whose snapshot is not the world's (so that
 perception refuses them). Prints one JSON line: what it sent and what the world answered.
@@ -20,7 +20,7 @@ import click
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
-sys.path.append(str(ROOT / "bench"))
+sys.path.append(str(ROOT / "bench" / "faults"))
 
 from fuzz_events import EVENT_BASES  # noqa: E402
 from fuzz_values import JUNK, mutate, pool_of, swap, wire  # noqa: E402

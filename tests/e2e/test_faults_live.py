@@ -191,8 +191,8 @@ def test_a_lockstep_stall_is_reported_and_changes_nothing(teleo, reference):
 
 
 def test_the_launcher_drill_runs_as_a_user_would_run_it(tmp_path):
-    """bench/drills.py stays runnable: its launcher drill, on the small scenario."""
-    done = subprocess.run([sys.executable, "bench/drills.py", "launcher", "--scenario",
+    """bench/faults/drills.py stays runnable: its launcher drill, on the small scenario."""
+    done = subprocess.run([sys.executable, "bench/faults/drills.py", "launcher", "--scenario",
                            str(scenario(tmp_path))], cwd=ROOT, capture_output=True, text=True,
                           timeout=300)
     assert done.returncode == 0, done.stdout + done.stderr

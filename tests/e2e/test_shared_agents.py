@@ -61,8 +61,8 @@ def test_agents_per_process_must_be_a_count_or_auto(teleo, tmp_path, value):
 
 
 def _fleet(tmp_path, agents: int, cycles: int) -> str:
-    """bench/fleet.py's scenario: ``agents`` cars on one program, each its own package."""
-    spec = importlib.util.spec_from_file_location("fleet", ROOT / "bench" / "fleet.py")
+    """bench/speed/fleet.py's scenario: ``agents`` cars on one program, each its own package."""
+    spec = importlib.util.spec_from_file_location("fleet", ROOT / "bench" / "speed" / "fleet.py")
     fleet = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(fleet)
     return str(fleet.write_fleet(tmp_path, agents, cycles))

@@ -1,4 +1,4 @@
-"""A bounded subset of the fuzz drill (bench/fuzz.py): a few hundred inputs per reader with a
+"""A bounded subset of the fuzz drill (bench/faults/fuzz.py): a few hundred inputs per reader with a
 fixed seed, the drill's minimal cases first; none may raise anything but the reader's own
 error (fault drill 4, F7 and F9)."""
 
@@ -15,7 +15,8 @@ from .conftest import ROOT
 
 
 def load_fuzz():
-    spec = importlib.util.spec_from_file_location("fuzz_drill", ROOT / "bench" / "fuzz.py")
+    spec = importlib.util.spec_from_file_location("fuzz_drill",
+                                                  ROOT / "bench" / "faults" / "fuzz.py")
     module = sys.modules["fuzz_drill"] = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

@@ -214,8 +214,8 @@ def test_values_of_another_type_taking_each_others_place():
     assert shown(got) == ["(seen 0.0)", "(seen 5)"]
 
 
-TOWERS = load_program(ROOT / "programs" / "blocks.tlp", ROOT / "bench" / "towers.tlp",
-                      ROOT / "bench" / "samecolor.tlp")
+TOWERS = load_program(ROOT / "programs" / "blocks.tlp", ROOT / "bench" / "speed" / "towers.tlp",
+                      ROOT / "bench" / "speed" / "samecolor.tlp")
 
 
 def towers(n: int, distance=lambda i: 5.5 + i) -> list[list]:

@@ -101,7 +101,7 @@ def test_messages_show_a_bounded_form():
 
 
 def test_a_goal_of_a_concept_defined_with_two_arities_is_an_error_not_a_crash():
-    # found by bench/fuzz.py: goals.enumerable indexed past a shorter clause head
+    # found by bench/faults/fuzz.py: goals.enumerable indexed past a shorter clause head
     errors = program_errors("(concepts ((c ?x) :percepts ((o ?x)))\n"
                             "          ((c ?x ?y) :percepts ((o ?x a ?y))))\n(goals (c ?p ?q))")
     assert errors[0].startswith("p.tlp:2:12: concept c defined with 2 argument(s) here but with "

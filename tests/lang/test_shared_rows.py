@@ -61,7 +61,7 @@ def towers(n: int, rnd: random.Random) -> list[list]:
 
 
 BLOCKS = load_program(ROOT / "tests" / "lang" / "fixtures" / "blocks_handwritten.tlp",
-                      ROOT / "bench" / "towers.tlp")
+                      ROOT / "bench" / "speed" / "towers.tlp")
 
 
 def test_one_distance_changing_reads_one_row_and_decides_as_plain_lists():

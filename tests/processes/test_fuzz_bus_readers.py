@@ -1,4 +1,4 @@
-"""A bounded subset of the fuzz drill's bus readers (bench/fuzz.py; issue 24, item 4): each
+"""A bounded subset of the fuzz drill's bus readers (bench/faults/fuzz.py; issue 24, item 4): each
 process's reader of each message it takes from the bus, fed a few hundred mutated real
 messages (wrong types in every field, deep nesting, huge numbers, NaN, unhashables, cut
 bytes): accepted or refused naming a field, never a crash or a hang. The full drill runs
@@ -20,7 +20,8 @@ BUS_READERS = ("actions-driving", "actions-blocks", "actions-office",
 
 
 def load_fuzz():
-    spec = importlib.util.spec_from_file_location("fuzz_drill", ROOT / "bench" / "fuzz.py")
+    spec = importlib.util.spec_from_file_location("fuzz_drill",
+                                                  ROOT / "bench" / "faults" / "fuzz.py")
     module = sys.modules["fuzz_drill"] = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

@@ -1,4 +1,4 @@
-"""A bounded subset of the fuzz drill for goal requests (bench/fuzz.py, reader "request"):
+"""A bounded subset of the fuzz drill for goal requests (bench/faults/fuzz.py, reader "request"):
 payload bytes through bus.codec.decode and the goal-entry process's answer, with the demo's
 agent and a real store file; none may raise anything but the codec's error."""
 
@@ -12,7 +12,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def load_fuzz():
-    spec = importlib.util.spec_from_file_location("fuzz_drill", ROOT / "bench" / "fuzz.py")
+    spec = importlib.util.spec_from_file_location("fuzz_drill",
+                                                  ROOT / "bench" / "faults" / "fuzz.py")
     module = sys.modules["fuzz_drill"] = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

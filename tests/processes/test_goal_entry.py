@@ -135,3 +135,47 @@ def test_a_program_goal_cannot_be_cancelled_or_reprioritised_and_says_so(entry, 
     assert not ok and reason == "no goal 'p3': the program goals of ME are p1..p2"
     assert ask(entry, "post", "(package-delivered PACKET1)", 5)[0]
     assert ask(entry, op, priority=7, goal_id="g1")[0]      # a user goal still can
+
+
+def test_a_refused_scripted_request_is_kept_for_the_summary(tmp_path):
+    """Issue 31 (N13): a launch's refused scripted request was only a line in goals.log; the
+    goal store keeps it (goals.json "refused"), and the launch's summary reads it there."""
+    from tools.records.summary import _goals
+
+    text = DEMO.read_text().replace('"programs/driving.tlp"', f'"{ROOT}/programs/driving.tlp"')
+    path = tmp_path / "s.toml"
+    path.write_text(text + '[[goals]]\nop = "cancel"\ngoal_id = "g1"\nat_cycle = 2\n'
+                           '[[goals]]\nop = "cancel"\ngoal_id = "g1"\nat_cycle = 3\n')
+    scenario = load_scenario(path)
+    entry = GoalEntry(scenario, tmp_path / "goals.json", engine_validator(scenario),
+                      logging.getLogger("test"), standing=standing_goals(scenario))
+    for cycle in range(5):
+        entry.cycle = cycle
+        entry._scripted(cycle)
+    expected = ["scripted cancel of g1 at cycle 3 refused: g1: already cancelled"]
+    assert list(entry.store.refused) == expected
+    assert _goals(tmp_path / "goals.json")[2] == expected
+
+
+def test_a_goal_whose_concept_needs_a_percept_that_is_not_there_says_which():
+    """Issue 31 (N16): `(at-address ME 12 A)` failed with `no primitive skill achieves
+    at-address`, though the program has at-address skills: no package has address 12 on A.
+    Given the program, the note names the percept the concept needs; a goal about an object
+    no percept mentions keeps its one hint."""
+    from agents.lang import load_program
+
+    program = load_program(str(ROOT / "programs" / "driving.tlp"))
+    percepts = [["self", "ME", "speed", 0.0, "limit", 15.0, "street", "A"],
+                ["package", "PACKET1", "address", 6, "street", "B", "dist", 40.0,
+                 "angle", 10.0, "delivered", "NIL"]]
+    reason = "no primitive skill achieves at-address"
+    decision = {"goals": [
+        {"id": "g1", "goal": "(at-address ME 12 A)", "status": "failed", "note": reason},
+        {"id": "g2", "goal": "(at-address ME 6 B)", "status": "failed", "note": reason},
+        {"id": "g3", "goal": "(package-delivered PACKET9)", "status": "failed", "note": ""}]}
+    notes = [g["note"] for g in with_hints(decision, percepts, program)["goals"]]
+    assert notes == [
+        f"{reason}; no percept matches (package ?p address 12 street A) (at-address needs it)",
+        reason,    # PACKET1 is there: its concept can hold
+        "no percept mentions PACKET9: is there such an object?"]
+    assert with_hints(decision, percepts)["goals"][0]["note"] == reason   # no program

@@ -2,7 +2,7 @@
 refuses it naming the field, or the process's step refuses the cycle's inputs (bus Refused:
 nothing published, the cycle left for a good copy), or a bad part (a memory, an intention) is
 logged and left out; the process never raises anything else. The messages are a real
-pipeline's (bench/fuzz_bus.py: a pymunk world, perception, inference, executive and the
+pipeline's (bench/faults/fuzz_bus.py: a pymunk world, perception, inference, executive and the
 goal-entry process's store, run in lockstep in-process), one field spoiled at a time."""
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from bus.errors import CodecError, Refused
 from bus.messages import Actions, Beliefs, GoalList, Intention, Percepts, WorldState
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.append(str(ROOT / "bench"))
+sys.path.append(str(ROOT / "bench" / "faults"))
 from fuzz_bus import RUN, Pipeline  # noqa: E402
 
 LOG = logging.getLogger("test.refusals")

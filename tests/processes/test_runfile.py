@@ -150,3 +150,29 @@ def test_stop_all_stops_what_is_left_of_every_run(registry, leftover):
     assert runfile.all_runs() == []
     both = CliRunner().invoke(cli, ["stop", "--all", "run-left"])
     assert both.exit_code == 2 and "give RUN or --all, not both" in both.output
+
+
+def test_a_tool_in_another_folder_finds_the_launch_scenarios_program(registry, launcher,
+                                                                      tmp_path, monkeypatch):
+    """Issue 31 (N4): a launch of `scenarios/driving_demo.toml` from the project's folder
+    registered the relative path, and `teleo view` started elsewhere found no program for
+    its beliefs panel. The registry keeps the scenario absolute and the launch's folder,
+    where the scenario's relative program paths start."""
+    from pathlib import Path
+
+    from tools.view.feeds import scenario_of
+    from tools.view.programs import Programs
+
+    root = Path(__file__).resolve().parents[2]
+    monkeypatch.chdir(root)
+    runfile.write(replace(info("a", launcher), scenario="scenarios/driving_demo.toml"))
+    monkeypatch.chdir(tmp_path)
+    scenario, cwd = scenario_of("a")
+    assert (scenario, cwd) == (str(root / "scenarios" / "driving_demo.toml"), str(root))
+    programs = Programs()
+    programs.from_scenario(scenario, cwd)
+    program, source = programs.get("ME")
+    assert program is not None, source
+    assert source == str(root / "programs" / "driving.tlp")
+    programs.saw("ME", {"path": [{"where": "programs/errands.tlp:3:1"}]})  # relative too
+    assert str(root / "programs" / "errands.tlp") in programs._candidates["ME"]

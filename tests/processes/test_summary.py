@@ -202,3 +202,24 @@ def test_a_stall_in_progress_at_the_stop_is_listed(tmp_path):
                             "at_stop": True}]
     printed = CliRunner().invoke(_echo, [json.dumps(s)]).output
     assert "stalls: 1 (ME.inference 1.04 s at cycle 30 (still stalled at the stop))" in printed
+
+
+def test_a_launch_whose_scenario_says_status_system_is_not_failed_by_a_goal(tmp_path):
+    """Issue 31 (N13, N15), a launch's side: `[run] status = "system"` (the launcher puts
+    it in the base as status_policy) reports a failed goal without failing the run; the
+    goal store's refused scripted requests are printed."""
+    write_run(tmp_path, 50)
+    refused = "scripted cancel of g1 at cycle 30 refused: g1: already achieved (force = true)"
+    (tmp_path / summary.GOALS_FILE).write_text(json.dumps({
+        "version": 1, "goals": [goal("g1", "failed") | {"note": "no path"}],
+        "refused": [refused]}))
+    strict = summary.build(tmp_path, BASE, {})
+    assert strict["status"] == "failed" and strict["requests_refused"] == [refused]
+    lenient = summary.build(tmp_path, {**BASE, "status_policy": "system"}, {})
+    assert (lenient["status"], lenient["failures"]) == ("completed", [])
+    assert lenient["goals_not_kept"] == ["goal g1 (package-delivered g1) could not be "
+                                         "kept: failed (no path)"]
+    printed = CliRunner().invoke(click.command()(lambda: summary.echo(lenient))).output
+    assert "  not kept (not a failure of the run, status = system): goal g1 " \
+           "(package-delivered g1) could not be kept: failed (no path)" in printed
+    assert f"  {refused}" in printed.splitlines()

@@ -134,7 +134,7 @@ def test_check_json_gives_each_files_verdict_and_errors(tmp_path):
     (b"[[events]]\nat_cycle = 1\nwhen = 1979-05-27\n", r"#1.when: expected a string, number"),
     (b"[run]\nseed = 99999999999999999999\n", r"\[run\].seed: integer out of range"),
     (b"[run]\ncycles = 1\n" + b"# " + b"x" * (1 << 20) + b"\n", r"longer than the limit"),
-    # found by bench/fuzz.py's scenario reader: Python refuses to convert the number
+    # found by bench/faults/fuzz.py's scenario reader: Python refuses to convert the number
     (b"[run]\nseed = " + b"9" * 5000 + b"\n", r"an integer of more than 4300 digits"),
 ])
 def test_hostile_scenario_files_get_one_line_naming_where(tmp_path, data, message):
@@ -155,7 +155,7 @@ def test_nesting_inside_strings_and_comments_is_not_counted(tmp_path):
 
 
 def test_a_program_path_too_long_to_look_up_is_not_found(tmp_path):
-    """Found by bench/fuzz.py: a name over the system's limit raised OSError from pathlib."""
+    """Found by bench/faults/fuzz.py: a name over the system's limit raised OSError from pathlib."""
     path = scenario(tmp_path, DEMO.replace('"programs/driving.tlp"',
                                            '"programs/driving.' + "7" * 400 + 'tlp"'))
     with pytest.raises(ScenarioError, match="program programs/driving.777.* not found"):
@@ -257,7 +257,7 @@ def test_check_reports_every_error_of_a_scenario_at_once(tmp_path):
     doc = json.loads(invoke("check", "--json", typo).output)
     assert [e["message"] for e in doc["files"][0]["errors"]] == [
         f"{typo}: [run]: unknown field(s) ['typo_key']; expected ['cycles', 'deadline', "
-        "'goals_respawn', 'mode', 'name', 'render_every', 'secure', 'seed']",
+        "'goals_respawn', 'mode', 'name', 'render_every', 'secure', 'seed', 'status']",
         f"{typo}: [[agents]]: agent ids must be unique, got ['ME', 'ME']"]
 
 
@@ -331,3 +331,48 @@ def test_a_scenario_whose_program_is_empty_is_refused(tmp_path, monkeypatch):
         assert f"agent ME: program {empty}:\n{empty}:1:1: the file holds no forms (an empty " \
                "program)" in result.output
     assert not (tmp_path / "runs").exists()
+
+
+def test_schema_errors_do_not_hide_the_world_and_goal_errors(tmp_path):
+    """Issue 31 (N14): an unknown [world] key hid the unknown street after it, and a goal
+    whose agent was missing hid the goal's own syntax error; a concept misspelt in a
+    scenario's goal gets the "did you mean" a program's error has."""
+    agents = DEMO[DEMO.index("[[agents]]"):DEMO.index("[[goals]]")]
+    text = (DEMO.replace("[run]\n", "[run]\ntypo_key = 1\n")
+            .replace("pedestrians = 12", "pedestrains = 3")
+            .replace('street = "B", from', 'street = "Z", from')
+            .replace('agent = "ME"\ngoal = "(package-delivered PACKET1)"',
+                     'goal = "(package-delivered PACKET1"')
+            .replace('goal = "(package-delivered PACKET2)"', 'goal = "(package-delivred ME)"')
+            .replace("[[goals]]", agents.replace('"ME"', '"YOU"') + "[[goals]]", 1))
+    bad = scenario(tmp_path, text.replace(
+        'cars = [{ agent = "ME", street = "Z", from = "FIRST", toward = "SECOND", along = 20.0 }]',
+        'cars = [{ agent = "ME", street = "Z", from = "FIRST", toward = "SECOND", along = 20.0 },'
+        ' { agent = "YOU", street = "A", from = "FIRST", toward = "SECOND", along = 5.0 }]'))
+    lines = invoke("check", bad).output.splitlines()
+    assert f"{bad}: [world] car ME: unknown street 'Z'" in lines, lines
+    assert any(x.startswith(f"{bad}: [world] unknown keys ['pedestrains']") for x in lines)
+    assert f"{bad}: [[goals]] #1.agent: required, expected str" in lines
+    assert f"{bad}: [[goals]] #1: goal '(package-delivered PACKET1': column 1: '(' is never " \
+           "closed (missing ')')" in lines
+    assert f"{bad}: [[goals]] #2: goal (package-delivred ME): undefined concept " \
+           "'package-delivred' (did you mean 'package-delivered'?)" in lines
+
+
+def test_check_warns_of_a_goal_naming_an_object_the_world_has_not(tmp_path):
+    """Issue 31 (N12): `(delivered mail-reid r-5399)` passed check (there is no r-5399) and
+    failed 130 cycles into the run; check warns, naming the goal and the object, and says
+    nothing of a goal whose objects all exist."""
+    text = (ROOT / "scenarios" / "office_errand.toml").read_text().replace(
+        '"programs/office_errand.tlp"', f'"{ROOT}/programs/office_errand.tlp"')
+    good = scenario(tmp_path, text, "good.toml")
+    result = invoke("check", good)
+    assert result.exit_code == 0 and "warning" not in result.output, result.output
+    bad = scenario(tmp_path, text.replace("(delivered mail-reid reid)",
+                                          "(delivered mail-reid r-5399)"), "bad.toml")
+    result = invoke("check", bad)
+    assert result.exit_code == 0, result.output
+    assert f"{bad}: warning: [[goals]] #1: goal (delivered mail-reid r-5399): no object " \
+           "'r-5399' in the office world as it starts, nor in ME's program (the goal would " \
+           "wait for a percept of it, then fail)" in result.output.splitlines()
+    assert "'mail-reid'" not in result.output

@@ -87,3 +87,25 @@ def test_an_event_nested_too_deeply_is_one_line_naming_where():
     result = CliRunner().invoke(cli, ["event", '{"kind": ' + "[" * 5000 + "]" * 5000 + "}"])
     assert result.exit_code == 1
     assert result.output == "Error: JSON:1:73: nested deeper than 64 levels\n"
+
+
+def test_a_bad_learned_entry_of_a_state_file_is_named_by_the_file_and_entry(tmp_path):
+    """Issue 31 (drill n9): a bad skill in a `--state` file's "learned" was reported as
+    `<learned>:1:60: ...`, naming no file."""
+    import json
+
+    program = str(Path(__file__).resolve().parents[2] / "tests" / "e2e" / "fixtures"
+                  / "hold_speed.tlp")
+    percepts, state = tmp_path / "p.txt", tmp_path / "s.json"
+    percepts.write_text("(self ME speed 0 limit 20)\n")
+    saved = invoke("step", program, "--percepts", str(percepts), "--save-state", str(state))
+    assert saved.exit_code == 0, saved.output
+    doc = json.loads(state.read_text())
+    skill = "((at-desired-speed ?self) :percepts ((self ?self)) :start ((too-{}ow ?self)) " \
+            ":actions ((*gas 10)))"
+    doc["learned"] = [skill.format("sl"), skill.format("sl"), skill.format("s")]
+    state.write_text(json.dumps(doc))
+    done = invoke("step", program, "--percepts", str(percepts), "--state", str(state))
+    assert done.exit_code == 1
+    assert done.output.startswith(f"{state}: learned[2]:1:60: undefined concept 'too-sow'"), \
+        done.output

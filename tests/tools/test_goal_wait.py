@@ -131,3 +131,32 @@ def test_a_goal_that_leaves_the_goal_list_was_withdrawn(tmp_path):
     assert [line.split(None, 3)[2:] for line in lines] == [
         ["pending", "waits: p1 comes first"], ["impasse", "no executable skill path"]]
     assert not Follower("g1", 13).goal_list(12, ())   # a list from before the post
+
+
+def test_two_goals_taking_turns_are_told_once_then_counted(tmp_path):
+    """Issue 31 (N7): g10 waited on g7 and g9 in turn, a line at every flip (499 lines in 10
+    minutes). A flip back to a line of the last REPEAT_CYCLES cycles is said once, then a
+    count every REPEAT_S; what is new after it is told again at once."""
+    from tools.commands.goal_wait import REPEAT_S
+
+    def decision(note: str, status: str = "pending") -> dict:
+        return {"goals": [{"id": "g10", "status": status, "note": note}]}
+
+    follower, lines = Follower("g10", 0), []
+    for cycle in range(600):   # a flip every 2 cycles, 1.5 s a cycle: 900 s
+        line = follower.intention(cycle, decision(f"waits: g{7 + 2 * (cycle // 2 % 2)} "
+                                                  "comes first"), 1.5 * cycle)
+        lines += [line] if line else []
+    assert lines[:2] == ["cycle      0  pending    waits: g7 comes first",
+                         "cycle      2  pending    waits: g9 comes first"]
+    assert lines[2].startswith("cycle      4  pending    waits: g7 comes first  [back to a "
+                               "line of the last 20 cycles")
+    assert len(lines) <= 3 + 900 / REPEAT_S and "changes since cycle 4]" in lines[-1]
+    assert follower.intention(600, decision("", "active"), 900.0) == "cycle    600  active"
+
+
+def test_numbers_in_the_actions_have_three_decimals():
+    """Issue 31 (N7): `(*steer -0.05759999999999926)`."""
+    told = doing({"goal_id": "g1", "path": [{"skill": "s#1", "where": "x.tlp:1:1"}],
+                  "actions": [["*gas", 60], ["*steer", -0.05759999999999926]]}, "g1")[1]
+    assert told == "s#1 (x.tlp:1:1) => (*gas 60) (*steer -0.058)"

@@ -89,7 +89,7 @@ def test_a_scripted_event_the_world_refuses_fails_the_run(tmp_path, monkeypatch)
 
 
 def test_a_run_stops_at_the_end_of_the_first_cycle_its_until_accepts():
-    """simulate(until=...) ends a run once its work is done (bench/office.py)."""
+    """simulate(until=...) ends a run once its work is done (bench/office/office.py)."""
     from tools.commands.simulate import simulate
     from world.run_scenario import load_scenario
 
@@ -167,3 +167,113 @@ def test_simulate_writes_its_summary_file_as_launch_does(tmp_path, monkeypatch):
     assert refused.exit_code == 2 and "Traceback" not in refused.output
     assert f"Error: Invalid value for '--summary': File '{tmp_path}' is a directory." \
         in refused.output
+
+
+def test_the_summary_names_the_run_id_that_explain_takes(tmp_path, monkeypatch):
+    """Issue 31 (N11): simulate printed `run driving-demo completed`, the scenario's name,
+    and `teleo explain driving-demo` found no record: the summary names the run id."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n')
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "4"])
+    assert done.exit_code == 0, done.output
+    run = done.output.split()[1]
+    assert run.startswith("driving-demo-sim-") and f"runs/{run}/record.mcap" in done.output
+    explained = CliRunner().invoke(cli, ["explain", run, "--cycle", "2", "--brief"])
+    assert explained.exit_code == 0, explained.output
+    assert f"(run {run})" in explained.output
+    bare = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "4", "--no-record"])
+    assert bare.output.startswith("run driving-demo completed")   # no record, no run id
+
+
+def test_the_scenario_chooses_whether_a_goal_not_kept_fails_the_run(tmp_path, monkeypatch):
+    """Issue 31 (N15): one goal the agent gave up on failed the whole run. The default
+    (`[run] status = "goals"`) still fails it; `status = "system"` reports the goal and
+    completes; a value that is neither is refused naming the field."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET9)"\npriority = 6\n')
+    args = ["simulate", str(path), "--cycles", "6", "--no-record"]
+    failed = CliRunner().invoke(cli, [*args, "--json"])
+    assert failed.exit_code == 1 and json.loads(failed.stdout)["status"] == "failed"
+    kept = CliRunner().invoke(cli, [*args, "--set", "run.status='system'"])
+    assert kept.exit_code == 0, kept.output
+    assert kept.output.startswith("run driving-demo completed")
+    assert "  not kept (not a failure of the run, status = system): goal g1 " \
+           "(package-delivered PACKET9) could not be kept: failed (" in kept.output
+    data = json.loads(CliRunner().invoke(cli, [*args, "--json", "--set",
+                                               "run.status='system'"]).stdout)
+    assert (data["status"], data["failures"], data["status_policy"]) == ("completed", [],
+                                                                         "system")
+    assert data["goals_not_kept"][0].startswith("goal g1 (package-delivered PACKET9)")
+    wrong = CliRunner().invoke(cli, [*args, "--set", "run.status='lenient'"])
+    assert wrong.exit_code == 1 and "[run].status: expected one of ['goals', 'system'], " \
+        "got 'lenient'" in wrong.output
+
+
+def test_a_refused_scripted_request_is_in_the_summary(tmp_path, monkeypatch):
+    """Issue 31 (N13): a scripted cancel the goal store refused was one log line; the
+    summary says which request, when and why."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, """
+[[goals]]
+goal = "(package-delivered PACKET1)"
+priority = 5
+[[goals]]
+op = "cancel"
+goal_id = "g1"
+at_cycle = 2
+[[goals]]
+op = "cancel"
+goal_id = "g1"
+at_cycle = 3
+""")
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5", "--no-record"])
+    assert done.exit_code == 0, done.output
+    line = next(x for x in done.output.splitlines() if "refused" in x)
+    assert line.startswith("  scripted cancel of g1 at cycle 3 refused: "), done.output
+    data = json.loads(CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5",
+                                               "--no-record", "--json"]).stdout)
+    assert data["requests_refused"] == [line.strip()]
+
+
+def test_an_empty_learned_file_is_refused_by_check_simulate_and_launch_alike(tmp_path,
+                                                                             monkeypatch):
+    """Issue 31: launch and simulate took an empty learned file, check refused it."""
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n')
+    empty = tmp_path / "learned.tlp"
+    empty.write_text("\n")
+    checked = CliRunner().invoke(cli, ["check", str(DRIVING), str(empty)])
+    assert checked.exit_code == 1
+    for command in (["simulate", str(path), "--cycles", "2"], ["launch", str(path)]):
+        refused = CliRunner().invoke(cli, [*command, "--learned", str(empty)])
+        assert refused.exit_code == 1, (command, refused.output)
+        assert refused.output == f"Error: {empty}:1:1: the file is empty: expected learned " \
+            "skills as a run writes them (learned-AGENT.tlp, its first line naming the " \
+            f"program; teleo check PROGRAM {empty})\n"
+    assert not (tmp_path / "runs").exists() or not list((tmp_path / "runs").rglob("*.mcap"))
+
+
+def test_step_replays_a_recorded_decision_with_the_runs_goal_ids(tmp_path, monkeypatch):
+    """Issue 31 (N21): the `teleo step` command `explain --percepts` suggests gave the
+    run's g1 and g2 the ids g3 and g4 (numbered after the program's two goals)."""
+    import shlex
+
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
+    path = scenario(tmp_path, '[[goals]]\ngoal = "(package-delivered PACKET1)"\npriority = 5\n'
+                    '[[goals]]\ngoal = "(package-delivered PACKET2)"\npriority = 6\n'
+                    'at_cycle = 2\n')
+    done = CliRunner().invoke(cli, ["simulate", str(path), "--cycles", "5", "--json"])
+    run = json.loads(done.stdout)["run"]
+    told = CliRunner().invoke(cli, ["explain", run, "--cycle", "4", "--percepts"]).stdout
+    percepts = tmp_path / "p.txt"
+    percepts.write_text(told)
+    hint = next(x for x in told.splitlines() if "replay the decision: " in x)
+    command = shlex.split(hint.split("replay the decision: ", 1)[1].replace("FILE",
+                                                                            str(percepts)))
+    assert "g1=(package-delivered PACKET1):5" in command
+    assert "g2=(package-delivered PACKET2):6" in command
+    stepped = CliRunner().invoke(cli, [*command[1:], "--json"])
+    assert stepped.exit_code == 0, stepped.output
+    goals = json.loads(stepped.stdout)["decision"]["goals"]
+    assert [(g["id"], g["goal"]) for g in goals if g["id"].startswith("g")] == [
+        ("g1", "(package-delivered PACKET1)"), ("g2", "(package-delivered PACKET2)")]

@@ -52,9 +52,10 @@ def test_the_actions_a_domain_says_it_knows_are_the_ones_its_world_knows(name: s
     """``Domain.actions`` is what `teleo check` holds programs to: each name is one the world
     takes (an outcome may fail for its arguments, never as an unknown action)."""
     domain = get_domain(name)
-    assert domain.actions
     world = domain.create({}, 1, ["ME"])
-    for action in domain.actions:
+    actions = domain.actions or world.actions  # the pddl world's come from its domain file
+    assert actions
+    for action in actions:
         [out] = world.apply_actions("ME", [[action]])
         assert "unknown action" not in out["reason"], (action, out)
 
@@ -76,6 +77,37 @@ def test_perceive_changes_nothing(name: str) -> None:
     percepts = domain.perceive(snap, "ME")
     assert snap == before and percepts
     assert all(isinstance(p, list) and isinstance(p[0], str) for p in percepts)
+
+
+@pytest.mark.parametrize("name", DOMAINS)
+def test_static_keys_are_in_every_snapshot_and_stay_the_same(name: str) -> None:
+    """What the view sends once per run (Domain.static_keys) does not change in a run."""
+    domain = get_domain(name)
+    world = domain.create({}, 1, ["ME"])
+    first = world.snapshot_dict()
+    assert set(domain.static_keys) <= set(first)
+    for _ in range(3):
+        world.apply_actions("ME", world.safe_actions("ME"))
+        world.step()
+    assert {k: world.snapshot_dict()[k] for k in domain.static_keys} == \
+        {k: first[k] for k in domain.static_keys}
+
+
+@pytest.mark.parametrize("name", DOMAINS)
+def test_render_and_the_tool_hooks_draw_from_snapshots(name: str, tmp_path) -> None:
+    """The view falls back on `render` (a PNG) for a world without a scene hook."""
+    domain = get_domain(name)
+    world = domain.create({}, 1, ["ME"])
+    world.step()
+    snap = world.snapshot_dict()
+    assert domain.render([snap], tmp_path / "a.png", "ME") == 1
+    assert (tmp_path / "a.png").read_bytes()[:4] == b"\x89PNG"
+    if domain.scene is not None:
+        scene = domain.scene(snap)             # sent to the page as JSON
+        assert isinstance(scene, dict) and isinstance(json.loads(json.dumps(scene)), dict)
+    if domain.plot is not None:
+        title, draw = domain.plot
+        assert isinstance(title, str) and title and callable(draw)
 
 
 def test_an_unknown_domain_is_refused_with_the_known_ones() -> None:

@@ -94,26 +94,35 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
     end = None if seconds is None else time.monotonic() + seconds
     try:
         with open_node(target.cfg, run_of(keyexpr), f"echo-{os.getpid()}") as node:
-            _print_messages(node.subscribe(keyexpr, raw=True), text, count, end, stop)
+            seen, printed = _print_messages(node.subscribe(keyexpr, raw=True), text, count,
+                                            end, stop)
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
+    if not printed:   # as `teleo hz` says it (issue 31, N10: echo printed nothing, exit 0)
+        within = f" within {seconds:g} s" if seconds else ""
+        raise click.ClickException(
+            f"{seen} message(s) on {keyexpr}{within}, none containing {text!r}" if seen else
+            f"no message on {keyexpr}{within}: is the run going (teleo inspect), and the key "
+            "expression right? (teleo echo --list shows the keys)")
 
 
 def _print_messages(inbox, text: str | None, count: int | None, end: float | None,
-                    stop) -> None:
+                    stop) -> tuple[int, int]:
     """Print what arrives in `inbox` as JSON lines until `end` [monotonic s], `count`
-    lines, or `stop`."""
-    printed = 0
+    lines, or `stop`; returns (messages received, lines printed)."""
+    seen = printed = 0
     while not stop.is_set() and (end is None or time.monotonic() < end):
         item = inbox.receive(0.1)
         if item is None:
             continue
+        seen += 1
         line = _json_line(item.key, item.t_ns, item.payload)
         if text is None or text in line:
             click.echo(line)
             printed += 1
             if count is not None and printed >= count:
                 break
+    return seen, printed
 
 
 @click.command()

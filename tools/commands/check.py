@@ -21,6 +21,7 @@ import click
 from agents.lang import Diagnostic, ProgramError, load_program
 from agents.lang.loader import read_text
 from agents.lang.registry import is_learned_text, program_named, read_learned
+from tools.commands.examples import scenario_path
 from tools.commands.lang import include_option
 from tools.commands.scenario_check import override_option
 from tools.records.tree import shown_path
@@ -94,7 +95,7 @@ def _its_program(path: str, text: str, includes: tuple[str, ...]) -> Any:
 
 
 def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
-    from tools.commands.scenario_check import load_checked
+    from tools.commands.scenario_check import goal_warnings, load_checked
     from world.run_scenario import ScenarioError
 
     result = {"file": path, "kind": "scenario", "ok": False, "warnings": [],
@@ -107,7 +108,25 @@ def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     return {**result, "ok": True, "errors": [], "domain": scenario.domain,
             "agents": {a.id: str(a.program) for a in scenario.agents},
             "goals": len(scenario.goals), "events": len(scenario.events),
-            "warnings": [_diag(w) for p in programs.values() for w in p.warnings]}
+            "warnings": [_diag(w) for p in programs.values() for w in p.warnings]
+            + [{"file": path, "line": 0, "col": 0, "message": w}
+               for w in goal_warnings(scenario)]
+            + _instance_warnings(path, scenario, programs)}
+
+
+def _instance_warnings(path: str, scenario: Any, programs: dict) -> list[dict[str, Any]]:
+    """A warning for each goal, the scenario's [[goals]] and its agents' programs' (goals
+    ...), whose instances in the world as the scenario starts include one that no skill or
+    concept can make true (agents/processes/goal_warnings.py, issue 31)."""
+    from agents.processes.goal_warnings import engine_warner
+
+    warn = engine_warner(scenario, programs)
+    out = [(f"[[goals]] #{k + 1}", g.agent, g.goal) for k, g in enumerate(scenario.goals)
+           if g.op == "post" and g.goal]
+    out += [(f"agent {a}'s program goal p{k + 1}", a, str(g.literal))
+            for a, p in programs.items() for k, g in enumerate(p.goals)]
+    return [{"file": path, "line": 0, "col": 0, "message": f"{where}: {line}"}
+            for where, agent, goal in out if (line := warn(agent, goal))]
 
 
 def _is_learned(path: str) -> bool:
@@ -156,9 +175,11 @@ def check(files: tuple[str, ...], includes: tuple[str, ...], overrides: tuple[st
     Exit 0 when all are valid, 1 with every error otherwise. A scenario (.toml) is checked
     fully: world table, programs, scripted goals and events. A file of learned skills is
     checked against the program named before it (PROGRAM LEARNED), else against the one its
-    first line names. `--set KEY=VALUE` changes a field of every scenario checked, as
-    `teleo launch --set` does."""
+    first line names. A shipped scenario may be named without a path (blocks_figure3).
+    `--set KEY=VALUE` changes a field of every scenario checked, as `teleo launch --set`
+    does."""
     results, program = [], None
+    files = tuple(p if p.endswith(".tlp") else scenario_path(p) for p in files)
     kinds = ["learned" if _is_learned(p) else "scenario" if is_scenario(p) else "program"
              for p in files]
     if overrides and "scenario" not in kinds:

@@ -76,7 +76,7 @@ def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None)
     percepts = rec.by_cycle("percepts", agent)[cycle]["percepts"]
     goals = [g for g in (intention or {}).get("decision", {}).get("goals", ())
              if not PROGRAM_GOAL.fullmatch(str(g.get("id")))]
-    flags = " ".join(f"--goal '{g['goal']}:{g['priority']}'" for g in goals)
+    flags = " ".join(f"--goal '{g['id']}={g['goal']}:{g['priority']}'" for g in goals)
     head = [f"; percepts of {agent} at cycle {cycle} of run {rec.run}",
             f"; replay the decision: teleo step {_program(rec, agent)} --percepts FILE "
             f"{flags}".rstrip(),

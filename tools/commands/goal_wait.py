@@ -5,7 +5,10 @@ step) and the goal-entry process's goal list (a goal that leaves it was withdraw
 goal-entry process is then asked why, failed or cancelled).
 
 One line at each change of the goal's status, and of what it does (at most one a second for
-the same status: a driving path switches between skills every few cycles), then the end:
+the same status: a driving path switches between skills every few cycles), then the end. A
+goal that goes back to a line said within the last REPEAT_CYCLES cycles is thrashing (two
+goals taking turns): that is said once, then a line every REPEAT_S with the number of
+changes, until something new happens (issue 31, N7: 499 lines in 10 minutes):
 
     exit 0    achieved
     exit 1    failed (the reason said)
@@ -38,6 +41,8 @@ from tools.runs import runfile
 EXIT_FAILED, EXIT_ENDED, EXIT_TIMEOUT = 1, 3, 124
 ALIVE_S = 0.5  # [s] between looks at the launcher (has the run ended?)
 FEEDBACK_S = 1.0  # [s] between lines for the same status (a path switching every cycle)
+REPEAT_CYCLES = 20  # a line said again within this many cycles is a repeat (thrashing)
+REPEAT_S = 30.0   # [s] between lines while the goal thrashes
 
 
 class WaitEnded(click.ClickException):
@@ -65,7 +70,8 @@ def doing(decision: dict[str, Any], goal_id: str) -> tuple[str, str]:
     for p in paths:
         if p.get("goal_id") == goal_id and p.get("path"):
             skills = [str(s.get("skill", "?")) for s in p["path"]]
-            acts = " ".join("(" + " ".join(map(str, a)) + ")" for a in p.get("actions") or [])
+            acts = " ".join("(" + " ".join(map(_value, a)) + ")"
+                            for a in p.get("actions") or [])
             return (" > ".join(skills),
                     f"{' > '.join(skills)} ({_where(p['path'][-1].get('where', ''))})"
                     + (f" => {acts}" if acts else ""))
@@ -89,6 +95,11 @@ def doing(decision: dict[str, Any], goal_id: str) -> tuple[str, str]:
     note = next((str(g.get("note", "")) for g in decision.get("goals") or []
                  if g.get("id") == goal_id), "")
     return note, note
+
+
+def _value(value: Any) -> str:
+    """An action's argument as the summaries write numbers: at most 3 decimals."""
+    return f"{round(value, 3):g}" if isinstance(value, float) else str(value)
 
 
 def _where(where: str) -> str:
@@ -118,6 +129,9 @@ class Follower:
     ended: str = ""
     _last: tuple[str, str] | None = field(default=None, repr=False)
     _said_at: float = field(default=-FEEDBACK_S, repr=False)
+    _seen: dict[tuple[str, str], int] = field(default_factory=dict, repr=False)  # -> cycle
+    _repeats: int = field(default=0, repr=False)   # changes back to a recent line, in a row
+    _repeat_from: int = field(default=0, repr=False)
 
     def intention(self, cycle: int, decision: dict[str, Any], now: float) -> str | None:
         """The line to print for this cycle's decision (`now`: monotonic [s]): at each status
@@ -132,11 +146,25 @@ class Follower:
         if status in ("achieved", "failed"):  # the reason is said once, at the end
             self.ended, self.reason = status, str(report.get("note", ""))
             key = text = ""
-        if (status, key) == self._last or (self._last is not None and status == self._last[0]
-                                           and now - self._said_at < FEEDBACK_S):
+        pair, line = (status, key), f"cycle {cycle:>6}  {status:<9}  {text}".rstrip()
+        recent, self._seen[pair] = self._seen.get(pair), cycle
+        if pair == self._last:
             return None
-        self._last, self._said_at = (status, key), now
-        return f"cycle {cycle:>6}  {status:<9}  {text}".rstrip()
+        if self._last is not None and status == self._last[0] and \
+                now - self._said_at < FEEDBACK_S:
+            return None
+        if recent is not None and cycle - recent <= REPEAT_CYCLES and not self.ended:
+            self._last, self._repeats = pair, self._repeats + 1
+            if self._repeats == 1:
+                self._said_at, self._repeat_from = now, cycle
+                return (f"{line}  [back to a line of the last {REPEAT_CYCLES} cycles: such "
+                        f"repeats are not printed, a count every {REPEAT_S:g} s]")
+            if now - self._said_at >= REPEAT_S:
+                self._said_at = now
+                return f"{line}  [{self._repeats} changes since cycle {self._repeat_from}]"
+            return None
+        self._last, self._said_at, self._repeats = pair, now, 0
+        return line
 
     def goal_list(self, cycle: int, goals: tuple[dict[str, Any], ...]) -> bool:
         """Whether the goal left the goal list with this cycle's (it was withdrawn)."""

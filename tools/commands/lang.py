@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -20,6 +21,7 @@ from agents.lang.core.limits import MAX_STATE_CHARS, MAX_STATE_STRING, read_json
 from agents.lang.core.outcomes import as_outcomes
 from agents.lang.core.terms import sort_key
 from agents.lang.loader import read_text
+from agents.lang.reading.extend import extend_program
 from agents.processes.goal_store import MAX_PRIORITY, rank_problem
 from tools.paths import OutputPath
 
@@ -74,6 +76,17 @@ def _sorted_beliefs(beliefs) -> list:
     return sorted(beliefs, key=lambda b: (b.pred, [sort_key(a) for a in b.args]))
 
 
+GOAL_ID = re.compile(r"([A-Za-z][A-Za-z0-9_-]{0,31})=(?=\()")   # 'g1=(...)'
+
+
+def _goal_id(option: str) -> tuple[str | None, str]:
+    """'g1=(clear B):1' -> ('g1', '(clear B):1'): the id the goal had in the run (teleo
+    explain --percepts suggests it, issue 31, N21: step numbered them from the program's
+    goals on); without 'ID=', (None, option)."""
+    found = GOAL_ID.match(option)
+    return (found.group(1), option[found.end():]) if found else (None, option)
+
+
 def _goal_option(option: str) -> tuple[str, int | None]:
     """'(clear B):1' -> ('(clear B)', 1); without ':P' (P an integer) no priority; a priority
     outside 1..MAX_PRIORITY is refused, as `teleo goal post` refuses it."""
@@ -123,7 +136,8 @@ def infer(program: str, percepts_file: str, includes: tuple[str, ...]) -> None:
 @click.option("--save-state", "save_file", type=OutputPath(), help="Write the next state here.")
 @click.option("--goal", "goals", multiple=True,
               help="Add a user goal, e.g. '(package-delivered PACKET2)'; append :P for priority "
-                   "P, e.g. '(clear B):1'. Repeatable.")
+                   "P, e.g. '(clear B):1'; put ID= before it for its id in a run, e.g. "
+                   "'g2=(clear B):1' (default: numbered on). Repeatable.")
 @click.option("--force", is_flag=True,
               help="Accept a --goal priority that ranks it above the program's own goals.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
@@ -142,10 +156,13 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     outcomes = _outcomes(outcomes_file) if outcomes_file else ()
     try:
         state = read_state(state_file) if state_file else engine.initial_state()
+        if state_file:
+            _check_learned_entries(engine, state, state_file)
         for g in goals:
-            text, priority = _goal_option(g)
+            goal_id, rest = _goal_id(g)
+            text, priority = _goal_option(rest)
             _ranked(engine, text, priority, force)
-            state = engine.add_goal(state, text, priority)
+            state = engine.add_goal(state, text, priority, goal_id)
         result = engine.cycle(state, percepts, outcomes)
     except (LangError, json.JSONDecodeError) as exc:
         where, told = state_file or program, str(exc)
@@ -163,6 +180,14 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
     for b in beliefs:
         click.echo(f"  {b}")
     click.echo(result.decision.explain())
+
+
+def _check_learned_entries(engine: Engine, state: EngineState, path: str) -> None:
+    """Each learned skill of a state file read against the program on its own, so that a
+    bad one is named by the file and its entry (`s.json: learned[2]:1:7: ...`), not as
+    `<learned>` (issue 31, drill n9); raises LangError."""
+    for k, clause in enumerate(state.learned):
+        extend_program(engine.program, (clause,), f"{path}: learned[{k}]")
 
 
 def read_state(path: str) -> EngineState:

@@ -31,8 +31,9 @@ from pathlib import Path
 
 import click
 
+from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
-from tools.commands.scenario_check import load_checked, override_option
+from tools.commands.scenario_check import check_learned, load_checked, override_option
 from tools.launching import stop_signals
 from tools.launching.cpus import usable_cores
 from tools.launching.run_plan import (
@@ -75,7 +76,7 @@ class PerProcess(click.ParamType):
 
 
 @click.command()
-@click.argument("scenario_file", metavar="SCENARIO", type=click.Path(dir_okay=False))
+@click.argument("scenario_file", metavar="SCENARIO", type=ScenarioArg())
 @click.option("--cycles", type=click.IntRange(min=0), help="Cycles to run (0: forever).")
 @click.option("--seed", type=int, help="World seed (overrides [run].seed).")
 @click.option("--mode", type=click.Choice(["lockstep", "realtime"]), help="Clock mode.")
@@ -157,7 +158,8 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         raise SystemExit(summary.EXIT_CODES["interrupted"]) from None
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
-            "secured": plan.secrets is not None, "overrides": list(scenario.overrides)}
+            "secured": plan.secrets is not None, "overrides": list(scenario.overrides),
+            "status_policy": scenario.run.status}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
         if per_process:
             click.echo(_layout(len(scenario.agents), per_process, cpus))
@@ -223,21 +225,6 @@ def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str |
 
         click.echo(plot_command_output(run_dir, Path(plot_file)))
     return False
-
-
-def check_learned(scenario: Scenario, learned: str) -> None:
-    """Refuse a learned file that does not fit every agent's program, before any process
-    starts (the message names file:line:col, e.g. a concept the program does not define)."""
-    from agents.lang import LangError, load_program
-    from agents.lang.loader import read_text
-    from agents.lang.registry import read_learned
-
-    try:
-        text = read_text(learned)
-        for agent in scenario.agents:
-            read_learned(load_program(agent.program), text, learned)
-    except LangError as exc:
-        raise click.ClickException(str(exc)) from exc
 
 
 def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_id,

@@ -1,7 +1,8 @@
 """`teleo plot RUN`: a run record drawn as one PNG, over world time [s]:
 
-1. what the domain has to show: driving, each agent's speed and the limit it perceives;
-   blocks, each block's height; office, how far each robot has gone; others, nothing here;
+1. what the domain has to show: its Domain's `plot` hook (world/domain.py; driving, each
+   agent's speed and the limit it perceives; blocks, each block's height; office, how far
+   each robot has gone); a world without one, nothing here;
 2. the domain's counters of violations and of work done (world/domain.py) as they grow;
 3. each agent's goals as a timeline, coloured by status;
 4. the compute time of every stage per cycle [ms] (a rolling mean), stacked.
@@ -51,54 +52,21 @@ class Series:
         return [self.time.get(c, 0.0) for c in cycles]
 
 
-def _driving(ax: Any, s: Series) -> bool:
-    for agent in s.agents:
-        rows = sorted(s.percepts[agent].items())
-        speed = [(c, r["self"]["speed"]) for c, r in rows if "speed" in r.get("self", {})]
-        limit = [(c, r["self"]["limit"]) for c, r in rows if "limit" in r.get("self", {})]
-        if speed:
-            ax.plot(s.t([c for c, _ in speed]), [v for _, v in speed], label=f"{agent} speed")
-        if limit:
-            ax.step(s.t([c for c, _ in limit]), [v for _, v in limit], where="post",
-                    linestyle="--", label=f"{agent} limit")
-    ax.set_ylabel("speed [m/s]")
-    return bool(s.agents)
+def _domain(s: Series) -> Any:
+    """The run's Domain (world/domain.py), or None for a world not installed here (or one that
+    fails to load): the plot then has no world panel and shows every counter."""
+    from world.domain import get_domain
+    from world.errors import ConfigError
 
-
-def _blocks(ax: Any, s: Series) -> bool:
-    heights: dict[str, list[tuple[int, float]]] = defaultdict(list)
-    for c in s.cycles:
-        for b in s.snapshots[c].get("blocks", ()):
-            heights[b["name"]].append((c, float(b["y"])))
-    for name, rows in sorted(heights.items()):
-        ax.plot(s.t([c for c, _ in rows]), [y for _, y in rows], label=f"block {name}")
-    ax.set_ylabel("height [m]")
-    return bool(heights)
-
-
-def _office(ax: Any, s: Series) -> bool:
-    travel: dict[str, list[tuple[int, float]]] = defaultdict(list)
-    for c in s.cycles:
-        for agent, counts in s.snapshots[c].get("counters", {}).items():
-            if "travel_cm" in counts:
-                travel[agent].append((c, counts["travel_cm"] / 100.0))
-    for agent, rows in sorted(travel.items()):
-        ax.plot(s.t([c for c, _ in rows]), [m for _, m in rows], label=f"{agent} travelled")
-    ax.set_ylabel("distance [m]")
-    return bool(travel)
-
-
-DOMAIN_PANELS = {"driving": (_driving, "speed and the perceived limit"),
-                 "blocks": (_blocks, "block heights"),
-                 "office": (_office, "distance each robot has travelled")}
-"""domain -> draws its own panel (returns False when it had nothing to draw)."""
+    try:
+        return get_domain(s.domain)
+    except ConfigError:
+        return None
 
 
 def _counters(ax: Any, s: Series) -> bool:
     """The domain's law violations and work done (world/domain.py), as they grow."""
-    from world.domain import DOMAINS, get_domain
-
-    spec = get_domain(s.domain) if s.domain in DOMAINS else None
+    spec = _domain(s)
     wanted = set(spec.violations + spec.achievements) if spec else None
     rows: dict[str, list[tuple[int, int]]] = defaultdict(list)
     for c in s.cycles:
@@ -178,7 +146,8 @@ def plot_record(path: Path, out: Path) -> Path:
     s = Series(rec)
     if not s.cycles:
         raise RecordError(f"{path}: no world state recorded: nothing to plot")
-    panels = [DOMAIN_PANELS[s.domain]] if s.domain in DOMAIN_PANELS else []
+    spec = _domain(s)
+    panels = [(spec.plot[1], spec.plot[0])] if spec is not None and spec.plot else []
     panels += [(_counters, "violations and work done"), (_goals, "goal statuses"),
                (_stages, "stage compute time per cycle")]
     n_goals = sum(len({g["id"] for r in i.values() for g in r["decision"].get("goals", ())})

@@ -6,6 +6,8 @@ the field, never a crash 10 s into a run."""
 
 from __future__ import annotations
 
+import difflib
+import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -13,8 +15,10 @@ from typing import Any
 import click
 
 from agents.lang import Engine, GoalError, ProgramError, load_program
+from agents.lang.core.conjunction import goal_literals
 from agents.lang.core.program import Program
 from agents.lang.engine import SOLVERS
+from agents.lang.reading.goals import parse_goal
 from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
 from world.domain import get_domain
 from world.errors import WorldError
@@ -50,8 +54,8 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
     if "world" not in spoilt:
         try:
             domain.check_config(scenario.world_table, scenario.agent_ids)
-        except WorldError as exc:
-            errors.append(f"{where}: {exc}")
+        except WorldError as exc:   # a line each (the table's other errors too)
+            errors += [f"{where}: {line}" for line in str(exc).splitlines()]
     programs: dict[str, Program] = {}
     for agent in scenario.agents:
         if f"agent {agent.id}" not in spoilt:
@@ -64,6 +68,12 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
             problem = _goal_problem(goal, programs[goal.agent])
             if problem:
                 errors.append(f"{where}: [[goals]] #{k + 1}: {problem}")
+    for k, goal in enumerate(scenario.goals):   # in error elsewhere: its text alone
+        if f"goal {k + 1}" in spoilt and goal.op == "post" and goal.goal:
+            try:
+                parse_goal(goal.goal)
+            except GoalError as exc:
+                errors.append(f"{where}: [[goals]] #{k + 1}: {exc}")
     if len(checked) == len(scenario.goals):  # the ids g1, g2, ... count every post
         errors += _goal_id_problems(scenario)
     for k, event in enumerate(scenario.events):
@@ -134,12 +144,78 @@ def _goal_problem(goal: ScriptedGoal, program: Program) -> str:
         try:
             engine.add_goal(engine.initial_state(), goal.goal, priority=goal.priority)
         except GoalError as exc:
-            return str(exc)
+            return _with_suggestion(str(exc), program)
     if goal.op != "cancel" and not goal.force:
         problem = rank_problem(tuple(str(g.literal) for g in program.goals), goal.priority)
         if problem:
             return f"{problem} (force = true)"
     return ""
+
+
+def goal_warnings(scenario: Scenario) -> list[str]:
+    """A warning (without the file's name) for each scripted goal that names an object (a
+    symbol, not a number nor a variable) which neither the world as it starts nor the
+    agent's program names anywhere:
+    the agent would wait for a percept of it, then fail (issue 31, N12: `(delivered fax-jhm
+    r-5399)` passed check, there being no r-5399). A warning, not an error: a world may
+    bring an object later, and a test may post such a goal on purpose."""
+    posts = [(k, g) for k, g in enumerate(scenario.goals) if g.op == "post" and g.goal]
+    if not posts:
+        return []
+    domain = get_domain(scenario.domain)
+    try:
+        snap = domain.create(scenario.world_table, scenario.run.seed,
+                             scenario.agent_ids).snapshot_dict()
+    except WorldError:
+        return []   # reported as an error of the world table
+    known = set(_strings(snap)) | set(scenario.agent_ids)
+    texts = {a.id: set(re.findall(r"[^\s()]+", _text(Path(a.program))))
+             for a in scenario.agents}
+    out = []
+    for k, goal in posts:
+        try:
+            literals = goal_literals(parse_goal(goal.goal))
+        except GoalError:
+            continue   # an error of its own
+        names = [a for lit in literals for a in lit.args if isinstance(a, str)]
+        for name in dict.fromkeys(names):
+            if name not in known and name not in texts.get(goal.agent, set()):
+                out.append(f"[[goals]] #{k + 1}: goal {goal.goal}: no object "
+                           f"{name!r} in the {domain.name} world as it starts, nor in "
+                           f"{goal.agent}'s program (the goal would wait for a percept of "
+                           "it, then fail)")
+    return out
+
+
+def _strings(value: Any) -> Any:
+    """Every string in a snapshot (keys and values, at any depth)."""
+    if isinstance(value, str):
+        yield value
+    elif isinstance(value, dict):
+        for k, v in value.items():
+            yield from _strings(k)
+            yield from _strings(v)
+    elif isinstance(value, list | tuple):
+        for v in value:
+            yield from _strings(v)
+
+
+def _text(path: Path) -> str:
+    try:
+        return path.read_text(errors="replace")
+    except OSError:
+        return ""
+
+
+def _with_suggestion(message: str, program: Program) -> str:
+    """``message`` with "did you mean" for an undefined concept close to one the program
+    has, as a program's own errors have it (issue 31, N14)."""
+    found = re.search(r"undefined concept '([^']+)'", message)
+    if not found or "did you mean" in message:
+        return message
+    names = sorted(program.concepts)
+    close = difflib.get_close_matches(found.group(1), names, n=1)
+    return f"{message} (did you mean '{close[0]}'?)" if close else message
 
 
 def _is_file(path: Path) -> bool:
@@ -205,3 +281,25 @@ override_option = click.option(
          "(docs/scenarios.md, \"Overrides\"); repeatable.")
 """`--set KEY=VALUE` of `teleo launch`, `simulate` and `check` (world/overrides.py)."""
 
+
+def check_learned(scenario: Scenario, learned: str) -> None:
+    """Refuse a learned file that does not fit every agent's program, before any process
+    starts (the message names file:line:col, e.g. a concept the program does not define),
+    and an empty one, as `teleo check` refuses it (issue 31: launch and simulate took an
+    empty file, check did not; a run's learned file is never empty, its first line names
+    its program). `teleo launch --learned` and `teleo simulate --learned` call it."""
+    from agents.lang import LangError
+    from agents.lang.loader import read_text
+    from agents.lang.registry import read_learned
+
+    try:
+        text = read_text(learned)
+        if not text.strip():
+            raise click.ClickException(
+                f"{learned}:1:1: the file is empty: expected learned skills as a run writes "
+                f"them (learned-AGENT.tlp, its first line naming the program; "
+                f"teleo check PROGRAM {learned})")
+        for agent in scenario.agents:
+            read_learned(load_program(agent.program), text, learned)
+    except LangError as exc:
+        raise click.ClickException(str(exc)) from exc

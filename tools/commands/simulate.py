@@ -22,16 +22,17 @@ import click
 from agents.lang import Engine, EngineState, LangError, load_program
 from agents.lang.loader import read_text
 from agents.lang.registry import learned_text, memory_of, read_learned
-from agents.processes.goal_store import GoalStore, GoalStoreError
+from agents.processes.goal_store import GoalStore, GoalStoreError, refused_text
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
+from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
-from tools.commands.scenario_check import load_checked, override_option
+from tools.commands.scenario_check import check_learned, load_checked, override_option
 from tools.launching.progress import progress_cycles
 from tools.paths import OutputPath, picture_check
 from tools.records import sim_summary, summary
 from tools.records.run_record import GoalHistory
-from world.domain import get_domain
+from world.domain import episode_over, get_domain
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
 from world.trace import trace_line
@@ -100,8 +101,8 @@ def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalSto
             return store.cancel(g.goal_id, cycle, g.force)
         return store.set_priority(g.goal_id, g.priority, cycle)
     except GoalStoreError as exc:
-        log.warning("scripted request refused: %s", exc)
-        return store
+        log.info("scripted request refused: %s", exc)   # the summary says it
+        return store.refusing(refused_text(g.op, g.goal_id, g.goal, cycle, exc))
 
 
 @dataclass(frozen=True)
@@ -163,6 +164,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             for a in agents:
                 recorder.goal_list(cycle, a, goals.store.goal_list(a))
         snap = sim.snapshot_dict()
+        over = episode_over(sim)   # this state is the episode's last: the run's last cycle
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
         if recorder is not None:
@@ -180,7 +182,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
             decided = seen.decision.to_dict()
             run.history.feed({"kind": "Intention", "agent": a, "env": {"cycle": cycle},
                               "decision": decided})
-            goals.after(a, with_hints(decided, seen.percepts), cycle)
+            goals.after(a, with_hints(decided, seen.percepts, programs[a]), cycle)
             record[a] = {"actions": actions,
                          "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
             for name in ("solver", "planner"):
@@ -199,7 +201,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         sim.step()
         if recorder is not None:
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
-        if until is not None and until(states):
+        if over or (until is not None and until(states)):
             break
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
@@ -228,7 +230,7 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 
 
 @click.command("simulate")
-@click.argument("scenario", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.argument("scenario", type=ScenarioArg())
 @click.option("--cycles", type=click.IntRange(min=1), default=None,
               help="Cycles to run (default: the scenario's; one whose cycles = 0, a launch's "
                    "'until Ctrl-C', needs this).")
@@ -250,7 +252,7 @@ def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
 @override_option
 @click.option("--json", "as_json", is_flag=True,
               help="Print the summary as one JSON object (a launch's --json form) instead.")
-def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace: Path | None,
+def simulate_command(scenario: str, cycles: int | None, seed: int | None, trace: Path | None,
                      render: Path | None, learned: Path | None, learned_out: Path | None,
                      plot: Path | None, no_record: bool, summary_file: Path | None,
                      overrides: tuple[str, ...], as_json: bool) -> None:
@@ -269,6 +271,8 @@ def simulate_command(scenario: Path, cycles: int | None, seed: int | None, trace
                                    f"simulation needs a number: give --cycles N")
         if plot and no_record:
             raise click.UsageError("--plot draws the run record: leave out --no-record")
+        if learned:
+            check_learned(sc, str(learned))
         recorder = None if no_record else SimRecorder.create(sc)
         run = simulate(sc, cycles, seed, keep_every=sc.run.render_every if render else 0,
                        learned=learned, recorder=recorder, show_progress=True)
@@ -317,6 +321,8 @@ def _write_outputs(run: SimRun, sc: Scenario, out: _Outputs, seed: int | None,
     result = sim_summary.build(run, sc, sc.run.seed if seed is None else seed,
                                sc.run.cycles if cycles is None else cycles, trace, files)
     result["record"] = record
+    if record is not None:   # the run id `teleo explain`, `view` and `plot` take (N11)
+        result["run"] = Path(record).parent.name
     result["record_missing"] = None if record is None else 0  # written in the loop: all of it
     result["record_gaps"], result["record_failed"] = (None if record is None else []), None
     if out.summary:

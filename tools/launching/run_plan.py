@@ -12,9 +12,9 @@ at the router and then talks to them directly (the fastest for a few processes).
 client of the router: the router is then the only thing listening, it authenticates each
 process with its own user and password over TLS and applies the run's access-control list
 (bus/security.py). A launch of more than PEER_MESH_LIMIT processes makes them clients too:
-peers connect to every other peer, and on two cores the 1225 connections of 50 processes
-(16 agents, a process per stage) ran 4 cycles/s or did not start in 100 s, the 4753 of 98
-processes never started; as clients of the router, 10.6 and 3.5 cycles/s.
+peers connect to every other peer, and beyond about 30 processes the connections' upkeep
+slows a run more than the router's extra hop, and at 98 processes keeps it from starting at
+all (docs/benchmarks.md, "Bus", "Peers or clients").
 """
 
 from __future__ import annotations
@@ -133,7 +133,7 @@ def per_core(agents: int, cores: int) -> int:
     evenly as consecutive groups allow (1 agent or 2 on two cores: a process each; 8: two of
     4). In lockstep the world steps while the agents wait and the agents work while the world
     waits, so the agents' processes can have every core; on two cores 8 cars ran 1.3 times as
-    many cycles a second as in one process, and 4 cars 1.3 times (bench/cycle.py)."""
+    many cycles a second as in one process, and 4 cars 1.3 times (bench/speed/cycle.py)."""
     return max(1, -(-agents // max(1, cores)))
 
 

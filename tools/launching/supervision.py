@@ -18,7 +18,7 @@ What it does on each fault (docs/faults.md has the table with measured times):
 Registering the run also removes the stale entries other launches left (their launcher
 killed outright, and nothing of their run left). It records, in the run folder's
 supervision.jsonl, when each process was seen gone and when each came back (its liveliness
-token appeared again), and how long each part of the stop took: bench/drills.py reads it.
+token appeared again), and how long each part of the stop took: bench/faults/drills.py reads it.
 """
 
 from __future__ import annotations

@@ -37,6 +37,8 @@ class GoalHistory:
         self._intents: dict[str, dict[int, tuple]] = defaultdict(dict)
         self._shared: dict[tuple, tuple] = {}
         self._has_state: Callable[[int], bool] | None = None
+        self._ended: dict[str, dict[str, dict[str, Any]]] = defaultdict(dict)  # ended_before
+        self._cache: dict[str, dict[str, list[dict[str, Any]]]] | None = None
 
     def feed(self, record: dict[str, Any], has_state: Callable[[int], bool] | None = None
              ) -> None:
@@ -49,7 +51,7 @@ class GoalHistory:
         if not isinstance(cycle, int) or isinstance(cycle, bool):
             return
         agent = str(record.get("agent", ""))
-        self._has_state = has_state
+        self._has_state, self._cache = has_state, None
         if record.get("kind") == "GoalList":
             self._lists[agent][cycle] = self._share(tuple(
                 (g["id"], _text(g.get("goal", "")), _priority(g.get("priority")))
@@ -62,15 +64,35 @@ class GoalHistory:
              _priority(g.get("priority")), _text(g.get("note", "")))
             for g in _goals(decision.get("goals") if isinstance(decision, dict) else ())))
 
+    def ended_before(self, agent: str, record: dict[str, Any]) -> None:
+        """A user goal the goal store says failed or was cancelled (a record of its list:
+        id, goal, priority, status, updated_cycle, note), taken as one change when nothing
+        of it was fed: a view opened after it ended saw no message of it (issue 31, N5)."""
+        gid, status = record.get("id"), record.get("status")
+        if status in self.FINAL and isinstance(gid, str):
+            self._ended[agent][gid] = record
+            self._cache = None
+
     def _share(self, item: tuple) -> tuple:
         return self._shared.setdefault(item, item)
 
     @property
     def changes(self) -> dict[str, dict[str, list[dict[str, Any]]]]:
         """agent -> goal id -> its changes, worked out from every record fed so far."""
+        if self._cache is not None:   # a live view asks often; work it out once a change
+            return self._cache
         out: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
-        for agent in sorted({*self._lists, *self._intents}):
+        for agent in sorted({*self._lists, *self._intents, *self._ended}):
             self._changes_of(agent, out[agent])
+            for gid, record in self._ended.get(agent, {}).items():
+                if gid not in out[agent]:
+                    cycle = record.get("updated_cycle")
+                    out[agent][gid] = [{
+                        "cycle": cycle if isinstance(cycle, int) else 0,
+                        "status": record["status"], "goal": _text(record.get("goal", "")),
+                        "priority": _priority(record.get("priority")),
+                        "note": _text(record.get("note", ""))}]
+        self._cache = out
         return out
 
     def _changes_of(self, agent: str, out: dict[str, list[dict[str, Any]]]) -> None:

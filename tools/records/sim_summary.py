@@ -13,7 +13,8 @@ from typing import Any
 
 from agents.lang.registry import AgentRecord, summary_sections
 from tools.records import run_record as records
-from tools.records.summary import finish_status, refused_events
+from tools.records.summary import episode_ended, finish_status, refused_events
+from tools.records.summary_agents import natural_sections
 from world.domain import get_domain
 
 
@@ -38,19 +39,21 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g["status"] == "achieved"),
         "goal_store_incidents": [], "goals_lost": False,
+        "requests_refused": list(run.goals.refused), "status_policy": scenario.run.status,
         "domain": scenario.domain,
         "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
                          for a, c in counters.items()},
         "law_violations": {a: {k: int(c.get(k, 0)) for k in spec.violations}
                            for a, c in counters.items()},
         "counters": counters,
-        **summary_sections(_agents(run, scenario, counters, learned_files)),
+        **natural_sections(summary_sections(_agents(run, scenario, counters, learned_files))),
         "trace": str(trace) if trace else "",
-        "world_reason": "done",
+        "world_reason": "the episode is over" if episode_ended(run.final) else "done",
         "set_aside": [], "record_cut_short": False,   # no restart, no drain to cut
         "cycle_time": {},   # one process, no bus: no stage shares
         "events_refused": refused_events(
             (json.loads(line) for line in run.trace if '"events"' in line), scenario.events),
+        **({"episode": run.final["episode"]} if "episode" in run.final else {}),  # gymnasium's
     }
     return finish_status(summary)
 

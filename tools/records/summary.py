@@ -13,8 +13,12 @@ The run's status (docs/faults.md, "What counts as a failed run"):
   reported it failed), or the world stopped before its cycles were done for any other reason
   than a stop asked for. A goal still at an impasse at the end (no skill path yet; the
   problem solver may have been working on it) is listed as not achieved, not as failed.
-  Goals the goal store lost (a damaged file it could not recover) fail the run too, and
-  so does a run record that lacks cycles (unless a stop asked for cut its drain short);
+  Goals the goal store lost (a damaged file it could not recover) fail the run too. A
+  scenario's `[run] status = "system"` leaves the goals out: a goal not kept is then
+  reported (`goals_not_kept`) but fails nothing (issue 31, N15); a scripted request the goal
+  store refused is reported (`requests_refused`) and fails nothing either;
+  a run record that lacks cycles fails the run (unless a stop asked for cut its drain
+  short);
 - interrupted (exit 130): stopped on request (Ctrl-C, `teleo stop`) before its cycles were
   done, with nothing failed; a run without a cycle limit ends this way and counts as completed;
 - completed (exit 0): otherwise. Stalls, late stages and restarts that recovered are shown
@@ -25,6 +29,7 @@ from __future__ import annotations
 
 import json
 import logging
+import textwrap
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
@@ -33,7 +38,17 @@ import click
 
 from tools.records import run_record as records
 from tools.records.record_coverage import coverage, ranges_text
-from tools.records.summary_agents import agent_sections, echo_agents, read_json_file, set_aside
+from tools.records.summary_agents import (
+    SHARES_SHOWN,
+    agent_sections,
+    echo_agents,
+    fold_lines,
+    natural,
+    read_json_file,
+    set_aside,
+    shares_text,
+    summary_agents,
+)
 from world.recorder import HEALTH, SNAPSHOTS, TRACE, WORLD_FINAL, complete_lines_bytes, read_jsonl
 
 log = logging.getLogger(__name__)
@@ -73,7 +88,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
     final = final if isinstance(final, dict) else {}
     counters: dict[str, dict[str, int]] = last.get("counters", {})
     elapsed = _elapsed(health)
-    goals, incidents = _goals(run_dir / GOALS_FILE)
+    goals, incidents, refused = _goals(run_dir / GOALS_FILE)
     record = _open_record(run_dir)
     goals = records.with_history(goals, run_dir, record)  # when each became active, ...
     totals = _totals(health)
@@ -96,6 +111,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "goals": goals,
         "goals_achieved": sum(1 for g in goals if g.get("status") == "achieved"),
         "goal_store_incidents": incidents,
+        "requests_refused": refused,
         "goals_lost": any(i.startswith("GOALS LOST") for i in incidents),
         "domain": domain,
         "achievements": {a: {k: int(c.get(k, 0)) for k in spec.achievements}
@@ -110,6 +126,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
         "world_reason": final.get("reason", "the world did not finish (killed)"),
         "cycle_time": cycle_time(final.get("timing_ms"), cycles),
         "events_refused": refused_events(trace, scripted),
+        **({"episode": final["episode"]} if "episode" in final else {}),  # gymnasium's
     }
     return finish_status(summary, ended, requested_stop)
 
@@ -160,7 +177,7 @@ def cycle_time(timing: Any, cycles: int) -> dict[str, Any]:
     means = {"world": float(timing.get("world", 0.0)) / cycles}
     order = {"goals": 0, "perception": 1, "inference": 2, "executive": 3}
     stages = sorted((timing.get("stages") or {}).items(),
-                    key=lambda kv: (order.get(kv[0].rpartition(".")[2], 4), kv[0]))
+                    key=lambda kv: (order.get(kv[0].rpartition(".")[2], 4), natural(kv[0])))
     means.update({name: float(ms) / cycles for name, ms in stages})
     shares = {name: round(100 * ms / cycle_ms, 1) for name, ms in means.items()}
     shares["bus and waits"] = round(max(0.0, 100 - sum(shares.values())), 1)
@@ -198,9 +215,12 @@ def _failures(s: dict[str, Any], ended: str, requested_stop: bool) -> list[str]:
            for agent, n in s["uncontrolled"].items()]
     out += [f"{name} gave up (left down after {s['restarts'].get(name, 0)} restart(s))"
             for name in s["left_down"]]
-    out += [f"goal {g.get('id')} {g.get('goal')} could not be kept: {g.get('status')}"
-            + (f" ({g['note']})" if g.get("note") else "")
-            for g in s["goals"] if g.get("status") in _NOT_KEPT]
+    s["goals_not_kept"] = [
+        f"goal {g.get('id')} {g.get('goal')} could not be kept: {g.get('status')}"
+        + (f" ({g['note']})" if g.get("note") else "")
+        for g in s["goals"] if g.get("status") in _NOT_KEPT]
+    if s.get("status_policy", "goals") == "goals":
+        out += s["goals_not_kept"]
     out += [f"goal store: {i}" for i in s["goal_store_incidents"] if i.startswith("GOALS LOST")]
     out += [f"scripted event {json.dumps(e['event'], sort_keys=True)} at cycle {e['cycle']} "
             f"refused by the world: {e['reason']}" for e in s.get("events_refused", ())]
@@ -225,13 +245,19 @@ def _status(s: dict[str, Any], requested_stop: bool) -> str:
     if s["failures"]:
         return "failed"
     wanted = int(s.get("cycles_requested") or 0)
-    if wanted and s["cycles"] < wanted:
+    if wanted and s["cycles"] < wanted and not episode_ended(s):
         if requested_stop:
             return "interrupted"
         s["failures"].append(f"the world stopped at cycle {s['cycles']} of {wanted}: "
                              f"{s['world_reason']}")
         return "failed"
     return "completed"
+
+
+def episode_ended(s: dict[str, Any]) -> bool:
+    """The run ended with its world's episode (terminated or truncated): not early."""
+    episode = s.get("episode") or {}
+    return bool(episode.get("terminated") or episode.get("truncated"))
 
 
 def exit_code(summary: dict[str, Any]) -> int:
@@ -249,6 +275,11 @@ def echo(summary: dict[str, Any]) -> None:
         click.echo(f"  --set: {', '.join(summary['overrides'])}")
     for reason in summary["failures"]:
         click.echo(f"  failed: {reason}")
+    for reason in summary.get("goals_not_kept", ()):
+        if reason not in summary["failures"]:   # [run] status = "system"
+            click.echo(f"  not kept (not a failure of the run, status = system): {reason}")
+    for request in summary.get("requests_refused", ()):
+        click.echo(f"  {request}")
     late, dead = summary["late_stages"], summary["dead_stages"]
     click.echo(f"  late stages: {sum(late.values())}{_pairs(late)}")
     if dead:
@@ -262,22 +293,30 @@ def echo(summary: dict[str, Any]) -> None:
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
     timing = summary.get("cycle_time") or {}
     if timing:
-        parts = ", ".join(f"{name} {pct} %" for name, pct in timing["shares"].items())
-        click.echo(f"  cycle time {timing['ms']} ms: {parts}")
+        line = f"  cycle time {timing['ms']} ms: " + ", ".join(shares_text(timing["shares"]))
+        folded = len(timing["shares"]) > 3 + 2 * SHARES_SHOWN   # many agents: wrapped too
+        click.echo(textwrap.fill(line, width=100, subsequent_indent="    ",
+                                 break_on_hyphens=False) if folded else line)
     for r in summary["world_resumes"]:
         click.echo(f"    world resumed at cycle {r['cycle']} (checkpoint {r['checkpoint']}, "
                    f"{r['replayed']} cycles replayed)")
     click.echo(f"  goals achieved: {summary['goals_achieved']} of {len(summary['goals'])}")
+    if summary.get("episode"):   # an episodic world's (gymnasium)
+        click.echo("  episode: " + ", ".join(f"{k} {v}" for k, v in summary["episode"].items()))
     for incident in summary.get("goal_store_incidents", ()):
         click.echo(f"  GOAL STORE: {incident}")
     for goal in summary["goals"]:
         fields = [str(goal.get(k, "?")) for k in ("id", "agent", "goal", "priority", "status")]
         click.echo("    {} {} {} p{}: {}".format(*fields)
                    + records.history_text(goal.get("history", [])))
-    for agent, laws in summary["law_violations"].items():
+    lines = []
+    for agent in sorted(summary["law_violations"], key=natural):
+        laws = summary["law_violations"][agent]
         done = summary["achievements"].get(agent, {})
         work = "".join(f"{k} {v}, " for k, v in done.items())
-        click.echo(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+        lines.append(f"  {agent}: {work}law violations {sum(laws.values())}{_pairs(laws)}")
+    for line in fold_lines(lines, summary_agents(summary)):
+        click.echo(line)
     echo_agents(summary)
     if summary.get("record_missing"):
         gaps = summary.get("record_gaps") or []
@@ -326,19 +365,21 @@ def render(run_dir: Path, out: Path, agent: str) -> int:
     return domain_of(snaps[0]).render(snaps, out, agent)
 
 
-def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
-    """The goal records and recovery incidents of the goal store, whatever shape the file has:
-    only records that are objects are kept; a file that is not a goal store adds an incident
-    saying so (drill F2: a goal that was an integer crashed the summary)."""
+def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str], list[str]]:
+    """The goal records, recovery incidents and refused scripted requests of the goal store,
+    whatever shape the file has: only records that are objects are kept; a file that is not
+    a goal store adds an incident saying so (drill F2: a goal that was an integer crashed the
+    summary)."""
     doc = read_json_file(path)
     if doc is None:
-        return [], ([f"{path}: not readable as JSON"] if path.exists() else [])
+        return [], ([f"{path}: not readable as JSON"] if path.exists() else []), []
     goals = doc.get("goals", []) if isinstance(doc, dict) else None
     if not isinstance(goals, list):
-        return [], [f"{path}: not a goal store (no list of goals)"]
+        return [], [f"{path}: not a goal store (no list of goals)"], []
     keep = [g for g in goals if isinstance(g, dict)]
     incidents = [str(i) for i in doc.get("incidents", [])] \
         if isinstance(doc.get("incidents"), list) else []
     if len(keep) != len(goals):
         incidents.append(f"{path}: {len(goals) - len(keep)} goal record(s) are not objects")
-    return keep, incidents
+    refused = doc.get("refused")
+    return keep, incidents, [str(r) for r in refused] if isinstance(refused, list) else []

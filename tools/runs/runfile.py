@@ -41,6 +41,7 @@ class RunInfo:
     joined: bool = False    # a launch that joined another host's run (no router, no world)
     started: float = 0.0    # [s since the epoch]
     restarts: dict[str, int] = field(default_factory=dict)  # process name -> times restarted
+    cwd: str = ""           # the launch's folder: its scenario's relative paths start there
 
     @property
     def secured(self) -> bool:
@@ -75,7 +76,12 @@ def path_of(info: RunInfo) -> Path:
 
 
 def write(info: RunInfo) -> Path:
-    """Register (or update) a run; the file is readable by its owner only."""
+    """Register (or update) a run; the file is readable by its owner only. Its folder and
+    scenario are kept absolute (issue 31, N4: a tool started in another folder lost the
+    program that the scenario names relative to the launch's folder)."""
+    cwd = info.cwd or os.getcwd()
+    scenario = str(Path(cwd, info.scenario)) if info.scenario else ""
+    info = replace(info, cwd=cwd, scenario=scenario)
     folder = registry()
     folder.mkdir(parents=True, exist_ok=True, mode=0o700)
     path = path_of(info)
@@ -101,7 +107,8 @@ def _load(path: Path) -> RunInfo | None:
         return RunInfo(doc["run"], doc["endpoint"], int(doc["pid"]), tuple(doc["agents"]),
                        doc["run_dir"], doc.get("scenario", ""), dict(doc.get("pids", {})),
                        doc.get("credentials", ""), bool(doc.get("joined", False)),
-                       float(doc.get("started", 0.0)), dict(doc.get("restarts", {})))
+                       float(doc.get("started", 0.0)), dict(doc.get("restarts", {})),
+                       str(doc.get("cwd", "")))
     except (OSError, ValueError, KeyError, TypeError):
         return None
 

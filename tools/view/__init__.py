@@ -48,7 +48,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         else:
             target = _target(bus_config, run_id)
             model.run = run_id or target.run
-            model.programs.from_scenario(scenario_of(model.run))
+            model.programs.from_scenario(*scenario_of(model.run))
             feed = BusFeed(model, target).start()
         server = ViewServer(model, port)
     except RecordError as exc:

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from bus import keys
 from bus.errors import BusError, CodecError
+from bus.messages import GoalRequest
 from bus.node import open_node
 from bus.presence import Presence
 from bus.record import to_record
@@ -21,6 +22,7 @@ from tools.view.model import MALFORMED, ViewModel
 
 log = logging.getLogger(__name__)
 LEARN_RUN_S = 30.0  # [s] a view of a named router waits this long for a first message
+ASK_TIMEOUT_S, ASK_EVERY_S, ASK_TRIES = 2.0, 5.0, 3  # the goal store's list, asked at start
 
 
 def load_file(model: ViewModel, path: Path) -> None:
@@ -32,13 +34,15 @@ def load_file(model: ViewModel, path: Path) -> None:
         model.add(key, record)
 
 
-def scenario_of(run: str | None) -> str:
-    """The scenario file of the running launch of `run`, from the run registry ("" when no
-    launch of it is registered: a replay, or a router named with --connect)."""
+def scenario_of(run: str | None) -> tuple[str, str]:
+    """The scenario file of the running launch of `run` and the folder the launch ran in,
+    from the run registry (both "" when no launch of it is registered: a replay, or a
+    router named with --connect)."""
     try:
-        return runfile.find(run).scenario if run else ""
+        info = runfile.find(run) if run else None
     except runfile.NoRunningLaunch:
-        return ""
+        info = None
+    return (info.scenario, info.cwd) if info else ("", "")
 
 
 class BusFeed:
@@ -51,6 +55,8 @@ class BusFeed:
         self.stop = threading.Event()
         self.ready = threading.Event()
         self._thread = threading.Thread(target=self._main, name="teleo-view-feed", daemon=True)
+        self._asked: set[str] = set()   # agents whose goal-store list was read
+        self._tries, self._next_ask = 0, 0.0
 
     def start(self, timeout: float = 30.0) -> BusFeed:
         self.model.source = f"live: {self.target.who}"
@@ -73,6 +79,7 @@ class BusFeed:
                 presence = Presence(node.session, run) if run else None
                 while not self.stop.is_set():
                     self._pump(inbox, 0.2)
+                    self._past_goals(node)
                     if presence is None and self.model.run:
                         presence = Presence(node.session, self.model.run)
                     if presence is not None and presence.incarnations():  # a replay has none
@@ -81,6 +88,25 @@ class BusFeed:
             self.error = str(exc)
             self.ready.set()
             log.error("view feed stopped: %s", exc)
+
+    def _past_goals(self, node) -> None:
+        """Ask the goal-entry process once for each agent's goals (retried a few times: a
+        replay has none): those that failed or were cancelled before the view opened are
+        in no message it will see (issue 31, N5)."""
+        run, now = self.model.run, time.monotonic()
+        if run is None or now < self._next_ask or self._tries >= ASK_TRIES:
+            return
+        for agent in sorted(self.model.agents - self._asked):
+            try:
+                reply = node.query(keys.goals(run, agent), GoalRequest(
+                    node.envelope(), "list", agent), ASK_TIMEOUT_S)
+            except BusError as exc:
+                self._tries, self._next_ask = self._tries + 1, now + ASK_EVERY_S
+                log.info("view: the goal-entry process did not list the goals: %s", exc)
+                return
+            if getattr(reply, "ok", False):
+                self.model.past_goals(agent, reply.goals)
+                self._asked.add(agent)
 
     def _pump(self, inbox, seconds: float) -> None:
         end = time.monotonic() + seconds

@@ -146,6 +146,16 @@ class ViewModel:
                         >= TRAIL_STEP_M or trail[-1][0] > cycle:
                     trail.append((cycle, car["x"], car["y"]))
 
+    def past_goals(self, agent: str, records: Any) -> None:
+        """The goal store's list of ``agent`` (records.GoalHistory.ended_before): the goals
+        that ended before the view opened join the goal table and the timeline."""
+        with self.changed:
+            for record in records if isinstance(records, tuple | list) else ():
+                if isinstance(record, dict):
+                    self.goals.ended_before(agent, record)
+            self.version += 1
+            self.changed.notify_all()
+
     def set_presence(self, alive: frozenset[str], incarnations: dict[str, int]) -> None:
         with self.changed:
             self.alive, self.incarnations = alive, incarnations

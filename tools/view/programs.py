@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import threading
+from pathlib import Path
 from typing import Any
 
 from agents.lang import Engine, LangError, Program, load_program
@@ -28,19 +29,27 @@ class Programs:
         self._candidates: dict[str, list[str]] = {}
         self._loaded: dict[str, Program | str] = {}  # path -> the program, or why it failed
         self._engines: dict[str, Engine] = {}        # path -> an engine for the check
+        self._base = ""   # the launch's folder, where relative paths start ("": this one)
 
     def add(self, agent: str, path: str) -> None:
-        """One more candidate program file for `agent` (ignored when already known)."""
+        """One more candidate program file for `agent` (ignored when already known); a
+        relative path is taken from the launch's folder, as the launch read it."""
+        if path and self._base:
+            path = str(Path(self._base, path))
         with self._lock:
             known = self._candidates.setdefault(agent, [])
             if path and path not in known:
                 known.append(path)
 
-    def from_scenario(self, scenario: str) -> None:
-        """The programs a scenario file gives its agents (nothing when it cannot be read)."""
+    def from_scenario(self, scenario: str, base: str = "") -> None:
+        """The programs a scenario file gives its agents (nothing when it cannot be read);
+        ``base``: the folder the launch ran in (the run registry's `cwd`), where the
+        scenario's and its programs' relative paths start (issue 31, N4)."""
         from world.errors import WorldError
         from world.run_scenario import load_scenario
 
+        self._base = base
+        scenario = str(Path(base, scenario)) if base and scenario else scenario
         try:
             agents = load_scenario(scenario).agents if scenario else ()
         except (WorldError, OSError) as exc:

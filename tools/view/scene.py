@@ -1,7 +1,9 @@
-"""What the web page needs to draw a world, domain by domain: the static map (sent once per
-world configuration) and the moving parts of a snapshot (sent with every frame). The page
-(static/view.js) draws driving and blocks itself on a canvas; any other domain is shown as
-the domain's own PNG render (world/domain.py), made here on request.
+"""What the web page needs to draw a world: the static map (sent once per world
+configuration) and the moving parts of a snapshot (sent with every frame). Which keys are
+static and what the map holds are the world's own hooks (Domain.static_keys and
+Domain.scene, world/domain.py): the page (static/world.js) draws a world with a scene hook
+itself on a canvas (driving and blocks); any other is shown as the domain's own PNG render,
+made here on request, so a new world needs no edit here.
 """
 
 from __future__ import annotations
@@ -12,48 +14,42 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-STATIC_KEYS = {"driving": ("config",), "blocks": ("table", "resolution"), "office": ("config",)}
-"""Snapshot keys that stay the same for a whole run: sent in the map, not in every frame."""
 
-DRAWN = frozenset({"driving", "blocks"})
-"""Domains the page draws from snapshot dicts; others get a PNG from the domain's renderer."""
+def _domain(snapshot: dict[str, Any]) -> Any:
+    """The snapshot's Domain (world/domain.py), or None for a world not installed here."""
+    from world.domain import domain_of
+    from world.errors import ConfigError
+
+    try:
+        return domain_of(snapshot)
+    except ConfigError:
+        return None
 
 
 def split(snapshot: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
-    """(static part, moving part) of a snapshot dict."""
-    keys = STATIC_KEYS.get(str(snapshot.get("domain", "driving")), ())
+    """(static part, moving part) of a snapshot dict: the static part is the keys its Domain
+    names in ``static_keys`` (the same for a whole run)."""
+    spec = _domain(snapshot)
+    keys = spec.static_keys if spec is not None else ()
     return ({k: snapshot[k] for k in keys if k in snapshot},
             {k: v for k, v in snapshot.items() if k not in keys})
 
 
 def map_of(snapshot: dict[str, Any]) -> dict[str, Any]:
-    """The static map of a snapshot's world, with an id that changes when the world does."""
-    domain = str(snapshot.get("domain", "driving"))
+    """The static map of a snapshot's world, with an id that changes when the world does:
+    "drawn" when its Domain has a ``scene`` hook (the page's own drawer of that domain draws
+    it, with what the hook adds); otherwise the page shows the domain's PNG render."""
+    from world.domain import DEFAULT_DOMAIN
+
+    domain = str(snapshot.get("domain", DEFAULT_DOMAIN))
+    spec = _domain(snapshot)
     static, _ = split(snapshot)
     ident = hashlib.sha256(json.dumps(static, sort_keys=True).encode()).hexdigest()[:12]
-    body: dict[str, Any] = {"domain": domain, "id": ident, "drawn": domain in DRAWN,
-                            **static}
-    if domain == "driving":
-        body.update(_city(snapshot["config"]))
+    drawn = spec is not None and spec.scene is not None
+    body: dict[str, Any] = {"domain": domain, "id": ident, "drawn": drawn, **static}
+    if drawn:
+        body.update(spec.scene(snapshot))
     return body
-
-
-def _city(config: dict[str, Any]) -> dict[str, Any]:
-    """Streets, intersections and buildings of the driving city [m], plus its road widths."""
-    from world.driving import city
-    from world.driving.config import load_world_config
-
-    c = city.build_city(load_world_config(config))
-    return {
-        "size": list(c.size),
-        "road_half": city.ROAD_HALF, "lane_width": city.LANE_WIDTH,
-        "sidewalk": city.SIDEWALK_OUTER,
-        "segments": [{"id": s.id, "street": s.street, "a": [s.x0, s.y0],
-                      "b": list(s.point(s.length, 0.0))} for s in c.segments],
-        "intersections": [{"id": n.id, "x": n.x, "y": n.y} for n in c.intersections],
-        "buildings": [{"street": b.street, "address": b.address, "corners": b.corners,
-                       "curb": b.curb} for b in c.buildings],
-    }
 
 
 def render_png(snapshots: list[dict[str, Any]], agent: str | None) -> bytes:

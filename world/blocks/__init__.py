@@ -21,6 +21,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from world.blocks import view
 from world.domain import Domain
 from world.errors import ConfigError
 from world.pictures import is_animation
@@ -83,4 +84,6 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
 
 DOMAIN = Domain("blocks", "the Blocks World (seed 000, Figure 3): a table, blocks, a gripper "
                 "per agent", create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS,
-                ACHIEVEMENTS, actions=ACTIONS, check_event=check_event)
+                ACHIEVEMENTS, actions=ACTIONS, check_event=check_event,
+                static_keys=("table", "resolution"), scene=view.scene,
+                plot=(view.PLOT_TITLE, view.plot_panel))

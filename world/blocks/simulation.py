@@ -12,12 +12,11 @@ started it.
 
 from __future__ import annotations
 
-import logging
-import math
 from typing import Any
 
 import pymunk
 
+from world.base import BaseWorld, deg
 from world.blocks.actions import apply_action
 from world.blocks.block import Block, Box
 from world.blocks.config import BlocksConfig
@@ -26,8 +25,6 @@ from world.blocks.gripper import Gripper
 from world.blocks.snapshot import BlocksSnapshot, BlockState, HandState
 from world.blocks.table import build_table
 from world.errors import WorldError
-
-log = logging.getLogger(__name__)
 
 SUBSTEP = 1 / 120       # [s] the physics step
 GRAVITY = -9.81         # [m/s^2]
@@ -38,7 +35,7 @@ FELL_SHIFT = 0.25       # [m] ... or this far sideways
 FLOOR = "floor"
 
 
-class BlocksWorld:
+class BlocksWorld(BaseWorld):
     """One table, its blocks and a gripper per agent id (hands H1, H2, ... in agent order)."""
 
     def __init__(self, config: BlocksConfig, seed: int, agents: list[str]) -> None:
@@ -166,30 +163,21 @@ class BlocksWorld:
         self._incoming.append({"kind": kind, "cycle": self.cycle, **fields})
 
     # -- the contract (world/domain.py) ------------------------------------------------------
-    def apply_actions(self, agent: str, actions: list[list[Any]]) -> list[dict[str, Any]]:
+    def actors(self) -> dict[str, Gripper]:
+        """Each agent's gripper (world/base.py: the guards of apply_actions)."""
+        return self.grippers
+
+    def act(self, actor: Gripper, actions: Any) -> list[dict[str, Any]]:
         """Apply an agent's actions of this cycle in order; one outcome each, never raises."""
-        if not isinstance(actions, list | tuple):
-            return [{"action": [repr(actions)], "status": "failed",
-                     "reason": f"{agent}: expected a list of actions, got {actions!r:.80}"}]
-        gripper = self.grippers.get(agent)
-        if gripper is None:
-            reason = f"unknown agent {agent!r}; agents: {sorted(self.grippers)}"
-            return [{"action": list(a) if isinstance(a, list | tuple) else [repr(a)],
-                     "status": "failed", "reason": reason} for a in actions]
-        return [apply_action(self, gripper, a) for a in actions]
+        return [apply_action(self, actor, a) for a in actions]
 
     def safe_actions(self, agent: str) -> list[list[Any]]:
         """A silent agent's gripper stops: it stays where it is and keeps what it holds."""
         return [["*wait"]]
 
-    def inject(self, event: dict[str, Any]) -> dict[str, Any]:
+    def apply_event(self, event: dict[str, Any]) -> dict[str, Any]:
         """Apply a scenario event (events.py); {"event", "status", "reason"}, never raises."""
-        outcome = apply_event(self, event)
-        if outcome["status"] == "done":
-            self.note("injected", event=dict(event))
-        else:
-            log.info("cycle %d: %s", self.cycle, outcome["reason"])
-        return outcome
+        return apply_event(self, event)
 
     def step(self) -> None:
         """Let the physics settle for dt [s] in fixed substeps; then tell falls from puts."""
@@ -234,7 +222,7 @@ class BlocksWorld:
             g = self.holder(name)
             if g is None:
                 box = b.box
-                blocks.append(BlockState(name, box.x, box.y, _deg(box.angle), b.width, b.height))
+                blocks.append(BlockState(name, box.x, box.y, deg(box.angle), b.width, b.height))
             else:
                 y = hands[g.agent].y - b.height / 2
                 blocks.append(BlockState(name, g.x, y, 0.0, b.width, b.height, g.agent))
@@ -243,16 +231,8 @@ class BlocksWorld:
                               {a: dict(g.counters) for a, g in self.grippers.items()},
                               tuple(self._events))
 
-    def snapshot_dict(self) -> dict[str, Any]:
-        """``snapshot()`` as plain data (the World protocol, world/domain.py)."""
-        return self.snapshot().to_dict()
-
 
 def _size(config: BlocksConfig, name: str) -> tuple[float, float]:
     spec = config.block(name)
     return spec.width, spec.height
 
-
-def _deg(rad: float) -> float:
-    deg = math.fmod(math.degrees(rad), 360.0)
-    return deg - 360.0 if deg > 180.0 else deg + 360.0 if deg <= -180.0 else deg

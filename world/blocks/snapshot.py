@@ -7,10 +7,11 @@ time [s]. A block's (x, y) is its centre; a held block is where the gripper hold
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from bus.schema import FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str, brief
+from bus.schema import Int, ListOf, Num, OneOf, Record, Str, brief
+from world.base import COMMON, rebuild, record
 from world.blocks.config import TableSpec
 from world.errors import WorldError
 
@@ -81,29 +82,14 @@ class BlocksSnapshot:
         if not isinstance(d, dict) or d.get("domain") != DOMAIN_NAME:
             raise WorldError(f"BlocksSnapshot.from_dict: expected a dict with domain "
                              f"{DOMAIN_NAME!r}, got {brief(d)}")
-        try:
-            SNAPSHOT.check(d)
-        except FieldError as exc:
-            raise WorldError(f"snapshot: {exc}") from None
-        try:
-            return cls(
-                cycle=int(d["cycle"]), time=float(d["time"]),
-                table=_record(TableSpec, d["table"]), resolution=float(d["resolution"]),
-                blocks=tuple(_record(BlockState, b) for b in d["blocks"]),
-                hands=tuple(_record(HandState, h) for h in d["hands"]),
-                counters={a: dict(c) for a, c in d["counters"].items()},
-                events=tuple(dict(e) for e in d["events"]),
-            )
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:
-            raise WorldError(f"BlocksSnapshot.from_dict: malformed snapshot dict "
-                             f"({exc!r})") from exc
-
-
-def _record(kind: type, d: dict[str, Any]) -> Any:
-    names = {f.name for f in fields(kind)}
-    if set(d) - names:
-        raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
-    return kind(**d)
+        return rebuild(cls, SNAPSHOT, d, lambda: cls(
+            cycle=int(d["cycle"]), time=float(d["time"]),
+            table=record(TableSpec, d["table"]), resolution=float(d["resolution"]),
+            blocks=tuple(record(BlockState, b) for b in d["blocks"]),
+            hands=tuple(record(HandState, h) for h in d["hands"]),
+            counters={a: dict(c) for a, c in d["counters"].items()},
+            events=tuple(dict(e) for e in d["events"]),
+        ))
 
 
 MAX_COORD = 1e4    # [m] a position or size, either way (the table is a few metres wide)
@@ -119,7 +105,7 @@ SNAPSHOT = Record({
                             what="a block")),
     "hands": ListOf(Record({"agent": Str(), "hand": Str(), "x": _POS, "y": _POS},
                            {"holding": Str()}, what="a hand")),
-    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)),
+    **COMMON,
 }, open=True, what="a blocks snapshot")
 """The fields of `BlocksSnapshot.to_dict` as perception relies on them (positions within
 MAX_COORD, so its arithmetic stays finite); other top-level keys are let through."""

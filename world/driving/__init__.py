@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from world.domain import Domain
+from world.driving import view
 from world.errors import ConfigError
 from world.pictures import is_animation
 
@@ -96,4 +97,6 @@ def restore(blob: bytes):
 
 DOMAIN = Domain("driving", "urban driving (seed 000): a city, traffic, pedestrians, packages",
                 create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ("deliveries",),
-                restore=restore, actions=ACTIONS, check_event=check_event)
+                restore=restore, actions=ACTIONS, check_event=check_event,
+                static_keys=("config",), scene=view.scene,
+                plot=(view.PLOT_TITLE, view.plot_panel))

@@ -156,8 +156,18 @@ def load_world_config(d: dict | None) -> WorldConfig:
     """Read the `[world]` table (a dict, as tomllib gives it); raise ConfigError naming the key."""
     d = dict(d or {})
     unknown = set(d) - _KNOWN
-    if unknown:
-        raise ConfigError(f"[world] unknown keys {sorted(unknown)}; known: {sorted(_KNOWN)}")
+    if not unknown:
+        return _read_known(d)
+    first = f"[world] unknown keys {sorted(unknown)}; known: {sorted(_KNOWN)}"
+    try:   # the rest is read too, so a check names its errors as well (issue 31, N14)
+        _read_known({k: v for k, v in d.items() if k in _KNOWN})
+    except ConfigError as exc:
+        raise ConfigError(f"{first}\n{exc}") from None
+    raise ConfigError(first)
+
+
+def _read_known(d: dict) -> WorldConfig:
+    """The table read, its keys all known."""
     ns, ew = _grid(d)
     values: dict[str, Any] = {k: _number(d, k, lo, hi, float)
                               for k, (lo, hi) in _FLOATS.items() if k in d}

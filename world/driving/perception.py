@@ -13,15 +13,13 @@ import math
 from typing import Any
 
 from world.angles import wrap
+from world.base import r3
 from world.driving.city import LINES, Building, City, Segment, build_city
 from world.driving.navigation import aligned_segment, current_edge, edge_end, guide, target_edge
 from world.driving.snapshot import CarState, WorldSnapshot
 
 Percept = list[Any]
 
-
-def _r(value: float) -> float:
-    return round(float(value), 3) + 0.0   # + 0.0 turns -0.0 into 0.0
 
 
 def polar(me: CarState, x: float, y: float) -> tuple[float, float]:
@@ -47,10 +45,10 @@ def _self(city: City, snap: WorldSnapshot, me: CarState,
             street = city.segment(where).street
         else:
             street = aligned[0].street if aligned else city.intersection(where).ew
-    return ["self", me.id, "speed", _r(me.speed), "heading", _r(wrap(me.heading)),
-            "wheel-angle", _r(me.wheel), "throttle", _r(me.throttle),
-            "limit", _r(snap.config.speed_limit), "breakthrottle", _r(me.brake),
-            "segment", where, "street", street, "x", _r(me.x), "y", _r(me.y)], street
+    return ["self", me.id, "speed", r3(me.speed), "heading", r3(wrap(me.heading)),
+            "wheel-angle", r3(me.wheel), "throttle", r3(me.throttle),
+            "limit", r3(snap.config.speed_limit), "breakthrottle", r3(me.brake),
+            "segment", where, "street", street, "x", r3(me.x), "y", r3(me.y)], street
 
 
 def _lane_lines(me: CarState, seg: Segment) -> list[Percept]:
@@ -67,8 +65,8 @@ def _lane_lines(me: CarState, seg: Segment) -> list[Percept]:
     out = []
     for name, color, offset in LINES:
         toward_left = (offset - car_lat) * flip
-        out.append(["lane-line", f"{seg.id}-{name}", "color", color, "dist", _r(-toward_left),
-                    "angle", _r(rel), "segment", seg.id])
+        out.append(["lane-line", f"{seg.id}-{name}", "color", color, "dist", r3(-toward_left),
+                    "angle", r3(rel), "segment", seg.id])
     return out
 
 
@@ -84,7 +82,7 @@ def _buildings(city: City, me: CarState, reach: float) -> list[Percept]:
         (d1, a1), (d2, a2) = corners[0], corners[1]
         if d1 <= reach:
             out.append(["building", b.id, "address", b.address, "street", b.street,
-                        "c1angle", _r(a1), "c1dist", _r(d1), "c2angle", _r(a2), "c2dist", _r(d2)])
+                        "c1angle", r3(a1), "c1dist", r3(d1), "c2angle", r3(a2), "c2dist", r3(d2)])
     return out
 
 
@@ -103,8 +101,8 @@ def _packages(city: City, snap: WorldSnapshot, me: CarState) -> list[Percept]:
             g = guide(city, seg, d, seg.local(me.x, me.y)[0], b, blocked)
             turn, turn_dist = g.turn, g.dist
         out.append(["package", p.id, "address", p.address, "street", p.street,
-                    "delivered", "T" if p.delivered else "NIL", "dist", _r(dist),
-                    "angle", _r(angle), "next-turn", turn, "turn-dist", _r(turn_dist),
+                    "delivered", "T" if p.delivered else "NIL", "dist", r3(dist),
+                    "angle", r3(angle), "next-turn", turn, "turn-dist", r3(turn_dist),
                     *_address_lane(city, b)])
     return out
 
@@ -116,9 +114,9 @@ def _address_lane(city: City, b: Building) -> list:
     seg_id, d = target_edge(b)
     seg = city.segment(seg_id)
     entry = city.intersection(edge_end(seg, -d))
-    return ["x", _r(b.curb[0]), "y", _r(b.curb[1]), "segment", seg_id,
-            "heading", _r(wrap(seg.heading if d > 0 else seg.heading + 180.0)),
-            "entry", entry.id, "entry-x", _r(entry.x), "entry-y", _r(entry.y)]
+    return ["x", r3(b.curb[0]), "y", r3(b.curb[1]), "segment", seg_id,
+            "heading", r3(wrap(seg.heading if d > 0 else seg.heading + 180.0)),
+            "entry", entry.id, "entry-x", r3(entry.x), "entry-y", r3(entry.y)]
 
 
 def perceive(snap: WorldSnapshot, agent: str) -> list[Percept]:
@@ -134,26 +132,26 @@ def perceive(snap: WorldSnapshot, agent: str) -> list[Percept]:
     out: list[Percept] = [["street", name] for name in streets]
     out.append(self_percept)
     blocked = set(snap.blocked)
-    out += [["segment", s.id, "street", s.street, "dist", _r(d),
+    out += [["segment", s.id, "street", s.street, "dist", r3(d),
              "blocked", "T" if s.id in blocked else "NIL", "from", s.start, "to", s.end,
-             "heading", _r(s.heading), "length", _r(s.length)] for s, d in segs]
+             "heading", r3(s.heading), "length", r3(s.length)] for s, d in segs]
     for n in city.intersections:
         dist, angle = polar(me, n.x, n.y)
         if dist <= reach:
-            out.append(["intersection", n.id, "street", n.ew, "cross", n.ns, "dist", _r(dist),
-                        "angle", _r(angle), "x", _r(n.x), "y", _r(n.y)])
+            out.append(["intersection", n.id, "street", n.ew, "cross", n.ns, "dist", r3(dist),
+                        "angle", r3(angle), "x", r3(n.x), "y", r3(n.y)])
     if aligned is not None:
         out += _lane_lines(me, aligned[0])
     out += _buildings(city, me, reach)
     for p in snap.pedestrians:
         dist, angle = polar(me, p.x, p.y)
         if dist <= reach:
-            out.append(["man", p.id, "angle", _r(angle), "dist", _r(dist)])
+            out.append(["man", p.id, "angle", r3(angle), "dist", r3(dist)])
     for c in snap.cars:
         if c.id != me.id:
             dist, angle = polar(me, c.x, c.y)
             if dist <= reach:
-                out.append(["car", c.id, "angle", _r(angle), "dist", _r(dist),
-                            "speed", _r(c.speed)])
+                out.append(["car", c.id, "angle", r3(angle), "dist", r3(dist),
+                            "speed", r3(c.speed)])
     out += _packages(city, snap, me)
     return out

@@ -9,7 +9,6 @@ chance, so one config and seed give the same run, step for step.
 
 from __future__ import annotations
 
-import logging
 import math
 import pickle
 import random
@@ -18,6 +17,7 @@ from typing import Any
 
 import pymunk
 
+from world.base import BaseWorld, deg
 from world.driving.actors import (
     Pedestrian,
     Traffic,
@@ -44,12 +44,11 @@ from world.driving.vehicle import (
 )
 from world.errors import WorldError
 
-log = logging.getLogger(__name__)
-
 AGENT_BIT, TRAFFIC_BIT, PED_BIT = 1, 2, 4
 CT_AGENT, CT_TRAFFIC, CT_PED = 1, 2, 3
 PED_RADIUS = 0.35   # [m]
 HIT_SPEED = 0.3    # [m/s] a car slower than this does not hit a walker who bumps into it
+CITY_EDGE = 20.0   # [m] beyond the outer streets: an agent's car stops there (issue 31, N18)
 
 
 @dataclass
@@ -73,7 +72,7 @@ def _body(space: pymunk.Space, shape_of: Any, ctype: int, category: int, mask: i
     return body
 
 
-class Simulation:
+class Simulation(BaseWorld):
     """One city, its traffic and pedestrians, and one car per agent id."""
 
     def __init__(self, config: WorldConfig, seed: int, agents: list[str]) -> None:
@@ -172,32 +171,23 @@ class Simulation:
         return pts + [(t.id, t.x, t.y, t.heading) for t in self.traffic]
 
     # -- the contract ---------------------------------------------------------------------------
-    def apply_actions(self, agent: str, actions: list[list[Any]]) -> list[dict[str, Any]]:
+    def actors(self) -> dict[str, AgentCar]:
+        """Each agent's car (world/base.py: the guards of apply_actions)."""
+        return self.cars
+
+    def act(self, actor: AgentCar, actions: Any) -> list[dict[str, Any]]:
         """Apply an agent's actions of this cycle in order (later ones win); one outcome each."""
-        if not isinstance(actions, list | tuple):
-            return [{"action": [repr(actions)], "status": "failed",
-                     "reason": f"expected a list of actions, got {actions!r:.80}"}]
-        car = self.cars.get(agent)
-        if car is None:
-            reason = f"unknown agent {agent!r}; agents: {sorted(self.cars)}"
-            return [{"action": list(a) if isinstance(a, list | tuple) else [repr(a)],
-                     "status": "failed", "reason": reason} for a in actions]
-        return [apply_action(car.controls, a) for a in actions]
+        return [apply_action(actor.controls, a) for a in actions]
 
     def safe_actions(self, agent: str) -> list[list[Any]]:
         """What a car gets when its agent's actions did not arrive: full brake, wheel held
         (the car stops on its current arc instead of swerving) until the agent is back."""
         return [["*brake", 100]]
 
-    def inject(self, event: dict[str, Any]) -> dict[str, Any]:
+    def apply_event(self, event: dict[str, Any]) -> dict[str, Any]:
         """Apply a scenario event (see world/injection.py); returns {"event", "status", "reason"}.
-        Never raises on a bad event."""
-        outcome = apply_injection(self, event)
-        if outcome["status"] == "done":
-            self._incoming.append({"kind": "injected", "cycle": self.cycle, "event": dict(event)})
-        else:
-            log.info("cycle %d: %s", self.cycle, outcome["reason"])
-        return outcome
+        Never raises on a bad event (world/base.py reports and logs it)."""
+        return apply_injection(self, event)
 
     def step(self) -> None:
         """Advance the world by one fixed dt [s]."""
@@ -223,6 +213,7 @@ class Simulation:
         self.cycle += 1
         self._handle_contacts()
         for car in self.cars.values():
+            self._keep_in_city(car)
             self._check_laws(car)
         self._events, self._incoming = self._incoming, []
 
@@ -252,6 +243,17 @@ class Simulation:
                 for t in self.traffic:
                     if t.id in other:
                         t.speed = 0.0
+
+    def _keep_in_city(self, car: AgentCar) -> None:
+        """Stop a car that drives more than CITY_EDGE [m] past the outer streets at that
+        distance: it left the map, and the view and its percepts lost it (issue 31, N18)."""
+        width, height = self.city.size
+        x, y = car.body.position
+        kept = (min(max(x, -CITY_EDGE), width + CITY_EDGE),
+                min(max(y, -CITY_EDGE), height + CITY_EDGE))
+        if kept != (x, y):
+            car.body.position, car.body.velocity, car.speed = kept, (0.0, 0.0), 0.0
+            self.space.reindex_shapes_for_body(car.body)
 
     def _count(self, agent: str, counter: str, kind: str, **extra: Any) -> None:
         car = self.cars[agent]
@@ -283,7 +285,7 @@ class Simulation:
     def snapshot(self) -> WorldSnapshot:
         """The frozen observable state of the current cycle (events: those of the last step)."""
         cars = [CarState(c.id, "agent", float(c.body.position.x), float(c.body.position.y),
-                         _deg(c.body.angle), c.speed, c.controls.wheel, c.controls.throttle,
+                         deg(c.body.angle), c.speed, c.controls.wheel, c.controls.throttle,
                          c.controls.brake) for c in self.cars.values()]
         cars += [CarState(t.id, "traffic", t.x, t.y, t.heading, t.speed) for t in self.traffic]
         peds = tuple(PedState(p.id, p.x, p.y, p.heading, p.speed, p.mode) for p in self.walkers)
@@ -292,10 +294,6 @@ class Simulation:
                              {a: dict(c.counters) for a, c in self.cars.items()},
                              tuple(self._events), tuple(sorted(self.blocked)))
         return snap
-
-    def snapshot_dict(self) -> dict[str, Any]:
-        """``snapshot()`` as plain data (the World protocol, world/domain.py)."""
-        return self.snapshot().to_dict()
 
     # -- restart (world/domain.py, Restartable) -------------------------------------------------
     def checkpoint(self) -> bytes:
@@ -315,11 +313,3 @@ def restore(blob: bytes) -> Simulation:
         raise WorldError(f"restore: expected a driving Simulation, got {type(sim).__name__}")
     return sim
 
-
-def _deg(rad: float) -> float:
-    deg = math.fmod(math.degrees(rad), 360.0)
-    if deg > 180.0:
-        deg -= 360.0
-    elif deg <= -180.0:
-        deg += 360.0
-    return deg

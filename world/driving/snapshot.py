@@ -8,29 +8,19 @@ pedals [%], time [s].
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
-from functools import cache
+from dataclasses import dataclass, field
 from typing import Any
 
-from bus.schema import Bool, FieldError, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Str
+from bus.schema import Bool, Int, ListOf, Num, OneOf, Record, Str
+from world.base import COMMON, config_reader, rebuild, record
 from world.driving.config import WorldConfig, load_world_config
 from world.errors import WorldError
-from world.parsed import parsed_by_value
 
 COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossings",
             "speeding_cycles", "deliveries")
 
 
-def _checked_config(d: Any) -> WorldConfig:
-    """The config a snapshot carries: plain data, read by load_world_config (ConfigError)."""
-    try:
-        _CONFIG_DATA.check(d)
-    except FieldError as exc:
-        raise WorldError(f"snapshot: config: {exc}") from None
-    return load_world_config(d)
-
-
-_config = parsed_by_value(_checked_config)  # every snapshot of a run carries the same config
+_config = config_reader(load_world_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class CarState:
@@ -93,7 +83,7 @@ class WorldSnapshot:
             "domain": "driving", "cycle": self.cycle, "time": self.time,
             "config": self.config.to_dict(),
             "cars": [dict(vars(c)) for c in self.cars],  # flat records of atoms: a copy is
-            "pedestrians": [dict(vars(p)) for p in self.pedestrians],  # asdict, 10x faster
+            "pedestrians": [dict(vars(p)) for p in self.pedestrians],  # asdict, far cheaper
             "packages": [dict(vars(p)) for p in self.packages],
             "counters": {a: dict(c) for a, c in self.counters.items()},
             "events": [dict(e) for e in self.events],
@@ -104,40 +94,20 @@ class WorldSnapshot:
     def from_dict(cls, d: dict[str, Any]) -> WorldSnapshot:
         """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong
         (the field, checked against SNAPSHOT, or the config's key)."""
-        try:
-            SNAPSHOT.check(d)
-        except FieldError as exc:
-            raise WorldError(f"snapshot: {exc}") from None
-        try:
-            return cls(
-                cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
-                cars=tuple(_record(CarState, c) for c in d["cars"]),
-                pedestrians=tuple(_record(PedState, p) for p in d["pedestrians"]),
-                packages=tuple(_record(PackageState, p) for p in d["packages"]),
-                counters={a: dict(c) for a, c in d["counters"].items()},
-                events=tuple(dict(e) for e in d["events"]),
-                blocked=tuple(d["blocked"]),
-            )
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:
-            raise WorldError(f"WorldSnapshot.from_dict: malformed snapshot dict ({exc!r})") from exc
-
-
-@cache
-def _names(kind: type) -> frozenset[str]:
-    return frozenset(f.name for f in fields(kind))
-
-
-def _record(kind: type, d: dict[str, Any]) -> Any:
-    names = _names(kind)
-    if not names.issuperset(d):
-        raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
-    return kind(**d)
+        return rebuild(cls, SNAPSHOT, d, lambda: cls(
+            cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
+            cars=tuple(record(CarState, c) for c in d["cars"]),
+            pedestrians=tuple(record(PedState, p) for p in d["pedestrians"]),
+            packages=tuple(record(PackageState, p) for p in d["packages"]),
+            counters={a: dict(c) for a, c in d["counters"].items()},
+            events=tuple(dict(e) for e in d["events"]),
+            blocked=tuple(d["blocked"]),
+        ))
 
 
 MAX_COORD = 1e6    # [m] a position's coordinate, either way (the city is a few km wide)
 MAX_RATE = 1e4     # a speed [m/s], angle [deg] or pedal [%], either way
 _POS, _RATE = Num(-MAX_COORD, MAX_COORD), Num(-MAX_RATE, MAX_RATE)
-_CONFIG_DATA = Plain(16)
 SNAPSHOT = Record({
     "cycle": Int(), "time": Num(), "config": Record({}, open=True),
     "cars": ListOf(Record({"id": Str(), "kind": Str(), "x": _POS, "y": _POS,
@@ -147,7 +117,7 @@ SNAPSHOT = Record({
                                   "speed": _RATE, "mode": Str()}, what="a pedestrian")),
     "packages": ListOf(Record({"id": Str(), "address": Int(), "street": Str(),
                                "owner": Str()}, {"delivered": Bool()}, what="a package")),
-    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)), "blocked": ListOf(Str()),
+    **COMMON, "blocked": ListOf(Str()),
 }, {"domain": OneOf(("driving",))}, open=True, what="a driving snapshot")
 """The fields of `WorldSnapshot.to_dict` as perception relies on them (its config, plain data,
 is read by load_world_config, which names a bad key, once per distinct config); other

@@ -25,6 +25,7 @@ from typing import Any
 
 from world.domain import Domain
 from world.errors import ConfigError
+from world.office import view
 from world.pictures import is_animation
 
 VIOLATIONS = ("bumps",)
@@ -93,4 +94,6 @@ def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = 
 DOMAIN = Domain("office", "office delivery (seed 003): rooms, corridors, doors, people, mail, "
                 "faxes and coffee, a robot with high-level operations",
                 create, perceive, render, check_config, VIOLATIONS, EVENT_KINDS, ACHIEVEMENTS,
-                actions=ACTIONS, check_event=check_event)
+                actions=ACTIONS, check_event=check_event,
+                static_keys=("config",), scene=None,
+                plot=(view.PLOT_TITLE, view.plot_panel))

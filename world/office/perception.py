@@ -14,6 +14,7 @@ import math
 from functools import lru_cache
 from typing import Any
 
+from world.base import r3
 from world.office.config import OfficeConfig
 from world.office.floor import build_floor
 from world.office.routes import Obstacle, distances_from_node, distances_from_point
@@ -23,9 +24,6 @@ Percept = list[Any]
 ARGS = {"goto": ("target",), "observe": ("target",), "acquire": ("item", "from"),
         "deliver": ("item", "to")}
 
-
-def _r(value: float) -> float:
-    return round(float(value), 3) + 0.0
 
 
 def _tf(flag: bool) -> str:
@@ -53,10 +51,10 @@ def room_distances(config: OfficeConfig, shut: frozenset[str],
 
 
 def _self(snap: OfficeSnapshot, me: RobotState) -> list[Percept]:
-    out = [["robot", me.id, "room", me.place, "x", _r(me.x), "y", _r(me.y),
-            "heading", _r(me.heading), "speed", _r(me.speed), "moving", _tf(me.speed > 0.01),
+    out = [["robot", me.id, "room", me.place, "x", r3(me.x), "y", r3(me.y),
+            "heading", r3(me.heading), "speed", r3(me.speed), "moving", _tf(me.speed > 0.01),
             "carrying", len(me.carrying), "capacity", snap.config.capacity,
-            "travelled", _r(me.travelled)]]
+            "travelled", r3(me.travelled)]]
     op = me.operation
     if op:
         names = ARGS.get(op["name"], ())
@@ -72,11 +70,11 @@ def _rooms(snap: OfficeSnapshot, me: RobotState) -> list[Percept]:
     shut, obstacles = _shut(me), _obstacles(me)
     dist = distances_from_point(floor, (me.x, me.y), shut, obstacles)
     out = [["room", r.id, "kind", r.kind, "number", r.number, "door", r.door,
-            "corridor", r.corridor, "dist", _r(dist.get(r.id, -1.0)),
-            "reachable", _tf(r.id in dist), "x", _r(r.spot[0]), "y", _r(r.spot[1])]
+            "corridor", r.corridor, "dist", r3(dist.get(r.id, -1.0)),
+            "reachable", _tf(r.id in dist), "x", r3(r.spot[0]), "y", r3(r.spot[1])]
            for r in floor.rooms]
     if snap.config.distances:
-        out += [["distance", a, "to", b, "dist", _r(d)]
+        out += [["distance", a, "to", b, "dist", r3(d)]
                 for a, b, d in room_distances(snap.config, shut, obstacles)]
     for door in floor.doors:
         state, seen = me.known_doors.get(door.id, ["open", 0])
@@ -84,7 +82,7 @@ def _rooms(snap: OfficeSnapshot, me: RobotState) -> list[Percept]:
         visible = me.place in door.sides and \
             math.dist((me.x, me.y), (door.x, door.y)) <= snap.config.sight
         out.append(["door", door.id, "kind", door.kind, *where, "state", state, "seen", seen,
-                    "visible", _tf(visible), "x", _r(door.x), "y", _r(door.y)])
+                    "visible", _tf(visible), "x", r3(door.x), "y", r3(door.y)])
     return out
 
 
@@ -99,14 +97,14 @@ def _people_and_items(snap: OfficeSnapshot, me: RobotState) -> list[Percept]:
         percept = ["item", i.id, "kind", i.kind, "holder", i.holder, "to", i.to or "NIL",
                    "visible", _tf(i.holder in here)]
         if i.kind == "coffee" and i.holder in here:
-            percept += ["temp", _r(i.temperature),
+            percept += ["temp", r3(i.temperature),
                         "cold", _tf(i.temperature < snap.config.coffee_cold)]
         out.append(percept)
     out += [["observed", room, "result", result, "cycle", cycle]
             for room, (result, cycle) in me.observations.items()]
-    out += [["obstacle", o, "x", _r(x), "y", _r(y), "radius", _r(r)]
+    out += [["obstacle", o, "x", r3(x), "y", r3(y), "radius", r3(r)]
             for o, (x, y, r) in me.known_obstacles.items()]
-    out += [["other-robot", r.id, "room", r.place, "x", _r(r.x), "y", _r(r.y)]
+    out += [["other-robot", r.id, "room", r.place, "x", r3(r.x), "y", r3(r.y)]
             for r in snap.robots if r.id != me.id]
     return out
 

@@ -10,11 +10,11 @@ run, step for step.
 
 from __future__ import annotations
 
-import logging
 import math
 import random
 from typing import Any
 
+from world.base import BaseWorld
 from world.errors import WorldError
 from world.office.config import OfficeConfig
 from world.office.events import apply_injection
@@ -30,7 +30,6 @@ from world.office.snapshot import (
     RobotState,
 )
 
-log = logging.getLogger(__name__)
 COMMON_KINDS = ("kitchen", "lounge")    # where wandering people go
 AGENT_ENDED = ("pre-empted", "stopped")  # failed, but by the agent's choice: not a failure
 
@@ -39,7 +38,7 @@ def _r(value: float, digits: int = 4) -> float:
     return round(float(value), digits) + 0.0
 
 
-class OfficeSim:
+class OfficeSim(BaseWorld):
     """One floor, its people and items, and one robot per agent id."""
 
     def __init__(self, config: OfficeConfig, seed: int, agents: list[str]) -> None:
@@ -106,18 +105,14 @@ class OfficeSim:
             self.physics.place_person(p.id, self.floor.room(p.room).desk(k))
 
     # -- the contract ---------------------------------------------------------------------------
-    def apply_actions(self, agent: str, actions: list[list[Any]]) -> list[dict[str, Any]]:
+    def actors(self) -> dict[str, Robot]:
+        """Each agent's robot (world/base.py: the guards of apply_actions)."""
+        return self.robots
+
+    def act(self, robot: Robot, actions: Any) -> list[dict[str, Any]]:
         """Apply an agent's commands in order. Returns the outcomes of the operations that
         ended since the last call and of those that ended now; a command that starts or
         continues an operation gets its outcome when that operation ends. Never raises."""
-        if not isinstance(actions, list | tuple):
-            return [{"action": [repr(actions)], "status": "failed",
-                     "reason": f"{agent}: expected a list of actions, got {actions!r:.80}"}]
-        robot = self.robots.get(agent)
-        if robot is None:
-            reason = f"unknown agent {agent!r}; agents: {sorted(self.robots)}"
-            return [{"action": list(a) if isinstance(a, list | tuple) else [repr(a)],
-                     "status": "failed", "reason": reason} for a in actions]
         out, robot.finished = robot.finished, []
         for action in actions:
             now = apply_command(self, robot, action)
@@ -131,14 +126,9 @@ class OfficeSim:
         """A robot whose agent is silent stops where it is."""
         return [["*stop"]]
 
-    def inject(self, event: dict[str, Any]) -> dict[str, Any]:
+    def apply_event(self, event: dict[str, Any]) -> dict[str, Any]:
         """Apply a scenario event (world/office/events.py); never raises on a bad event."""
-        result = apply_injection(self, event)
-        if result["status"] == "done":
-            self._incoming.append({"kind": "injected", "cycle": self.cycle, "event": dict(event)})
-        else:
-            log.info("cycle %d: %s", self.cycle, result["reason"])
-        return result
+        return apply_injection(self, event)
 
     def step(self) -> None:
         """Advance the world by one fixed dt [s]."""
@@ -257,8 +247,3 @@ class OfficeSim:
             tuple(people), items, dict(self.doors), dict(sorted(self.occupants.items())),
             tuple(self.obstacles[o] for o in sorted(self.obstacles)),
             {a: dict(self.robots[a].counters) for a in sorted(self.robots)}, tuple(self._events))
-
-    def snapshot_dict(self) -> dict[str, Any]:
-        """``snapshot()`` as plain data (the World protocol, world/domain.py)."""
-        return self.snapshot().to_dict()
-

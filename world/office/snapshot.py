@@ -9,41 +9,30 @@ seen, obstacles it bumped into): what perception reports, as opposed to the trut
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from bus.schema import (
     AnyOf,
     Atom,
-    FieldError,
     Int,
     ListOf,
     MapOf,
     Num,
     OneOf,
-    Plain,
     Record,
     Str,
     TupleOf,
 )
+from world.base import COMMON, config_reader, rebuild, record
 from world.errors import WorldError
 from world.office.config import OfficeConfig, load_office_config
-from world.parsed import parsed_by_value
 
 COUNTERS = ("travel_cm", "deliveries", "acquisitions", "observations", "utterances", "failures",
             "bumps", "reroutes", "false_successes")
 
 
-def _checked_config(d: Any) -> OfficeConfig:
-    """The config a snapshot carries: plain data, read by load_office_config (ConfigError)."""
-    try:
-        Plain(16).check(d)
-    except FieldError as exc:
-        raise WorldError(f"snapshot: config: {exc}") from None
-    return load_office_config(d)
-
-
-_config = parsed_by_value(_checked_config)  # every snapshot of a run carries the same config
+_config = config_reader(load_office_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class RobotState:
@@ -135,37 +124,23 @@ class OfficeSnapshot:
     def from_dict(cls, d: dict[str, Any]) -> OfficeSnapshot:
         """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong
         (the field, checked against SNAPSHOT, or the config's key)."""
-        try:
-            SNAPSHOT.check(d)
-        except FieldError as exc:
-            raise WorldError(f"snapshot: {exc}") from None
-        try:
-            robots = []
-            for r in d["robots"]:
-                r = dict(r)
-                r["carrying"] = tuple(r["carrying"])
-                r["route"] = tuple(tuple(p) for p in r["route"])
-                robots.append(_record(RobotState, r))
-            return cls(
-                cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
-                robots=tuple(robots),
-                people=tuple(_record(PersonState, p) for p in d["people"]),
-                items=tuple(_record(ItemState, i) for i in d["items"]),
-                doors=dict(d["doors"]), occupants=dict(d["occupants"]),
-                obstacles=tuple(_record(ObstacleState, o) for o in d["obstacles"]),
-                counters={a: dict(c) for a, c in d["counters"].items()},
-                events=tuple(dict(e) for e in d["events"]),
-            )
-        except (KeyError, TypeError, AttributeError, ValueError) as exc:
-            raise WorldError(f"OfficeSnapshot.from_dict: malformed snapshot dict ({exc!r})") \
-                from exc
+        return rebuild(cls, SNAPSHOT, d, lambda: cls(
+            cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
+            robots=tuple(_robot(r) for r in d["robots"]),
+            people=tuple(record(PersonState, p) for p in d["people"]),
+            items=tuple(record(ItemState, i) for i in d["items"]),
+            doors=dict(d["doors"]), occupants=dict(d["occupants"]),
+            obstacles=tuple(record(ObstacleState, o) for o in d["obstacles"]),
+            counters={a: dict(c) for a, c in d["counters"].items()},
+            events=tuple(dict(e) for e in d["events"]),
+        ))
 
 
-def _record(kind: type, d: dict[str, Any]) -> Any:
-    names = {f.name for f in fields(kind)}
-    if set(d) - names:
-        raise WorldError(f"{kind.__name__}: unknown keys {sorted(set(d) - names)}")
-    return kind(**d)
+def _robot(d: dict[str, Any]) -> RobotState:
+    r = dict(d)
+    r["carrying"] = tuple(r["carrying"])
+    r["route"] = tuple(tuple(p) for p in r["route"])
+    return record(RobotState, r)
 
 
 MAX_COORD = 1e4    # [m] a position, either way (the floor is some tens of metres)
@@ -190,7 +165,7 @@ SNAPSHOT = Record({
     "doors": MapOf(_ID), "occupants": MapOf(Int()),
     "obstacles": ListOf(Record({"id": _ID, "x": _POS, "y": _POS,
                                 "radius": Num(0.0, MAX_COORD)}, what="an obstacle")),
-    "counters": MapOf(MapOf(Int())), "events": ListOf(Plain(16)),
+    **COMMON,
 }, {"domain": OneOf(("office",))}, open=True, what="an office snapshot")
 """The fields of `OfficeSnapshot.to_dict` as perception relies on them (its config, plain
 data, is read by load_office_config once per distinct config); other top-level keys are let

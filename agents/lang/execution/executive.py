@@ -52,7 +52,9 @@ class ImpasseHandler(Protocol):
     """What the executive asks when a goal has no executable skill path (seed 000, "Problem
     Solving and Skill Learning"). ``begin`` runs once per cycle before the goal walk. A handler
     may also offer ``agenda(finder, walk, entry, conj, current)`` (the conjuncts to pursue, best
-    first) and ``loop(finder, walk, entry, reason)`` (back off after a circle; True if it did)."""
+    first), ``loop(finder, walk, entry, reason)`` (back off after a circle; True if it did) and
+    ``possible(finder, walk, instance)`` (False for a goal's instance that nothing can make
+    true: it is left out of the goal's instances)."""
 
     def begin(self, finder: PathFinder, walk: Walk) -> None: ...
 
@@ -87,9 +89,12 @@ class Executive:
                                     tuple(x for m in self.program.mechanisms
                                           for x in m.intention(state)), len(state.learned)))
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
+        possible = getattr(self.solver, "possible", None)
         for e in goals:
             walk.goal_id = e.id
             insts = instances(e.literal, self.program, pidx)
+            if possible is not None and len(insts) > 1:   # never (on D D) for (on D ?x)
+                insts = [i for i in insts if satisfied(i, store) or possible(self.finder, walk, i)]
             unsat = [i for i in insts if not satisfied(i, store)]
             prev = remembered.get(e.id, ())
             seen.append((e.id, not unsat))

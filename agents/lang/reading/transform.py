@@ -21,7 +21,7 @@ goals with variables); its variables are fixed by percepts (here the `self` perc
 skill, a law variable is named by the skill's own variable for a percept of that type (the
 skill's (self ?self)), or the percept is added to the skill's :percepts. With one percept of
 that type per cycle (a car perceives one `self`), the instance the skill checks is the one
-instance of the goal, and the two notations choose the same actions (bench/tables.py checks
+instance of the goal, and the two notations choose the same actions (bench/driving/tables.py checks
 this on whole runs). ``drop_laws`` and ``replace_law`` make the prioritized programs for fewer
 or other laws (Tables 7 and 8): they change the goal list and the laws' own skills only.
 """

@@ -53,7 +53,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
     free, promote = [], []
     for g in unsat:
         threats = [(h, need, above) for h in unsat if h != g
-                   for need, above in plans[h].items() if _threatens(task, g, need)]
+                   for need, above in plans[h].items() if _threatens(task, g, need, above)]
         if not threats:
             free.append(g)
         elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
@@ -134,12 +134,16 @@ def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
     return []
 
 
-def _threatens(task: Task, g: str, need: Literal) -> bool:
-    """True when achieving the conjunct ``g`` makes ``need`` false."""
+def _threatens(task: Task, g: str, need: Literal, above: str = "") -> bool:
+    """True when achieving the conjunct ``g`` makes ``need`` false, unless it also achieves
+    ``above``, the goal ``need`` is needed for (a program stating its skills' effects:
+    stacking B, held to be put down to clear it, on A clears it as well)."""
     lit = literal(g)
     if need.negated:
         return undone_by(lit, (Literal(need.pred, need.args),))
-    return not need.variables() and undone_by(need, task.effects.undoes(lit))
+    if need.variables() or not undone_by(need, task.effects.undoes(lit)):
+        return False
+    return not (above and undone_by(literal(above), tuple(task.effects.achieved_with(lit))))
 
 
 def one_step(task: Task, g: str) -> bool:

@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 from ..core.terms import Literal
 from ..execution.paths import Found
 from .ordering import agenda
-from .state import CONJUNCTION, SKILL, Alternative, GoalStack, StackEntry
+from .state import CONCEPT, CONJUNCTION, SKILL, Alternative, GoalStack, StackEntry
 from .task import Task, condition, goal_of, literal, pushable
 
 MAX_STACK = 64      # deepest goal stack [entries] (clearing the bottom of a tower of 30
@@ -113,8 +113,11 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
 def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
           ) -> tuple[StackEntry | None, str]:
     """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none;
-    for a conjunction, the first of its agenda (agents/lang/solving/ordering.py)."""
-    if way.kind == CONJUNCTION:   # a conjunct given up after a circle is not pushed again
+    for a conjunction, or the concept definition of the goal itself (at the bottom of the
+    stack), the first of its agenda (agents/lang/solving/ordering.py)."""
+    if way.kind == CONJUNCTION or (way.kind == CONCEPT and len(on_stack) == 1):
+        # a conjunct given up after a circle is not pushed again; a user's goal written as a
+        # concept is ordered as its relations written as (and ...) would be (issue 31)
         items = [c for c in agenda(task, way.conditions) if c not in on_stack
                  and entry.pushes.count(c) < MAX_PUSHES]
         cond = items[0] if items else next((c for c in way.conditions

@@ -30,7 +30,7 @@ from .learner import canonical, learn
 from .ordering import agenda, one_step
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
-from .state import CONJUNCTION, GoalStack, SolverState, StackEntry
+from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry
 from .task import Task, literal
 
 
@@ -56,9 +56,10 @@ class MeansEndsSolver:
             self._tasks[goal_id] = task
         return task
 
-    def agenda(self, finder: PathFinder, walk: Walk, entry: GoalEntry, conj: Conjunction,
-               current: str) -> list[Literal]:
-        """The conjuncts of ``conj`` the executive may pursue now, best first: while the
+    def agenda(self, finder: PathFinder, walk: Walk, entry: GoalEntry,
+               conj: Conjunction | Literal, current: str) -> list[Literal]:
+        """The conjuncts of ``conj`` (or the relations of the concept definition the goal
+        ``conj`` is decomposed through) the executive may pursue now, best first: while the
         agenda still has the one this goal's stack works on (or, without a stack, the one its
         path was for: ``current``), the conjuncts one action achieves now, then that one;
         otherwise the whole agenda (agents/lang/solving/ordering.py). A conjunct the stack
@@ -66,14 +67,18 @@ class MeansEndsSolver:
         undo) is dropped from the stack, to be chosen afresh; a part of a plan it works on
         first (a promoted need) is kept while unsatisfied: the plan still needs it."""
         task = self.task(finder, walk, entry.id)
-        ways = task.alternatives(conj)
+        ways = [w for w in task.alternatives(conj)
+                if isinstance(conj, Conjunction) or w.kind == CONCEPT]
         if not ways:
             return []
         stack = walk.current("solver").stack_of(entry.id)
         mine = stack is not None and stack.entries[0].goal == str(conj)
+        conds = ways[0].conditions
         if mine:
             current = stack.entries[1].goal if len(stack.entries) > 1 else ""
-        conds = ways[0].conditions
+            chosen = stack.entries[0].decision   # the binding the search works on (issue
+            if chosen is not None:               # 31: not a new best one each cycle)
+                conds = chosen.conditions
         items = agenda(task, conds, current)
         if current and current in items:   # in passing: a conjunct one action achieves (a
             # block in the hand to its place); not a part of another's plan, which would
@@ -84,6 +89,12 @@ class MeansEndsSolver:
             self._refocus(walk, stack, current)   # (a part of a plan done first stays: the
             #                                        plan still needs it)
         return [literal(c) for c in items]
+
+    def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
+        """False when no skill or concept can make the goal instance ``inst`` true (issue 31:
+        ``(on D D)`` among ``(on D ?x)``'s; agents/lang/solving/bindings.py): the executive
+        leaves it out of the goal's instances."""
+        return self.task(finder, walk).reach.possible(inst)
 
     def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
         """Back off after a circle (agents/lang/execution/loops.py): the top of the goal's stack
@@ -158,6 +169,10 @@ class MeansEndsSolver:
             stack = GoalStack(entry.id, (StackEntry(insts[0], f"goal {entry.id} in impasse"),),
                               walk.state.cycle)
             events.append(f"{entry.id}: impasse on {insts[0]}: problem solving begins")
+        elif len(stack.entries) > 1 and stack.entries[0].decision is not None and \
+                stack.entries[0].decision.kind == CONCEPT:   # a goal written as a concept:
+            self.agenda(finder, walk, entry, unsatisfied[0], "")   # its relations as (and)'s
+            stack = walk.current("solver").stack_of(entry.id) or stack   # (issue 31)
         prev = walk.state.path_of(entry.id)
 
         def probe(goal: Literal):

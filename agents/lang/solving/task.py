@@ -22,6 +22,7 @@ from ..execution.loops import situation
 from ..execution.paths import btuple, show
 from ..reading.goals import parse_goal
 from ..reading.parser import Parser, Parts
+from .bindings import BindingChoice, cheapest
 from .filters import WayFilters
 from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
@@ -89,7 +90,7 @@ def _writable(value: object) -> bool:
         forms[0].value == value
 
 
-class Task(WayFilters):
+class Task(WayFilters, BindingChoice):
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
     percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
     that hold and come before the one solved for, which no way chained off may undo (seed 000,
@@ -111,6 +112,7 @@ class Task(WayFilters):
         self._holds: dict = {}
         self._alternatives: dict = {}
         self._situation = ""
+        self._reach = None   # (BindingChoice.reach)
 
     @property
     def situation(self) -> str:
@@ -138,6 +140,11 @@ class Task(WayFilters):
             return not c.variables() and test_holds(c, {})
         found = holds(c, {}, self.store)
         return not found if c.negated else found
+
+    def subgoal(self, text: str) -> Literal | None:
+        """The condition ``text`` as a subgoal, or None when it cannot become one."""
+        cond = condition(text)
+        return cond if pushable(cond) else None
 
     def skill(self, number: int) -> Skill:
         return self.program.skills[number]
@@ -226,26 +233,41 @@ class Task(WayFilters):
         b0 = unify_head(clause.head, goal, {})
         if b0 is None or not clause.relations:
             return []
-        ranked = []
-        for b in self._candidates(list(clause.percepts), list(clause.relations), b0):
-            if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
-                    None) is None:
-                continue
-            ground = _ground(clause.relations, b)
-            if ground is not None and self._chainable(ground):
-                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        ranked: list = []
+        for anything in (False, True):   # any object only when the beliefs give no way
+            for b in self._candidates(list(clause.percepts), list(clause.relations), b0,
+                                      anything):
+                if next(solve([*clause.percepts, *clause.tests], b, self.pidx, self.store),
+                        None) is None:
+                    continue
+                ground = _ground(clause.relations, b)
+                if ground is not None and self._chainable(ground) and \
+                        self._possible(ground, f"concept {clause.head.pred}#{clause.index} "
+                                               f"{show(clause.head, b)}"):
+                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+            if ranked:
+                break
         name = f"{clause.head.pred}#{clause.index}"
+        open_ = len(ranked) > 1 and any(set(r[2]) - set(b0) for r in ranked)
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
-                            f"concept {name}") for _, _, b, ground in self._best(ranked)]
+                            f"concept {name}")
+                for _, _, b, ground in (cheapest(self, ranked) if open_ else
+                                        self._best(ranked))]
 
     def _by_conjunction(self, conj: Conjunction) -> list[Alternative]:
-        ranked = []
-        for b in self._candidates([], list(conj.literals), {}):
-            ground = _ground(list(conj.conds), b)
-            if ground is not None and self._chainable(ground):
-                ranked.append((self.rank(ground), binding_key(b), b, ground))
+        ranked: list = []
+        for anything in (False, True):   # any object only when the beliefs give no way
+            for b in self._candidates([], list(conj.literals), {}, anything):
+                ground = _ground(list(conj.conds), b)
+                if ground is not None and self._chainable(ground) and \
+                        not self.impossible(ground):   # (most bindings are: not noted)
+                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+            if ranked:
+                break
         return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
-                            "the conjunction") for _, _, b, ground in self._best(ranked)]
+                            "the conjunction")
+                for _, _, b, ground in (cheapest(self, ranked) if len(ranked) > 1 else
+                                        ranked)]
 
     def _chainable(self, ground: list, applicable: bool = False) -> bool:
         """Something is left to achieve (or, ``applicable``, nothing), and all of it can
@@ -288,31 +310,37 @@ class Task(WayFilters):
                 best = bits
         return best
 
-    def _candidates(self, percepts: list, conds: list, b0: dict) -> list[dict]:
+    def _candidates(self, percepts: list, conds: list, b0: dict, anything: bool = False
+                    ) -> list[dict]:
         """Bindings of the clause's variables: its :percepts matched, then any variable left
-        taken from beliefs matching a positive condition (in written order). A variable the
-        goal does not fix names an object of its own: one the goal or another such variable
-        names is not taken (no (unstack B B) to clear B)."""
+        taken from beliefs matching a positive condition (in written order), and, with
+        ``anything`` (a concept's or a conjunction's relations, when the beliefs give no
+        way), also each variable from the objects perceived (``(on ?x A)`` with nothing on
+        A: each block may be put there; ``Task.impossible`` then leaves out what nothing can
+        make true). A variable the goal does not fix names an object of its own: one the goal
+        or another such variable names is not taken (no (unstack B B) to clear B)."""
         sols = list(islice(solve(percepts, b0, self.pidx, self.store), MAX_BINDINGS)) \
             if percepts else [b0]
         lits = [c for c in conds if isinstance(c, Literal) and not c.negated]
         out: dict = {}
         fixed = set(b0.values())
         for b in sols:
-            for nb in self._bind_rest(lits, b):
+            for nb in self._bind_rest(lits, b, anything):
                 extra = [v for k, v in nb.items() if k not in b0]
                 if len(set(extra)) == len(extra) and not fixed & set(extra):
                     out.setdefault(binding_key(nb), nb)
         return [out[k] for k in sorted(out)][:MAX_BINDINGS]
 
-    def _bind_rest(self, lits: list[Literal], b: dict) -> list[dict]:
+    def _bind_rest(self, lits: list[Literal], b: dict, anything: bool = False) -> list[dict]:
         for i, lit in enumerate(lits):
             if all(v in b for v in lit.variables()):
                 continue
             matches = list(islice(match_fact(lit, b, self.store), MAX_BINDINGS))
             if matches:
-                return [x for m in matches for x in self._bind_rest(lits[i + 1:], m)]
-        return [b]
+                found = [x for m in matches
+                         for x in self._bind_rest(lits[i + 1:], m, anything)]
+                return found + self._any(lits, b) if anything else found
+        return self._any(lits, b) if anything else [b]
 
     @staticmethod
     def _shows(s: Skill, b: dict) -> str:

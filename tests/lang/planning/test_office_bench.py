@@ -1,5 +1,5 @@
-"""bench/office.py's yardstick (bench/office_sets.py): its branch-and-bound optimum is the
-least travel over every order of the visits that keeps each request's order, its arrival
+"""bench/office/office.py's yardstick (bench/office/office_sets.py): its branch-and-bound optimum is
+the least travel over every order of the visits that keeps each request's order, its arrival
 (the robot idles only when no arrived request has a visit left) and the capacity, checked
 here against plain enumeration of every order on random small sets; first-come-first-served
 is such an order; the relaxed optimum (arrivals ignored) is never above it."""
@@ -11,7 +11,7 @@ from itertools import permutations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bench.office_sets import (
+from bench.office.office_sets import (
     CONFIG,
     CYCLES_PER_M,
     PEOPLE,

@@ -23,7 +23,16 @@ from agents.lang.planning.monitor import Env
 from agents.lang.planning.opportunity import opportunity
 from agents.lang.planning.state import Task
 from agents.lang.solving.task import literal
-from bench.office_sets import PEOPLE, ROOMS, Request, RequestSet, fcfs, measure, metric, run_set
+from bench.office.office_sets import (
+    PEOPLE,
+    ROOMS,
+    Request,
+    RequestSet,
+    fcfs,
+    measure,
+    metric,
+    run_set,
+)
 
 from .office_runs import run
 from .toy import TOY, percepts

@@ -174,9 +174,10 @@ function drawBlocks(canvas, map, frame, focus) {
 const DRAWERS = { driving: drawDriving, blocks: drawBlocks };
 
 function drawWorld(canvas, img, map, frame, focus, named = new Set()) {
-  // a domain the page knows is drawn here; any other is the domain's own PNG (server-side).
+  // a domain whose map is "drawn" (its Domain has a scene hook, tools/view/scene.py) and that
+  // the page has a drawer for is drawn here; any other is the domain's own PNG (server-side).
   // `named`: ids of the objects the beliefs panel names, marked on the map
-  const draw = map && DRAWERS[map.domain];
+  const draw = map && map.drawn && DRAWERS[map.domain];
   canvas.hidden = !draw;
   img.hidden = !!draw;
   if (draw) draw(canvas, map, frame, focus, named);
