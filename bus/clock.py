@@ -34,7 +34,8 @@ from collections.abc import Callable, Mapping, Sequence
 
 from bus import keys
 from bus.cycle import CycleBook, CycleMode, CycleReport, DeadPolicy, culprit
-from bus.errors import BusError, ClockStopped, NotReady
+from bus.errors import BusError, ClockStopped, NotReady, PaceLost
+from bus.load import scaled
 from bus.messages import ProcessStats, WorldState
 from bus.node import Node
 
@@ -45,10 +46,13 @@ _POLL_S = 0.02  # how often liveliness is rechecked while waiting for actions [s
 class CycleInterrupted(BusError):
     """The clock's stop event was set while it waited (a signal asked the world to stop)."""
 
-    def __init__(self, cycle: int, waiting: Sequence[str]) -> None:
+    def __init__(self, cycle: int, waiting: Sequence[str], stalled: Sequence[str] = (),
+                 waited_s: float = 0.0) -> None:
         what = f"waiting for {', '.join(sorted(waiting))}" if waiting else "waiting"
         super().__init__(f"cycle {cycle}: interrupted while {what}")
         self.cycle = cycle
+        self.stalled = tuple(stalled)  # a stall in progress at the stop: the stages it waited
+        self.waited_s = waited_s       # on, and how long [s] (drill d2b: it went unlisted)
 
 
 class Clock:
@@ -87,6 +91,7 @@ class Clock:
         self._incarnations = dict(node.presence.incarnations())
         self._next_start: float | None = None
         self._stuck: dict[str, int] = {}  # keep_pace: process -> the cycle it was given up at
+        self._first = True  # run_cycle: the first cycle is a handshake (see there)
 
     def wait_ready(self, expected: set[str], timeout: float) -> None:
         """Start-up barrier: wait until every process in `expected` holds its token and
@@ -101,6 +106,7 @@ class Clock:
                                                       max(0.0, deadline - time.monotonic())):
             raise NotReady(set(), timeout, f"no subscriber on {self._state_key}")
         self._incarnations = dict(self.node.presence.incarnations())
+        self._first = True   # the next cycle is the first since every stage announced itself
 
     def run_cycle(self, cycle: int, state_msg: WorldState,
                   meanwhile: Callable[[], object] | None = None) -> CycleReport:
@@ -116,7 +122,11 @@ class Clock:
         self.node.publish(self._state_key, state_msg)
         if meanwhile is not None:
             meanwhile()
-        run = _CycleRun(self, cycle, state_msg, start)
+        # the first cycle after start-up waits for every stage as lockstep does, sending its
+        # state again until each answers: a token is up before its subscriptions reach every
+        # publisher, and a realtime run lost cycle 0 to that race (trial 2026-12-04 N3)
+        run = _CycleRun(self, cycle, state_msg, start, handshake=self._first)
+        self._first = False
         run.wait()
         report = run.report(time.monotonic())
         if report.late or report.dead:
@@ -127,28 +137,54 @@ class Clock:
         return report
 
     def keep_pace(self, process: str, cycle: int, stuck_s: float = 10.0,
-                  resend: WorldState | None = None) -> float:
+                  resend: WorldState | None = None, required_s: float | None = None
+                  ) -> float:
         """Wait until `process` (not a stage: the launch's recorder) has reported, in its
         ProcessStats, cycle `cycle` or a later one (-1: it has begun); returns the seconds
-        waited [s]. No wait while its token is absent (no recorder, or it died), nor once it
-        has made no progress for `stuck_s` [s]; a stop interrupts it (CycleInterrupted).
+        waited [s]. A stop interrupts it (CycleInterrupted).
+
+        Not `required_s` (None): no wait while its token is absent (no recorder, or it
+        died), nor once it has made no progress for `stuck_s` [s] (until it moves again).
+        `required_s` [s]: the run must not outrun it (a launch that records: drills
+        2026-12-04 D9, a world that ran on while its record lost 64,734 cycles): it is
+        waited for as a stage is, while it is absent or not moving, and when it has been
+        absent or still for `required_s` (stretched by the machine's load, bus/load.py)
+        PaceLost is raised: the run stops rather than run cycles it would not record.
+
         `resend`: the state to publish again every `resend_s` while it waits (a state it
         may have missed: the stages answer it from their caches). Lockstep only: what a run
         sends while a subscriber lags waits in the senders' queues, and a process that stops
         drops what its queue still holds (tests/e2e/test_record_drain.py)."""
         self._note_stats()
         seen = self.last_seen.get(process, -2)
-        if seen >= cycle or self._stuck.get(process) == seen \
-                or process not in self.node.presence.snapshot():
+        present = process in self.node.presence.snapshot()
+        if seen >= cycle or required_s is None and (self._stuck.get(process) == seen
+                                                    or not present):
             return 0.0  # there, stuck at the cycle it was given up at (until it moves), gone
         start = moved = sent = time.monotonic()
+        gone_since = None if present else start
         while self.last_seen.get(process, -2) < cycle:
             if self.stop.is_set():
                 raise CycleInterrupted(cycle, {process})
-            if process not in self.node.presence.snapshot():
-                break
             now = time.monotonic()
-            if now - moved > stuck_s:
+            if process not in self.node.presence.snapshot():
+                if required_s is None:
+                    break
+                if gone_since is None:
+                    log.warning("%s left the bus at cycle %d: the world waits for it", process,
+                                cycle)
+                    gone_since = now
+                if now - gone_since > scaled(required_s):
+                    raise PaceLost(f"{process} left the bus at cycle {cycle} and was not back "
+                                   f"within {now - gone_since:.0f} s: no cycle runs that it "
+                                   f"would not record")
+            elif gone_since is not None:
+                gone_since, moved = None, now   # back: its time to move starts again
+            if required_s is not None and gone_since is None \
+                    and now - moved > scaled(required_s):
+                raise PaceLost(f"{process} has not moved from cycle {seen} for "
+                               f"{now - moved:.0f} s: no cycle runs that it would not record")
+            if required_s is None and now - moved > stuck_s:
                 log.warning("%s has not moved from cycle %d for %.0f s: not waited for",
                             process, seen, stuck_s)
                 self._stuck[process] = seen
@@ -189,7 +225,8 @@ class Clock:
 class _CycleRun:
     """The waiting loop of one cycle (kept apart so Clock stays small)."""
 
-    def __init__(self, clock: Clock, cycle: int, state: WorldState, start: float) -> None:
+    def __init__(self, clock: Clock, cycle: int, state: WorldState, start: float,
+                 handshake: bool = False) -> None:
         self.c, self.cycle, self.state = clock, cycle, state
         self.book = CycleBook(cycle, frozenset(clock.pipelines))
         self.waiting = set(clock.pipelines)
@@ -202,12 +239,16 @@ class _CycleRun:
         self.stopped = False
         self.start = start
         self.sent = start  # when state t was last (re)published
-        self.end = start + clock.period_s if clock.mode is CycleMode.REALTIME else None
+        self.end = start + clock.period_s \
+            if clock.mode is CycleMode.REALTIME and not handshake else None
 
     def wait(self) -> None:
         while self.waiting:
             if self.c.stop.is_set():
-                raise CycleInterrupted(self.cycle, self.waiting)
+                waited = time.monotonic() - self.start
+                if not self.stalled and self.end is None and waited > self.c.stall_s:
+                    self._note_stall(self.c.node.presence.snapshot())
+                raise CycleInterrupted(self.cycle, self.waiting, self.stalled, waited)
             self._check(time.monotonic())
             if self.stopped or not self.waiting:
                 return

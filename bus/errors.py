@@ -77,5 +77,11 @@ class ClockStopped(BusError):
         self.report = report
 
 
+class PaceLost(BusError):
+    """A lockstep run's recorder, which the world keeps pace with, left the bus or stopped
+    moving and was not back within its limit: the world stops rather than run cycles that
+    nothing records (bus/clock.py Clock.keep_pace)."""
+
+
 class RouterError(BusError):
     """The router subprocess did not start or did not report its endpoint."""

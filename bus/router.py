@@ -27,6 +27,7 @@ import zenoh
 
 from bus.config import BusConfig, Mode
 from bus.errors import BusError, RouterError
+from bus.load import overloaded, scaled
 from bus.stage import stop_on_signals
 
 log = logging.getLogger(__name__)
@@ -138,12 +139,19 @@ def router_argv(listen: str, security: str = "", run: str = "") -> tuple[str, ..
             *(("--run", run) if run else ()))
 
 
-def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0, security: str = "",
+ROUTER_START_S = 15.0  # [s] for the router to report ready, on a machine that is not busy
+
+
+def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float | None = None,
+                 security: str = "",
                  env: dict[str, str] | None = None, log_file: str | None = None,
                  run: str = "") -> RouterProcess:
     """Start `python -m bus.router` as a subprocess listening on `listen` (port 0: a free
     port) and wait until it reports its endpoints; raises RouterError if it does not.
-    `env`: extra environment; `log_file`: where its log goes (default: this stderr)."""
+    `env`: extra environment; `log_file`: where its log goes (default: this stderr);
+    `timeout` [s]: default ROUTER_START_S stretched by the machine's load (bus/load.py: at
+    load 35-42 on 2 CPUs, launches failed at a fixed 15 s)."""
+    timeout = scaled(ROUTER_START_S) if timeout is None else timeout
     full = dict(os.environ, **(env or {}))
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     full["PYTHONPATH"] = os.pathsep.join(p for p in (root, full.get("PYTHONPATH", "")) if p)
@@ -164,8 +172,8 @@ def spawn_router(listen: str = "tcp/127.0.0.1:0", timeout: float = 15.0, securit
     if not line.startswith(READY_PREFIX):
         proc.kill()
         proc.wait()
-        raise RouterError(f"router on {listen} did not report ready within {timeout:g} s "
-                          f"(exit code {proc.poll()}, got {line!r})")
+        raise RouterError(f"router on {listen} did not report ready within {timeout:.0f} s "
+                          f"(exit code {proc.poll()}, got {line!r}){overloaded(timeout)}")
     eps = tuple(line.split()[1:])
     scheme = listen.split("/", 1)[0] + "/"
     same = [e for e in eps if e.startswith(scheme)]

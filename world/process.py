@@ -44,7 +44,7 @@ from bus.clock import Clock, CycleInterrupted
 from bus.collector import Collector
 from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode
-from bus.errors import BusError, NotReady
+from bus.errors import BusError, NotReady, PaceLost
 from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
 from bus.pending import PendingQueries, serve_later
@@ -62,6 +62,8 @@ STALL_TIMEOUT = 30.0      # [s] lockstep waits this long for a live but silent s
 STALL_REPORT_S = 1.0      # [s] a lockstep cycle waiting longer is recorded as a stall
 RECORD_BACKLOG = 8192     # [messages] see record_window
 HOLD_REPORT_S = 1.0       # [s] a wait for the record longer than this is in health.jsonl
+RECORD_LOST_S = 60.0      # [s] a recorded lockstep run waits this long (times the load) for
+                          # a recorder gone or still, then stops: it never runs on unrecorded
 EXIT_CANNOT_RESUME = 3
 EXIT_NOT_READY = 4
 EXIT_CANNOT_WRITE = 5
@@ -136,10 +138,13 @@ def _off_the_path(rec: Recorder, collector: Collector, t: int, snap: dict[str, A
 
 def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
               mode: str, out: Path, stop: threading.Event, again: bool = False,
-              ready_timeout: float = READY_TIMEOUT) -> bool:
+              ready_timeout: float = READY_TIMEOUT, recorded: bool = False) -> bool:
     """Run cycles up to `cycles` (0: until stopped); returns whether all were run.
     `again`: resume the run recorded in `out` (a restarted world); `ready_timeout` [s]: how
-    long to wait for every stage (longer when some run on other hosts)."""
+    long to wait for every stage (longer when some run on other hosts); `recorded`: the
+    launch records the run, so its recorder is waited for at the start and, in lockstep,
+    kept pace with as a stage would be (Clock.keep_pace, required): the run stops rather
+    than drop cycles from its record (drills 2026-12-04 D9)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     begun = _begin(domain, scenario, seed, out, again)
@@ -155,6 +160,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         log.info("resumed at cycle %d (checkpoint %d, %d cycles replayed)", first,
                  begun.checkpoint, begun.replayed)
     start, reason, unwritable, ended = time.monotonic(), "done", None, ""  # ended: episode
+    lost = False  # the launch's recorder was lost (PaceLost)
     with open_node(cfg, run, "world") as node:
         events_in = node.subscribe(keys.world_events(run))
         asked = serve_later(node, keys.world_events(run))
@@ -168,8 +174,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         state: WorldState | None = None  # the last one published
         collector = Collector()
         try:
-            clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe},
-                             ready_timeout)
+            clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe}
+                             | ({keys.RECORDER} if recorded else set()), ready_timeout)
             rec.event("ready", cycle=first)
             log.info("all stages ready; running cycles %d to %s, %s", first,
                      cycles - 1 if cycles else "unlimited", mode)
@@ -180,7 +186,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 if pace and t > first:  # never more than `pace` cycles ahead of the record,
                     held = clock.keep_pace(  # and its first cycle in it before the next
                         keys.RECORDER, t - 1 - pace if t > first + 1 else -1,
-                        resend=state if t == first + 1 else None)
+                        resend=state if t == first + 1 else None,
+                        required_s=RECORD_LOST_S if recorded else None)
                     if held > HOLD_REPORT_S:
                         rec.event("record-wait", cycle=t, seconds=round(held, 3))
                 w0 = time.perf_counter()
@@ -208,11 +215,19 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     break
         except CycleInterrupted as exc:
             reason = f"stopped by a signal ({exc})"
+            if exc.stalled:   # a stall in progress at the stop is listed as any other
+                rec.event("stalled", cycle=exc.cycle, seconds=round(exc.waited_s, 3),
+                          stalled=list(exc.stalled), at_stop=True)
         except CannotRecord as exc:  # a full disk: no cycle runs that nothing records
             reason, unwritable = f"stopped: {exc}", exc
+        except PaceLost as exc:      # nor one that the launch's recorder would not record
+            reason, lost = f"stopped: {exc}", True
+            log.error("%s", reason)
         collector.close()
         asked.close("the run ended before the event could be applied")
-        completed = rec.cycles >= cycles if cycles and not ended else True  # forever: a stop
+        # a forever run (or an episode that ended) ends by a stop; one whose recorder
+        # was lost did not complete
+        completed = (rec.cycles >= cycles if cycles and not ended else True) and not lost
         rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
              "complete" if completed else "early", reason)
@@ -234,10 +249,12 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
               help="Seconds to wait for every stage to announce itself.")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="A field of the scenario changed for this run (world/overrides.py).")
+@click.option("--recorded", is_flag=True,
+              help="The launch records the run: wait for its recorder and keep pace with it.")
 @bus_options
 def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
          run_mode: str | None, out: str, again: bool, ready_timeout: float,
-         overrides: tuple[str, ...], bus_config: BusConfig) -> None:
+         overrides: tuple[str, ...], recorded: bool, bus_config: BusConfig) -> None:
     """The world process of one run."""
     logging.basicConfig(level=logging.INFO,
                         format="%(asctime)s world %(name)s %(levelname)s %(message)s")
@@ -247,7 +264,8 @@ def main(run: str, scenario_file: str, cycles: int | None, seed: int | None,
         run_world(bus_config, run, scenario,
                   scenario.run.cycles if cycles is None else cycles,
                   scenario.run.seed if seed is None else seed,
-                  run_mode or scenario.run.mode.value, Path(out), stop, again, ready_timeout)
+                  run_mode or scenario.run.mode.value, Path(out), stop, again, ready_timeout,
+                  recorded)
     except CannotResume as exc:
         log.error("cannot resume the run: %s", exc)
         raise SystemExit(EXIT_CANNOT_RESUME) from exc

@@ -27,6 +27,7 @@ from __future__ import annotations
 import logging
 from dataclasses import replace
 from operator import is_
+from pathlib import Path
 from typing import Any
 
 import click
@@ -35,7 +36,7 @@ from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.goal_sync import GoalSync
 from agents.processes.hints import with_hints
 from agents.processes.per_object import PerObject
-from agents.processes.persist import LearnedFile, Saved, StateFile
+from agents.processes.persist import LearnedFile, Saved, StateFile, read_back_learned
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
@@ -128,18 +129,24 @@ class BeliefReader:
 
 def make_executive(program_path: str, log: logging.Logger, state: Any = None,
                    learned: str | None = None, solver: bool = True,
-                   mechanism: str = "means-ends") -> Executive:
+                   mechanism: str = "means-ends", own_learned: str | None = None) -> Executive:
     """The executive of ``program_path``: from ``state`` (read back after a restart) if
-    given, else fresh, starting from the skills in the learned file ``learned``. Raises
-    LangError (a ProgramError naming file:line:col) for a bad program or learned file."""
+    given, else fresh, starting from the skills in its own learned file ``own_learned`` (the
+    one it writes: after a restart whose state file could not be read, those skills are not
+    lost) or else in the learned file ``learned``. Raises LangError (a ProgramError naming
+    file:line:col) for a bad program or ``learned`` file."""
     from agents.lang import Engine, load_program
     from agents.lang.loader import read_text
     from agents.lang.registry import read_learned
 
     program = load_program(program_path)
     engine = Engine(program, solver=mechanism if solver else None)
-    if state is None and learned:
-        state = engine.initial_state(learned=read_learned(program, read_text(learned), learned))
+    if state is None:
+        skills = read_back_learned(program, Path(own_learned), log) if own_learned else None
+        if skills is None and learned:
+            skills = read_learned(program, read_text(learned), learned)
+        if skills is not None:
+            state = engine.initial_state(learned=skills)
     return Executive(engine, log, state)
 
 
@@ -154,7 +161,7 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
     executive = make_executive(program_path, log, saved.state if saved else None, learned,
-                               solver, mechanism)
+                               solver, mechanism, learned_out)
     out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))

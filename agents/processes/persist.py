@@ -7,13 +7,19 @@ The state is written every cycle, so it goes to a file kept open, in one ``pwrit
 call at offset 0 (padded with spaces, which JSON ignores, to the length of the longest version
 so far): a process killed by a signal either made that call or did not, so the file holds one
 whole version (creating a file costs milliseconds here, the write microseconds; this is not
-a guard against power loss). The learned file changes rarely and is replaced by a rename."""
+a guard against power loss). The learned file changes rarely and is replaced by a rename.
+
+A file that cannot be read back (not UTF-8, not JSON, the wrong shape) is never a crash: it is
+set aside, kept under the first free name ``<name>.bad`` or ``<name>.bad-<n>`` (the run's
+summary lists it, tools/records/summary_agents.py), and the executive starts afresh from the
+skills still on disk (``read_back_learned``): a restart never loses a learned skill."""
 
 from __future__ import annotations
 
 import json
 import logging
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -31,6 +37,22 @@ def write_atomically(path: Path, text: str) -> None:
     except OSError:
         tmp.unlink(missing_ok=True)  # a half-written copy would only take room
         raise
+
+
+def set_aside(path: Path) -> Path:
+    """Rename an unreadable ``path`` to the first free ``<name>.bad`` / ``<name>.bad-<n>``
+    (an earlier one is never overwritten) and return the new path."""
+    aside, n = path.with_name(f"{path.name}.bad"), 1
+    while aside.exists():
+        n += 1
+        aside = path.with_name(f"{path.name}.bad-{n}")
+    os.replace(path, aside)
+    return aside
+
+
+def set_aside_files(folder: Path) -> list[Path]:
+    """The files of ``folder`` that were set aside as unreadable (``set_aside``), by name."""
+    return sorted(p for p in folder.glob("*.bad*") if re.search(r"\.bad(-\d+)?$", p.name))
 
 
 @dataclass(frozen=True)
@@ -58,23 +80,29 @@ class StateFile:
         self.unsaved: int | None = None  # the first cycle whose save failed, until one works
 
     def load(self) -> Saved | None:
-        """What was last written, or None (no file yet, or one that cannot be read: then it is
-        kept beside as ``.bad`` and the run starts afresh, logged, never a crash)."""
+        """What was last written, or None (no file yet, or one that cannot be read, whatever
+        its bytes: then it is set aside (``set_aside``) and the run starts afresh, logged,
+        never a crash)."""
         from agents.lang import EngineState, LangError
 
         try:
-            text = self.path.read_text(encoding="utf-8")
+            data = self.path.read_bytes()
         except FileNotFoundError:
             return None
+        except OSError as exc:   # a folder in its place, no permission: set aside below
+            data, problem = b"", exc.strerror or str(exc)
+        else:
+            problem = ""
         try:
-            doc = json.loads(text)
+            if problem:
+                raise ValueError(problem)
+            doc = json.loads(data.decode("utf-8"))   # UnicodeDecodeError is a ValueError
             saved = Saved(int(doc["cycle"]), EngineState.from_dict(doc["state"]),
                           dict(doc["intention"]), list(doc["actions"]))
         except (ValueError, KeyError, TypeError, LangError) as exc:
-            bad = self.path.with_suffix(self.path.suffix + ".bad")
-            os.replace(self.path, bad)
+            bad = set_aside(self.path)
             self.log.error("engine state %s: cannot be read (%s); kept as %s, starting afresh",
-                           self.path, exc, bad)
+                           self.path, str(exc)[:300], bad)
             return None
         state = saved.state
         self.log.info("engine state %s read back (bus cycle %d): %d goal(s), %d goal stack(s), "
@@ -103,6 +131,25 @@ class StateFile:
             return
         self.size = max(self.size, len(data))
         self.unsaved = None
+
+
+def read_back_learned(program: Any, path: Path, log: logging.Logger) -> tuple[str, ...] | None:
+    """The skills of an agent's own learned file ``path`` (the one it writes) as a restart
+    finds it: None when there is none; one that cannot be read is set aside (``set_aside``),
+    logged, and None. ``program`` is the loaded Program the skills extend."""
+    from agents.lang import LangError
+    from agents.lang.loader import read_text
+    from agents.lang.registry import read_learned
+
+    if not path.is_file():
+        return None
+    try:
+        return read_learned(program, read_text(path), str(path))
+    except LangError as exc:
+        bad = set_aside(path)
+        log.error("learned skills %s: cannot be read (%s); kept as %s", path,
+                  str(exc)[:300], bad)
+        return None
 
 
 class LearnedFile:

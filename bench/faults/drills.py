@@ -98,8 +98,11 @@ def drill_router(folder: Path, scenario: Path, ref: Reference, at: int) -> dict[
     if wait_for(lambda: _bus_ok(run.info()), 30.0, 0.05):
         reach = time.time()
     run.wait_cycle(base + 20)
-    os.kill(run.pid("ME.inference"), signal.SIGKILL)
-    back = progress_after(run, run.cycles())
+    try:   # a run that ended while a loaded machine kept the tool waiting has no stage left
+        os.kill(run.pid("ME.inference"), signal.SIGKILL)
+        back = progress_after(run, run.cycles())
+    except (ProcessLookupError, KeyError):
+        back = None
     rc = run.finish()
     s = run.summary()
     return {"drill": "SIGKILL router, then ME.inference", "cycle": base,
@@ -184,9 +187,17 @@ def drill_foreign(folder: Path, scenario: Path) -> dict[str, Any]:
     return {"drill": "stranger on a secured bus", **result}
 
 
-def _print(rows: list[dict[str, Any]]) -> None:
-    for row in rows:
+class _Rows(list):
+    """The drills' rows, each printed when it is added."""
+
+    def append(self, row: dict[str, Any]) -> None:
+        super().append(row)
         click.echo("  " + "  ".join(f"{k}={v}" for k, v in row.items()))
+
+    def __iadd__(self, rows):  # rows += [...]
+        for row in rows:
+            self.append(row)
+        return self
 
 
 ONE_RUN = ("launcher", "foreign", "ctrl-c", "full-disk", "teleo-stop", "slow-record")
@@ -224,36 +235,37 @@ def main(which: str, trials: int, seconds: float, seed: int, scenario: Path,
             return path
 
         ref = Reference("", {}) if which in ONE_RUN else reference(scenario, folder())
-        rows: list[dict[str, Any]] = []
+        click.echo(f"drills on {scenario.name}{' secured' if secure else ''}, "
+                   f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f} (each row as it "
+                   f"comes):")
+        rows = _Rows()   # printed as they come: a drill that crashes loses no earlier row
         for _ in range(trials):
             if which in ("kill", "all"):
-                rows += [drill_signal(folder(), scenario, ref, t, rng.randrange(50, 500),
-                                      signal.SIGKILL) for t in TARGETS]
+                rows += (drill_signal(folder(), scenario, ref, t, rng.randrange(50, 500),
+                                      signal.SIGKILL) for t in TARGETS)
             if which in ("stop", "all"):
-                rows += [drill_signal(folder(), scenario, ref, t, rng.randrange(50, 500),
-                                      signal.SIGSTOP, seconds) for t in TARGETS[:4]]
+                rows += (drill_signal(folder(), scenario, ref, t, rng.randrange(50, 500),
+                                      signal.SIGSTOP, seconds) for t in TARGETS[:4])
             if which in ("router", "all"):
                 rows.append(drill_router(folder(), scenario, ref, rng.randrange(50, 300)))
             if which in ("router-record", "all"):
                 rows.append(drill_router_record(folder(), scenario, ref,
                                                 rng.randrange(50, 500)))
             if which in ("launcher", "all"):
-                rows += [drill_launcher(folder(), scenario, s)
-                         for s in (signal.SIGKILL, signal.SIGHUP)]
+                rows += (drill_launcher(folder(), scenario, s)
+                         for s in (signal.SIGKILL, signal.SIGHUP))
             if which in ("ctrl-c", "all"):
                 rows.append(drill_ctrl_c(folder(), scenario, rng.randrange(50, 300)))
             if which in ("foreign", "all"):
                 rows.append(drill_foreign(folder(), scenario))
             if which in ("full-disk", "all"):
-                rows += [drill_full_disk(folder(), scenario, size, at) for at in (None, fill_at)]
+                rows += (drill_full_disk(folder(), scenario, size, at) for at in (None, fill_at))
             if which in ("slow-record", "all"):
                 rows.append(drill_slow_record(folder(), scenario, quota))
             if which in ("teleo-stop", "all"):
                 rows.append(drill_teleo_stop(folder(), scenario, seconds if which != "all"
                                              else 20.0))
-        click.echo(f"{len(rows)} drill(s) on {scenario.name}{' secured' if secure else ''}, "
-                   f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}:")
-        _print(rows)
+        click.echo(f"{len(rows)} drill(s), load {os.getloadavg()[0]:.1f} at the end")
 
 
 if __name__ == "__main__":

@@ -121,6 +121,33 @@ def test_realtime_defaults_a_stopped_agent_to_the_noop_and_names_the_stage(cfg, 
     assert any(r.clean for r in later)  # it catches up once resumed
 
 
+def test_realtime_waits_at_its_first_cycle_for_a_stage_not_yet_answering(cfg, run_id, stages):
+    """Trial 2026-12-04 N3: the tutorial's realtime run lost cycle 0 to a start-up race (the
+    executive's token was up, its inputs not yet reaching it). The first cycle after start-up
+    waits for every stage, sending its state again; later cycles keep the deadline."""
+    with open_node(cfg, run_id, "world") as node:
+        clock = Clock(node, {AGENT: PIPELINE}, mode=CycleMode.REALTIME, period_s=0.3,
+                      deadline_s=30.0)
+        stages.start_agent()
+        clock.wait_ready(set(PIPELINE), timeout=30)
+        pid = stages.procs["A.executive"].pid
+        os.kill(pid, signal.SIGSTOP)             # up, but not answering when the clock starts
+        waker = threading.Timer(1.5, os.kill, (pid, signal.SIGCONT))
+        waker.start()
+        try:
+            first = clock.run_cycle(0, state(node, 0))
+        finally:
+            waker.join()
+            os.kill(pid, signal.SIGCONT)
+        os.kill(pid, signal.SIGSTOP)
+        try:
+            later = clock.run_cycle(1, state(node, 1))
+        finally:
+            os.kill(pid, signal.SIGCONT)
+    assert first.noop == () and first.actions == {AGENT: (["*pass", 0, 1],)}
+    assert later.late == ("A.executive",) and later.actions == {AGENT: ()}
+
+
 def test_a_stall_is_named_and_any_wait_is_interrupted_by_the_stop_event(cfg, run_id, stages):
     """SIGSTOP inference: a cycle that waits past stall_s names it; setting the stop event
     (a signal to the world) ends the wait at once with CycleInterrupted (drill F6)."""
@@ -147,3 +174,4 @@ def test_a_stall_is_named_and_any_wait_is_interrupted_by_the_stop_event(cfg, run
             os.kill(pid, signal.SIGCONT)
     assert stalled.stalled == ("A.inference",) and stalled.actions == {AGENT: (["*pass", 1, 1],)}
     assert err.value.cycle == 2
+    assert err.value.stalled == ("A.inference",) and err.value.waited_s >= 0.3  # d2b

@@ -17,6 +17,7 @@ from bus_helpers import python
 from bus import keys
 from bus.clock import Clock, CycleInterrupted
 from bus.config import BusConfig
+from bus.errors import PaceLost
 from bus.node import open_node
 from tools.launching.supervisor import wait_until
 
@@ -84,7 +85,7 @@ def pace_in_thread(clock: Clock, cycle: int, **kw: object) -> tuple[threading.Th
     def run() -> None:
         try:
             got.append(clock.keep_pace(keys.RECORDER, cycle, **kw))
-        except CycleInterrupted as exc:
+        except (CycleInterrupted, PaceLost) as exc:
             got.append(exc)
 
     thread = threading.Thread(target=run)
@@ -153,3 +154,35 @@ def test_a_first_cycle_the_recorder_missed_is_sent_again_until_it_has_it(clock,
     recorder.has(-1)
     thread.join(30)
     assert not thread.is_alive() and got[0] >= clock.resend_s
+
+
+def test_a_required_recorder_that_left_stops_the_run_rather_than_lose_its_cycles(
+        clock, cfg, run_id) -> None:
+    """Drills 2026-12-04 D9: the world ran on when the recorder left its view, and the run
+    ended "completed" with 64,734 of 65,712 cycles missing from its record."""
+    rec = Recorder(cfg, run_id)
+    assert clock.node.presence.wait_for(lambda alive: keys.RECORDER in alive, 30)
+    rec.has(3)
+    clock.keep_pace(keys.RECORDER, 3)                  # back once it has cycle 3
+    thread, got = pace_in_thread(clock, 10, required_s=1.0)
+    rec.quit()
+    thread.join(60)
+    assert isinstance(got[0], PaceLost) and "left the bus at cycle 10" in str(got[0])
+
+
+def test_a_required_recorder_that_stopped_moving_holds_the_world_then_stops_it(
+        clock, recorder) -> None:
+    recorder.has(2)
+    clock.keep_pace(keys.RECORDER, 2)
+    thread, got = pace_in_thread(clock, 10, stuck_s=0.1, required_s=1.0)
+    thread.join(0.5)
+    assert thread.is_alive()              # held back past stuck_s: it is required
+    thread.join(60)
+    assert isinstance(got[0], PaceLost) and "has not moved from cycle 2" in str(got[0])
+
+
+def test_a_required_recorder_that_catches_up_lets_the_world_on(clock, recorder) -> None:
+    thread, got = pace_in_thread(clock, 5, required_s=30.0)
+    recorder.has(5)
+    thread.join(30)
+    assert not thread.is_alive() and isinstance(got[0], float)

@@ -10,10 +10,12 @@ import logging
 from pathlib import Path
 
 from agents.lang import Engine, load_program
+from agents.lang.registry import read_learned
 from agents.processes.executive import make_step
-from agents.processes.persist import Saved, StateFile
+from agents.processes.persist import Saved, StateFile, set_aside_files
 from bus import keys
 from bus.messages import Beliefs, Envelope, GoalList, Percepts
+from tests.lang import test_blocks as blocks
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = str(ROOT / "programs" / "blocks.tlp")
@@ -74,3 +76,51 @@ def test_an_unreadable_state_file_is_kept_aside_and_the_run_starts_afresh(tmp_pa
     assert StateFile(path, LOG).load() is None
     assert (tmp_path / "s.json.bad").exists() and not path.exists()
     assert "cannot be read" in caplog.text and "engine state version 99" in caplog.text
+
+
+def test_a_state_file_that_is_not_utf8_is_set_aside_not_a_crash(tmp_path, caplog):
+    """Drills 2026-12-04 D1: bytes that are not UTF-8 raised UnicodeDecodeError."""
+    path = tmp_path / "state-ME.json"
+    path.write_bytes(b"\xff\xfe\x00binary")
+    (tmp_path / "state-ME.json.bad").write_text("an earlier one, kept")
+    assert StateFile(path, LOG).load() is None
+    assert (tmp_path / "state-ME.json.bad-2").read_bytes() == b"\xff\xfe\x00binary"
+    assert (tmp_path / "state-ME.json.bad").read_text() == "an earlier one, kept"
+    assert "cannot be read" in caplog.text
+    assert [p.name for p in set_aside_files(tmp_path)] == ["state-ME.json.bad",
+                                                          "state-ME.json.bad-2"]
+
+
+def _learn(tmp_path: Path):
+    """An executive with a state file and its own learned file, run until it learned."""
+    state, out = tmp_path / "state-ME.json", tmp_path / "learned-ME.tlp"
+    step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state), learned_out=str(out))
+    support, holding = dict(blocks.TOWER), None
+    for cycle in range(6):   # the world: each action applied as the world would
+        outs = step(cycle, _inputs(cycle, blocks.percepts(support, holding)))
+        for action in _decision(outs)["actions"]:
+            support, holding = blocks.act(support, holding, action)
+    skills = read_learned(load_program(PROGRAM), out.read_text(), str(out))
+    assert len(skills) == 2
+    return state, out, skills
+
+
+def test_a_restart_after_an_unreadable_state_keeps_the_learned_skills_on_disk(tmp_path):
+    """Drills 2026-12-04 D4: the restarted executive rewrote learned-ME.tlp with 0 skills."""
+    state, out, skills = _learn(tmp_path)
+    for damage in (b"\xff\xfe\x00binary", b'{"cycle": "forty"}'):
+        state.write_bytes(damage)
+        again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state),
+                          learned_out=str(out))
+        again(6, _inputs(6, TOWER))
+        assert read_learned(load_program(PROGRAM), out.read_text(), str(out)) == skills
+        assert StateFile(state, LOG).load().state.learned == skills
+
+
+def test_an_unreadable_learned_file_is_set_aside_and_the_executive_starts(tmp_path):
+    state, out, _ = _learn(tmp_path)
+    state.unlink()
+    out.write_bytes(b"\xff\xfe(not a skill")
+    again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state), learned_out=str(out))
+    again(0, _inputs(0, TOWER))
+    assert (tmp_path / "learned-ME.tlp.bad").read_bytes() == b"\xff\xfe(not a skill"

@@ -136,6 +136,74 @@ def test_the_summary_gives_each_process_share_of_the_cycle():
     assert cycle_time(None, 100) == {} and cycle_time(timing, 0) == {}
 
 
+def test_state_and_learned_files_set_aside_are_named_and_the_run_still_completes(tmp_path):
+    """Drills 2026-12-04 D1/D4: an unreadable state file is kept, renamed, and named."""
+    write_run(tmp_path, 50)
+    (tmp_path / "learned-ME.tlp").write_bytes(b"\xff\xfe")   # read, not a crash
+    (tmp_path / "state-ME.json.bad").write_bytes(b"\xff\xfe\x00binary")
+    (tmp_path / "learned-ME.tlp.bad-2").write_text("(")
+    s = summary.build(tmp_path, BASE, {})
+    assert s["status"] == "completed"
+    assert s["set_aside"] == [str(tmp_path / "learned-ME.tlp.bad-2"),
+                              str(tmp_path / "state-ME.json.bad")]
+    out = CliRunner().invoke(click.command()(lambda: summary.echo(s))).output
+    assert f"SET ASIDE: {tmp_path / 'state-ME.json.bad'} could not be read back" in out
+
+
+def _record_of(folder: Path, cycles: range) -> None:
+    """A run record holding the world states of `cycles` only."""
+    from bus import keys
+    from bus.messages import Envelope, WorldState
+    from bus.record import message_record
+    from tools.records.run_record import RECORD_FILE, RecordWriter
+
+    with RecordWriter(folder / RECORD_FILE, "r1") as rec:
+        for t in cycles:
+            msg = WorldState(Envelope(1, "r1", t, "world", 99), {"time": t}, {}, [])
+            rec.add(keys.world_state("r1"), message_record(keys.world_state("r1"), msg))
+
+
+def test_a_record_that_dropped_cycles_fails_the_run(tmp_path):
+    """Drills 2026-12-04 D9: the record lacked 64,734 of 65,712 cycles and the run ended
+    "completed"."""
+    write_run(tmp_path, 50)
+    goals(tmp_path, goal("g1", "achieved"))
+    _record_of(tmp_path, range(0, 20))
+    s = summary.build(tmp_path, BASE, {})
+    assert (s["status"], s["record_missing"], s["record_gaps"]) == ("failed", 30, [[20, 49]])
+    assert any("lacks the world states of 30 of 50 cycles (cycles 20-49)" in f
+               for f in s["failures"])
+    whole = tmp_path / "whole"
+    whole.mkdir()
+    write_run(whole, 50)
+    goals(whole, goal("g1", "achieved"))
+    _record_of(whole, range(0, 50))
+    assert summary.build(whole, BASE, {})["status"] == "completed"
+
+
+def test_a_drain_cut_short_on_request_leaves_the_run_interrupted(tmp_path):
+    write_run(tmp_path, 30, finish=False)
+    _record_of(tmp_path, range(0, 20))
+    s = summary.build(tmp_path, BASE, {}, requested_stop=True,
+                      recorder={"cut_short": True, "failed": {}})
+    assert s["status"] == "interrupted"
+
+
+def test_a_stall_in_progress_at_the_stop_is_listed(tmp_path):
+    """Drill d2b: Ctrl-C during a stall; the stall the world was in went unlisted."""
+    from world.recorder import HEALTH
+
+    write_run(tmp_path, 30, finish=False)
+    with (tmp_path / HEALTH).open("a") as f:   # as world/process.py writes it at the stop
+        f.write(json.dumps({"kind": "stalled", "t": 1.0, "cycle": 30, "seconds": 1.04,
+                            "stalled": ["ME.inference"], "at_stop": True}) + "\n")
+    s = summary.build(tmp_path, BASE, {}, requested_stop=True)
+    assert s["stalls"] == [{"cycle": 30, "seconds": 1.04, "stages": ["ME.inference"],
+                            "at_stop": True}]
+    printed = CliRunner().invoke(_echo, [json.dumps(s)]).output
+    assert "stalls: 1 (ME.inference 1.04 s at cycle 30 (still stalled at the stop))" in printed
+
+
 def test_a_launch_whose_scenario_says_status_system_is_not_failed_by_a_goal(tmp_path):
     """Issue 31 (N13, N15), a launch's side: `[run] status = "system"` (the launcher puts
     it in the base as status_policy) reports a failed goal without failing the run; the

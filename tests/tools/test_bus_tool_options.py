@@ -69,6 +69,18 @@ def test_a_record_file_that_is_fine_gets_as_far_as_finding_the_launch(here):
     assert not (here / "x.mcap").exists()
 
 
+def test_record_refuses_to_replace_a_file_without_force(here):
+    """Trial 2026-12-04 N9: a 3 s record was replaced by a 1 s one without a word."""
+    (here / "x.mcap").write_bytes(b"an earlier record")
+    line = one_line(CliRunner().invoke(cli, ["record", "x.mcap", "--seconds", "1"]), 1)
+    assert line == ("Error: record: writing x.mcap: it exists already; give another file, or "
+                    "--force to replace it")
+    assert (here / "x.mcap").read_bytes() == b"an earlier record"
+    line = one_line(CliRunner().invoke(cli, ["record", "x.mcap", "--seconds", "1", "--force"]),
+                    1)
+    assert "no running teleo launch found" in line   # past the check, to the bus
+
+
 BAD = [
     (["goal", "post", "(x)", "--timeout", "5"], 2, "--timeout goes with --wait"),
     (["goal", "post", "(x)", "--cancel-on-interrupt"], 2, "--cancel-on-interrupt goes with "

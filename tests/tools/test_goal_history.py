@@ -5,13 +5,22 @@ cycle after the gap, unless the goal store names its cycle; a store that could n
 
 from __future__ import annotations
 
+import json
+
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from bus import keys
 from bus.messages import Envelope, Intention, WorldState
 from bus.record import message_record
-from tools.records.run_record import RECORD_FILE, RecordWriter, RunRecord, history_text, reconcile
+from tools.records.run_record import (
+    RECORD_FILE,
+    GoalHistory,
+    RecordWriter,
+    RunRecord,
+    history_text,
+    reconcile,
+)
 
 STATUSES = ("pending", "active", "suspended", "satisfied")
 
@@ -110,3 +119,90 @@ def test_a_store_not_saved_since_takes_its_status_from_the_record() -> None:
     assert reconcile({**store, "status": "achieved", "updated_cycle": 216}, changes) == {
         **store, "status": "achieved", "updated_cycle": 216,
         "history": [{"cycle": 1, "status": "active"}, {"cycle": 216, "status": "achieved"}]}
+
+
+def _arrivals(truth: list[str], end: str, gone: int) -> list[dict]:
+    """The intention and goal-list records of goal g1 (and g2, always pending): g1 has the
+    statuses `truth`, then `end` ("failed": the executive reports it at cycle `gone` - 1 and
+    the goals process drops it from the list of `gone`; "cancelled": a user withdrew it, it
+    is missing from the list and the intentions from `gone` on)."""
+    out = []
+    for cycle in range(gone + 3):
+        listed = [{"id": "g2", "goal": "(clear B)", "priority": 5}]
+        if cycle < gone:
+            listed.append({"id": "g1", "goal": "(clear A)", "priority": 5})
+        out.append({"kind": "GoalList", "agent": "ME", "env": {"cycle": cycle},
+                    "goals": listed})
+        goals = [{"id": "g2", "status": "pending", "goal": "(clear B)", "priority": 5}]
+        if cycle < gone:
+            status = "failed" if end == "failed" and cycle == gone - 1 else \
+                truth[min(cycle, len(truth) - 1)]
+            goals.append({"id": "g1", "status": status, "goal": "(clear A)", "priority": 5})
+        out.append({"kind": "Intention", "agent": "ME", "env": {"cycle": cycle},
+                    "decision": {"goals": goals}})
+    return out
+
+
+def _history(records: list[dict]) -> dict:
+    history = GoalHistory()
+    for record in records:
+        history.feed(record)
+    return history.changes["ME"]
+
+
+@settings(max_examples=80, deadline=None)
+@given(truth=runs, end=st.sampled_from(("failed", "cancelled")), data=st.data())
+def test_the_history_is_the_same_whatever_order_the_records_arrive_in(truth, end, data):
+    """Drills 2026-12-04 D2: the goal list of t+1 arriving before the intention of t that said
+    "failed" recorded the goal as cancelled."""
+    gone = data.draw(st.integers(1, len(truth)))
+    records = _arrivals(truth, end, gone)
+    in_order = _history(records)
+    arrived = data.draw(st.permutations(records))
+    assert _history(arrived) == in_order
+    last = in_order["g1"][-1]
+    assert (last["status"], last["cycle"]) == (end, gone - 1 if end == "failed" else gone)
+    assert [c["status"] for c in in_order["g2"]] == ["pending"]
+
+
+def test_the_drill_case_a_failure_that_arrives_late_stays_a_failure() -> None:
+    def goal_list(cycle, listed):
+        return {"kind": "GoalList", "agent": "ME", "env": {"cycle": cycle},
+                "goals": [{"id": "g3", "goal": "(p)", "priority": 5}] if listed else []}
+
+    def intention(cycle, status):
+        return {"kind": "Intention", "agent": "ME", "env": {"cycle": cycle},
+                "decision": {"goals": [{"id": "g3", "status": status, "goal": "(p)"}]}}
+
+    crossed = [goal_list(516, True), goal_list(517, True), intention(516, "pending"),
+               goal_list(518, False), intention(517, "failed")]
+    assert [(c["cycle"], c["status"]) for c in _history(crossed)["g3"]] == [
+        (516, "pending"), (517, "failed")]
+
+
+def test_a_failure_in_the_goal_store_is_never_overridden_by_the_record() -> None:
+    goal = {"id": "g3", "status": "failed", "updated_cycle": 517}
+    out = reconcile(goal, [{"cycle": 516, "status": "pending"},
+                           {"cycle": 518, "status": "cancelled"}])
+    assert out["status"] == "failed"
+
+
+JUNK = st.recursive(st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=5),
+                    lambda inner: st.lists(inner, max_size=4)
+                    | st.dictionaries(st.sampled_from(["id", "status", "goal", "priority",
+                                                      "note", "goals", "cycle", "x"]), inner,
+                                      max_size=5), max_leaves=20)
+
+
+@settings(max_examples=200, deadline=None)
+@given(kind=st.sampled_from(("Intention", "GoalList")), cycle=JUNK | st.integers(0, 9),
+       goals=JUNK, decision=JUNK)
+def test_a_record_of_any_shape_never_breaks_the_history(kind, cycle, goals, decision) -> None:
+    """A hostile peer's intention with a dict for a goal id crashed the launch's recorder
+    thread ("unhashable type: 'dict'"), and the record lost the rest of the run."""
+    history = GoalHistory()
+    history.feed({"kind": kind, "agent": "ME", "env": {"cycle": cycle}, "goals": goals,
+                  "decision": decision})
+    history.feed({"kind": kind, "agent": "ME", "env": cycle, "goals": [goals],
+                  "decision": {"goals": [decision, goals]}})
+    json.dumps(history.to_meta())

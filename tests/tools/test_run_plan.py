@@ -60,7 +60,11 @@ def test_a_plan_already_of_clients_stays_so():
 
 
 def test_start_up_gets_two_seconds_a_process_beyond_a_minute():
-    assert [start_timeout(n) for n in (1, 5, 30, 31, 50, 98)] == [60, 60, 60, 62, 100, 196]
+    idle = (0.5, 2)
+    assert [start_timeout(n, idle) for n in (1, 5, 30, 31, 50, 98)] == [60, 60, 60, 62, 100,
+                                                                         196]
+    assert start_timeout(5, (40.0, 2)) == 60 * 8      # load 40 on 2 CPUs (issue 31)
+    assert start_timeout(5, (6.0, 2)) == 180
 
 
 @pytest.mark.parametrize("agents, cores, per_process, agent_processes", [

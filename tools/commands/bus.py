@@ -133,16 +133,22 @@ def _print_messages(inbox, text: str | None, count: int | None, end: float | Non
 @click.option("--seconds", type=_SECONDS, default=None, help="Stop after S seconds.")
 @click.option("--count", type=click.IntRange(min=1), default=None,
               help="Stop after N messages.")
+@click.option("--force", is_flag=True, help="Replace FILE if it exists.")
 @runfile.quiet_option
 @bus_options
 def record(file: Path, run_id: str | None, seconds: float | None, count: int | None,
-           bus_config: BusConfig) -> None:
+           force: bool, bus_config: BusConfig) -> None:
     """Record a run's messages to FILE (MCAP, as launches record themselves) until Ctrl-C.
 
-    FILE ends in .mcap, in a folder that exists. Without --connect it records the running
-    launch; with --connect, the run given by --run on that router."""
+    FILE ends in .mcap, in a folder that exists, and is not replaced without --force.
+    Without --connect it records the running launch; with --connect, the run given by --run
+    on that router."""
     from tools.records.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
     from tools.runs.target import find_target
+
+    if file.exists() and not force:   # trial 2026-12-04 N9: a record replaced without a word
+        raise click.ClickException(f"record: writing {file}: it exists already; give "
+                                   f"another file, or --force to replace it")
 
     if run_id is not None:
         try:

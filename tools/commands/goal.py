@@ -35,6 +35,7 @@ def _session(run: str | None, agent: str | None) -> Iterator[tuple[runfile.RunIn
     become ClickExceptions (the goal-entry process not answering, said so)."""
     from bus import keys
     from bus.errors import BusError, NobodyServing
+    from bus.load import overloaded, scaled
     from bus.messages import GoalRequest
     from bus.node import open_node
 
@@ -47,12 +48,13 @@ def _session(run: str | None, agent: str | None) -> Iterator[tuple[runfile.RunIn
             def ask(op: str, name: str, goal: str = "", priority: int = 0, goal_id: str = "",
                     force: bool = False):
                 request = GoalRequest(node.envelope(), op, name, goal, priority, goal_id, force)
-                return node.query(keys.goals(info.run, name), request, QUERY_TIMEOUT)
+                return node.query(keys.goals(info.run, name), request, scaled(QUERY_TIMEOUT))
 
             yield info, node, ask
     except NobodyServing as exc:
         raise click.ClickException(
-            f"run {info.run}: the goal-entry process is not answering ({exc})") from exc
+            f"run {info.run}: the goal-entry process is not answering ({exc})"
+            f"{overloaded(scaled(QUERY_TIMEOUT))}") from exc
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
 

@@ -22,6 +22,7 @@ import logging
 import os
 import re
 import secrets
+import shutil
 import sys
 import time
 from contextlib import nullcontext, redirect_stdout
@@ -40,6 +41,7 @@ from tools.launching.run_plan import (
     PlanError,
     agent_processes,
     check_secrets,
+    claim_run_dir,
     per_core,
     select,
     start_timeout,
@@ -94,7 +96,8 @@ class PerProcess(click.ParamType):
                    "comma-separated (the others run on other hosts).")
 @click.option("--join", "join", default=None, metavar="ENDPOINT",
               help="Join the run whose router is at ENDPOINT (needs --run; starts no router).")
-@click.option("--run", "run_id", default=None, help="Run id (required with --join).")
+@click.option("--run", "run_id", default=None,
+              help="Run id (required with --join); refused when an earlier run has its folder.")
 @click.option("--secrets", "secrets_dir", default=None, type=click.Path(file_okay=False),
               help="A secured run's secrets folder (copied from the first host, with --join).")
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
@@ -127,6 +130,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
     """
     if plot_file and no_record:
         raise click.UsageError("--plot draws the run record: leave out --no-record")
+    plan = None
     try:
         # SIGINT, SIGTERM, SIGHUP: stop in order (tools/launching/stop_signals.py)
         stop_signals.running()
@@ -145,8 +149,10 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         if plan.joined:
             _reach_router(plan)
     except (ScenarioError, PlanError, WorldError) as exc:
+        _unclaim(plan)
         raise click.ClickException(str(exc)) from exc
     except KeyboardInterrupt:
+        _unclaim(plan)
         stop_signals.stopping()
         click.echo("interrupted before the run started: no process was started", err=True)
         raise SystemExit(summary.EXIT_CODES["interrupted"]) from None
@@ -238,6 +244,19 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
     run_dir = runfile.base_dir() / "runs" / run
     if join:
         run_dir = run_dir.with_name(f"{run}.join-{os.getpid()}")
+    else:
+        run, run_dir = claim_run_dir(run, run_dir, bool(run_id), scenario.run.name, secure)
+    try:
+        return _planned(scenario, cycles, seed, mode, secure, listen, hosts, join, secrets_dir,
+                        run, run_dir, local)
+    except BaseException:
+        if not join:
+            shutil.rmtree(run_dir, ignore_errors=True)   # new and ours (claim_run_dir): nothing ran
+        raise
+
+
+def _planned(scenario, cycles, seed, mode, secure, listen, hosts, join, secrets_dir, run,
+             run_dir, local) -> Plan:
     keep = None
     if secure:
         keep = RunSecrets(Path(secrets_dir).resolve()) if secrets_dir else None
@@ -254,6 +273,12 @@ def _plan(scenario, cycles, seed, mode, secure, listen, hosts, only, join, run_i
                 else start_timeout(len(local)))
     check_secrets(plan)
     return plan
+
+
+def _unclaim(plan: Plan | None) -> None:
+    """Remove the folder a launch claimed (run_plan.claim_run_dir) when it stops before starting."""
+    if plan is not None and not plan.joined:
+        shutil.rmtree(plan.run_dir, ignore_errors=True)
 
 
 def _reach_router(plan: Plan) -> None:

@@ -20,10 +20,12 @@ all (docs/benchmarks.md, "Bus", "Peers or clients").
 from __future__ import annotations
 
 import json
+import secrets
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 from bus.config import BusConfig, Mode
+from bus.load import scaled
 from tools.launching.run_secrets import RunSecrets, host_of
 from tools.launching.supervisor import ProcSpec, module_argv
 from world.run_scenario import AGENT_STAGES, AgentSpec, Scenario
@@ -70,11 +72,13 @@ START_S = 60.0             # [s] the least time a launch's processes get to anno
 START_S_PER_PROCESS = 2.0  # [s] more per process: their start-ups share the machine's cores
 
 
-def start_timeout(processes: int) -> float:
+def start_timeout(processes: int, load: tuple[float, int] | None = None) -> float:
     """How long [s] a launch waits for ``processes`` processes started on its host to
     announce themselves: each imports zenoh, numpy and its stage's code, and on two cores
-    98 processes (32 agents, a process per stage) need more than a minute to do so."""
-    return max(START_S, START_S_PER_PROCESS * processes)
+    98 processes (32 agents, a process per stage) need more than a minute to do so; on a
+    busy machine, more again (bus/load.py: stretched by the load per CPU; `load`: (load
+    average, CPUs), else the machine's now)."""
+    return scaled(max(START_S, START_S_PER_PROCESS * processes), load=load)
 
 
 def all_processes(scenario: Scenario) -> list[str]:
@@ -172,7 +176,8 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
                 "world.process", *common, "--scenario", path, *changed,
                 "--cycles", str(plan.cycles),
                 "--seed", str(plan.seed), "--run-mode", plan.mode, "--out", str(plan.run_dir),
-                "--ready-timeout", str(plan.ready_timeout)), 3, restart_args=RESUME_ARGS))
+                "--ready-timeout", str(plan.ready_timeout),
+                *(["--recorded"] if plan.record else [])), 3, restart_args=RESUME_ARGS))
         else:
             agent, _, stage = name.rpartition(".")
             spec = sc.agent(agent)
@@ -229,3 +234,27 @@ def check_secrets(plan: Plan) -> None:
         plan.secrets.check([*plan.local, "launch", "operator"])
     except FileNotFoundError as exc:
         raise PlanError(f"--secrets: {exc}") from exc
+
+
+def claim_run_dir(run: str, run_dir: Path, given: bool, name: str, secure: bool
+                  ) -> tuple[str, Path]:
+    """Make the run's new folder, which no other launch can then take: a launch never writes
+    into an earlier run's folder (drills 2026-12-04 D3: a second `--run r1` overwrote the
+    first run's trace and record and replayed its executive's state). A `--run` id whose
+    folder exists is refused, not renamed: the id is what the user's tools (`goal post --run`,
+    `explain`) will ask for, so a launch under another id would answer them with another
+    run; a generated id that is taken is drawn again."""
+    while True:
+        try:
+            run_dir.mkdir(parents=True, mode=0o700 if secure else 0o777)
+            return run, run_dir
+        except OSError as exc:
+            if not isinstance(exc, FileExistsError):
+                raise PlanError(f"cannot make the run folder {run_dir}: "
+                                f"{exc.strerror or exc}") from None
+            if given:
+                raise PlanError(f"--run {run}: the folder {run_dir} holds an earlier run, and "
+                                f"a launch never writes into one; give another id, or move "
+                                f"that folder away first") from None
+        run = f"{name}-{secrets.token_hex(3)}"
+        run_dir = run_dir.with_name(run)

@@ -70,6 +70,7 @@ class Held:
 
     info: runfile.RunInfo | None = None
     recorder: Any = None  # tools.records.recorder.BusRecorder
+    goal_watch: Any = None  # tools.records.goal_watch.GoalWatch (a launch with no record)
     session: ExitStack = field(default_factory=ExitStack)
 
     def cut_short(self) -> None:
@@ -97,6 +98,9 @@ def stop_run(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
                            until=trace_cycles(plan.run_dir) if plan.runs_world else None)
         outcome.recorder = held.recorder.report()
         lap("record")
+    if held.goal_watch is not None:
+        held.goal_watch.stop()
+        lap("goal histories")
     sup.stop_all([], last=["router"])
     lap("router")
     held.session.close()

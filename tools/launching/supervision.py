@@ -89,6 +89,10 @@ def _start(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
         plan = _start_router(plan, sup)
     if plan.record and plan.runs_world:
         _start_recorder(plan, held)  # subscribed before any process starts: cycle 0 is in
+        if held.recorder is None:    # the world does not wait for a recorder that is not
+            plan = replace(plan, record=False)
+    elif plan.runs_world:            # no record: the goal histories all the same
+        _start_goal_watch(plan, held)
     specs = process_specs(plan)
     for spec in specs:
         sup.start(spec)
@@ -113,6 +117,18 @@ def _start_recorder(plan: Plan, held: Held) -> None:
         if held.recorder is not None:
             held.recorder.writer.close()
         held.recorder = None
+
+
+def _start_goal_watch(plan: Plan, held: Held) -> None:
+    """--no-record: the goal histories for the summary (tools/records/goal_watch.py); when
+    it cannot start the summary lists the goals without them, said on the log."""
+    from tools.records.goal_watch import GoalWatch
+
+    try:
+        held.goal_watch = GoalWatch(bus_config(plan, "operator"), plan.run,
+                                    plan.run_dir).start()
+    except BusError as exc:
+        log.error("run %s: no goal histories: %s", plan.run, exc)
 
 
 def _start_router(plan: Plan, sup: Supervisor) -> Plan:

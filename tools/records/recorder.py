@@ -213,6 +213,8 @@ class BusRecorder:
         it has the first), for the world to keep pace with."""
         whole = self.writer.cycles - 2
         now = time.monotonic()
+        if whole < -1:   # nothing recorded yet: -2 is no cycle (trial 2026-12-04 N8)
+            return
         if self._node is None or now - self._told_at < (
                 PROGRESS_S if whole > self._told else AGAIN_S):  # said again now and then:
             return                                             # a restarted world learns it
@@ -230,7 +232,9 @@ class BusRecorder:
                 continue
             try:
                 record = to_record(key, payload)
-            except CodecError as exc:
+            except (CodecError, AttributeError, KeyError, TypeError, ValueError,
+                    RecursionError) as exc:
+                # a hostile payload never ends the recorder (the run's record with it)
                 self.received += 1
                 self.dropped += 1
                 log.warning("not recorded: %s", exc)
@@ -246,19 +250,20 @@ class BusRecorder:
                 continue
             try:
                 self.writer.add(key, record)
-            except (CodecError, KeyError, TypeError, ValueError) as exc:
+            except (CodecError, AttributeError, KeyError, TypeError, ValueError,
+                    RecursionError) as exc:
                 self.dropped += 1
                 log.warning("not recorded: %s", exc)
                 continue
             except OSError as exc:
                 self.dropped += 1
-                self._fail(record["env"].get("cycle"), exc)
+                self._fail(_env(record).get("cycle"), exc)
                 continue
             self._count_cycle(record)
         return taken
 
     def _count_cycle(self, record: dict[str, Any]) -> None:
-        cycle = record["env"].get("cycle")
+        cycle = _env(record).get("cycle")
         if isinstance(cycle, int) and cycle >= 0:
             self._cycles.add(cycle)
             self.first_cycle = cycle if self.first_cycle is None else min(self.first_cycle,
@@ -266,9 +271,16 @@ class BusRecorder:
             self.last_cycle = cycle if self.last_cycle is None else max(self.last_cycle, cycle)
 
 
+def _env(record: dict[str, Any]) -> dict[str, Any]:
+    """A record's envelope, {} when a hostile payload made it something else (it crashed
+    the recorder's thread, and the run's record lost the rest of the run)."""
+    env = record.get("env") if isinstance(record, dict) else None
+    return env if isinstance(env, dict) else {}
+
+
 def _sent_ns(record: dict[str, Any]) -> int:
     """When a record's message was sent [ns] (0 when its envelope does not say: kept)."""
-    sent = record["env"].get("sent_ns")
+    sent = _env(record).get("sent_ns")
     return sent if isinstance(sent, int) else 0
 
 

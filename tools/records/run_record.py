@@ -19,7 +19,7 @@ import json
 import logging
 import struct
 from collections import defaultdict
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -31,6 +31,7 @@ from mcap.writer import CompressionType, Writer
 
 from bus import keys
 from bus.record import json_schema
+from tools.records.goal_history import GoalHistory
 from tools.runs import runfile
 
 log = logging.getLogger(__name__)
@@ -38,93 +39,14 @@ RECORD_FILE = "record.mcap"
 MCAP_MAGIC = b"\x89MCAP0\r\n"
 RUN_META = "teleo.run"
 GOALS_META = "teleo.goals"
+GOAL_HISTORY = "goal-history.json"  # a launch without a record: its goal histories
+                                    # (tools/records/goal_watch.py)
 STATE_RANGES = "world_state_cycles"  # in RUN_META: [[first, last], ...] of the states held
 _KEEP_TIMES = 4096  # cycles whose world time is remembered (a forever run must not grow)
 
 
 class RecordError(Exception):
     """A run record that cannot be found or read; the message names the file and why."""
-
-
-class GoalHistory:
-    """Each agent's goals' status changes, fed with intention and goal-list records: agent ->
-    goal id -> [{"cycle", "status", "goal", "priority", "note"}] (one entry per change, first
-    sighting included). A user goal that leaves the agent's goal list without having failed
-    was cancelled: the executive never reports that, as it no longer has the goal.
-
-    A change seen after a gap in the record (cycles whose world state it lacks, between the
-    agent's previous intention and this one) happened at some cycle of the gap or at the one
-    seen: its entry has "after", the last cycle known before it, so that nobody takes the
-    cycle after a gap for the cycle of the change (drill N1: "achieved 486" for 216)."""
-
-    FINAL = frozenset({"failed", "cancelled"})
-
-    def __init__(self) -> None:
-        self.changes: dict[str, dict[str, list[dict[str, Any]]]] = defaultdict(dict)
-        self._last: dict[tuple[str, str], str] = {}
-        self._listed: dict[str, dict[str, dict[str, Any]]] = {}  # agent -> id -> entry
-        self._seen: dict[str, int] = {}  # agent -> cycle of its latest intention fed
-
-    def feed(self, record: dict[str, Any], has_state: Callable[[int], bool] | None = None
-             ) -> None:
-        """Take one intention or goal-list record; `has_state(cycle)`: whether the record
-        holds that cycle's world state (None: no gaps are looked for)."""
-        agent, cycle = record.get("agent", ""), record["env"]["cycle"]
-        if record.get("kind") == "GoalList":
-            self._goal_list(agent, cycle, record.get("goals", ()))
-            return
-        after = self._gap_before(agent, cycle, has_state)
-        for goal in record.get("decision", {}).get("goals", ()):
-            gid = goal.get("id")
-            if self._last.get((agent, gid)) not in (goal.get("status"), "cancelled"):
-                self._add(agent, gid, cycle, goal.get("status"), goal, goal.get("note", ""),
-                          after)
-
-    def ended_before(self, agent: str, record: dict[str, Any]) -> None:
-        """A user goal the goal store says failed or was cancelled (a record of its list:
-        id, goal, priority, status, updated_cycle, note), taken as one change when nothing
-        of it was fed: a view opened after it ended saw no message of it (issue 31, N5)."""
-        gid, status = record.get("id"), record.get("status")
-        if status not in self.FINAL or not isinstance(gid, str) or \
-                gid in self.changes.get(agent, {}):
-            return
-        cycle = record.get("updated_cycle")
-        self._add(agent, gid, cycle if isinstance(cycle, int) else 0, status, record,
-                  str(record.get("note", "")))
-
-    def _gap_before(self, agent: str, cycle: int, has_state: Callable[[int], bool] | None
-                    ) -> int | None:
-        """The last cycle known before `cycle` when the record lacks some cycle between it
-        and this agent's previous intention (or the run's start); else None."""
-        seen = self._seen.get(agent, -1)
-        if cycle <= seen:
-            return None  # a re-sent cycle
-        self._seen[agent] = cycle
-        if has_state is None or all(has_state(c) for c in range(seen + 1, cycle)):
-            return None
-        return seen
-
-    def _goal_list(self, agent: str, cycle: int, goals: Any) -> None:
-        now = {g.get("id"): g for g in goals if isinstance(g, dict)}
-        for gid, goal in self._listed.get(agent, {}).items():
-            if gid not in now and self._last.get((agent, gid)) not in self.FINAL:
-                self._add(agent, gid, cycle, "cancelled", goal, "withdrawn from the goal list")
-        self._listed[agent] = now
-
-    def _add(self, agent: str, gid: str, cycle: int, status: str, goal: dict[str, Any],
-             note: str, after: int | None = None) -> None:
-        self._last[(agent, gid)] = status
-        changes = self.changes[agent].setdefault(gid, [])
-        change = {"cycle": cycle, "status": status, "goal": goal.get("goal", ""),
-                  "priority": goal.get("priority"), "note": note}
-        if after is not None:
-            change["after"] = after
-        changes.append(change)
-        if len(changes) > 1 and changes[-2]["cycle"] > cycle:  # records of two keys crossed
-            changes.sort(key=lambda c: c["cycle"])
-
-    def to_meta(self) -> dict[str, str]:
-        return {agent: json.dumps(goals) for agent, goals in self.changes.items()}
 
 
 def cycle_ranges(cycles: Iterable[int]) -> list[list[int]]:
@@ -374,11 +296,20 @@ def with_history(goals: list[dict[str, Any]], run_dir: Path,
         except RecordError as exc:
             log.warning("no goal history: %s", exc)
     try:
-        history = record.goal_history() if record is not None else {}
+        history = record.goal_history() if record is not None else _watched(run_dir)
     except RecordError as exc:
         log.warning("no goal history: %s", exc)
         history = {}
     return goals_with_history(goals, history)
+
+
+def _watched(run_dir: Path) -> dict[str, Any]:
+    """The goal histories a launch without a record kept (GOAL_HISTORY), or {}."""
+    try:
+        doc = json.loads((Path(run_dir) / GOAL_HISTORY).read_text())
+    except (OSError, ValueError):
+        return {}
+    return doc if isinstance(doc, dict) else {}
 
 
 def goals_with_history(goals: list[dict[str, Any]],
@@ -397,7 +328,8 @@ def reconcile(goal: dict[str, Any], changes: list[dict[str, Any]]) -> dict[str, 
       within the gap ("source": "goal store");
     - a final status the record never saw (its end was lost) is added from the store;
     - a status the record saw after the store's last change (a store that could not be
-      saved since: a full disk) is the goal's status, with a note saying so."""
+      saved since: a full disk) is the goal's status, with a note saying so; but never over
+      a failure the store holds (failed is final: a failed run is never reported completed)."""
     out = []
     for c in changes:
         entry = {"cycle": c["cycle"], "status": USER_STATUS.get(c["status"], c["status"])}
@@ -410,7 +342,7 @@ def reconcile(goal: dict[str, Any], changes: list[dict[str, Any]]) -> dict[str, 
     last = out[-1]
     if last["status"] == status and "after" in last and last["after"] < when <= last["cycle"]:
         out[-1] = {"cycle": when, "status": status, "source": "goal store"}
-    elif last["status"] != status and last["cycle"] > when:
+    elif last["status"] != status and last["cycle"] > when and status != "failed":
         return {**goal, "status": last["status"], "updated_cycle": last["cycle"],
                 "note": f"from the run record: the goal store was last saved with {status} "
                         f"(cycle {when})", "history": out}

@@ -49,6 +49,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
         **natural_sections(summary_sections(_agents(run, scenario, counters, learned_files))),
         "trace": str(trace) if trace else "",
         "world_reason": "the episode is over" if episode_ended(run.final) else "done",
+        "set_aside": [], "record_cut_short": False,   # no restart, no drain to cut
         "cycle_time": {},   # one process, no bus: no stage shares
         "events_refused": refused_events(
             (json.loads(line) for line in run.trace if '"events"' in line), scenario.events),

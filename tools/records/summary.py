@@ -17,6 +17,8 @@ The run's status (docs/faults.md, "What counts as a failed run"):
   scenario's `[run] status = "system"` leaves the goals out: a goal not kept is then
   reported (`goals_not_kept`) but fails nothing (issue 31, N15); a scripted request the goal
   store refused is reported (`requests_refused`) and fails nothing either;
+  a run record that lacks cycles fails the run (unless a stop asked for cut its drain
+  short);
 - interrupted (exit 130): stopped on request (Ctrl-C, `teleo stop`) before its cycles were
   done, with nothing failed; a run without a cycle limit ends this way and counts as completed;
 - completed (exit 0): otherwise. Stalls, late stages and restarts that recovered are shown
@@ -43,6 +45,7 @@ from tools.records.summary_agents import (
     fold_lines,
     natural,
     read_json_file,
+    set_aside,
     shares_text,
     summary_agents,
 )
@@ -117,6 +120,7 @@ def build(run_dir: Path, base: dict[str, Any], restarts: dict[str, int],
                            for a, c in counters.items()},
         "counters": counters,
         **agent_sections(run_dir, counters, memory),
+        **set_aside(run_dir),
         "trace": str(run_dir / TRACE),
         **_record(run_dir, cycles, record, recorder or {}),
         "world_reason": final.get("reason", "the world did not finish (killed)"),
@@ -155,7 +159,7 @@ def finish_status(summary: dict[str, Any], ended: str = "",
     """Add `failures`, `status` and `completed` to a summary (launch's or simulate's): a run
     is failed when an agent went uncontrolled, a process gave up, a goal could not be kept,
     goals were lost or the world stopped early."""
-    summary["failures"] = _failures(summary, ended)
+    summary["failures"] = _failures(summary, ended, requested_stop)
     summary["status"] = _status(summary, requested_stop)
     summary["completed"] = summary["status"] == "completed"
     return summary
@@ -193,8 +197,9 @@ def _totals(health: list[dict[str, Any]]) -> dict[str, dict[str, int]]:
 
 def _stalls(health: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Cycles that waited past the stall threshold: when, how long [s], for whom."""
-    return [{"cycle": h["cycle"], "seconds": h.get("elapsed_s", 0.0), "stages": h["stalled"]}
-            for h in health if h.get("kind") == "cycle" and h.get("stalled")]
+    return [{"cycle": h["cycle"], "seconds": h.get("elapsed_s", h.get("seconds", 0.0)),
+             "stages": h["stalled"], **({"at_stop": True} if h.get("at_stop") else {})}
+            for h in health if h.get("kind") in ("cycle", "stalled") and h.get("stalled")]
 
 
 def _elapsed(health: list[dict[str, Any]]) -> float:
@@ -205,7 +210,7 @@ def _elapsed(health: list[dict[str, Any]]) -> float:
     return max(times) - (ready[0] if ready else min(times)) if times else 0.0
 
 
-def _failures(s: dict[str, Any], ended: str) -> list[str]:
+def _failures(s: dict[str, Any], ended: str, requested_stop: bool) -> list[str]:
     out = [f"{agent} uncontrolled for {n} cycle(s) (the world applied its safe action)"
            for agent, n in s["uncontrolled"].items()]
     out += [f"{name} gave up (left down after {s['restarts'].get(name, 0)} restart(s))"
@@ -226,6 +231,11 @@ def _failures(s: dict[str, Any], ended: str) -> list[str]:
             f"nothing was written from about cycle {failed.get('cycle')} on"
         out.append(f"the run record {s.get('record')} could not be written "
                    f"({failed.get('reason')}): {lacks}")
+    elif s.get("record_missing") and not (requested_stop and s.get("record_cut_short")):
+        out.append(f"the run record {s.get('record')} lacks the world states of "  # D9
+                   f"{s['record_missing']} of {s['cycles']} cycles (cycles "
+                   f"{ranges_text(s.get('record_gaps') or [])}): a run that dropped cycles "
+                   f"from its record is not complete")
     if ended:
         out.append(ended)
     return out
@@ -277,6 +287,7 @@ def echo(summary: dict[str, Any]) -> None:
     stalls = summary["stalls"]
     if stalls:
         shown = ", ".join(f"{'+'.join(s['stages'])} {s['seconds']} s at cycle {s['cycle']}"
+                          + (" (still stalled at the stop)" if s.get("at_stop") else "")
                           for s in stalls[:5])
         click.echo(f"  stalls: {len(stalls)} ({shown}{', ...' if len(stalls) > 5 else ''})")
     click.echo(f"  restarts: {sum(summary['restarts'].values())}{_pairs(summary['restarts'])}")
@@ -333,7 +344,8 @@ def _record(run_dir: Path, cycles: int, record: records.RunRecord | None,
     kept = coverage(run_dir, cycles, record)
     return {"record": kept and kept["file"], "record_missing": kept and kept["missing"],
             "record_gaps": kept and kept["gaps"],
-            "record_failed": recorder.get("failed") or None}
+            "record_failed": recorder.get("failed") or None,
+            "record_cut_short": bool(recorder.get("cut_short"))}
 
 
 def _pairs(d: dict[str, Any]) -> str:

@@ -30,7 +30,7 @@ def agent_sections(run_dir: Path, counters: dict[str, dict[str, int]],
                for path in sorted(run_dir.glob("learned-*.tlp"))}
     agents = {name: AgentRecord(
         state=states.get(name) or {}, memory=memory.get(name) or {},
-        learned=learned[name].read_text() if name in learned else None,
+        learned=learned[name].read_text(errors="replace") if name in learned else None,
         learned_file=str(learned.get(name, "")), counters=counters.get(name, {}))
         for name in {*states, *learned, *memory}}
     return natural_sections(summary_sections(agents))
@@ -47,12 +47,25 @@ def natural_sections(sections: dict[str, Any]) -> dict[str, Any]:
             if isinstance(entry, dict) else entry for key, entry in sections.items()}
 
 
+def set_aside(run_dir: Path) -> dict[str, Any]:
+    """The summary's "set_aside": the files of the run folder an executive could not read
+    back after a restart (a state or learned-skills file), kept under a new name
+    (agents/processes/persist.py set_aside) while the run went on."""
+    from agents.processes.persist import set_aside_files
+
+    return {"set_aside": [str(p) for p in set_aside_files(run_dir)]}
+
+
 def echo_agents(summary: dict[str, Any]) -> None:
-    """Print those entries for a person, many agents' like lines folded (fold_lines)."""
+    """Print those entries for a person, many agents' like lines folded (fold_lines),
+    and the files set aside."""
     from agents.lang.registry import summary_lines
 
     for line in fold_lines(summary_lines(summary), summary_agents(summary)):
         click.echo(line)
+    for path in summary.get("set_aside", ()):
+        click.echo(f"  SET ASIDE: {path} could not be read back after a restart; kept, and "
+                   "the run went on without it")
 
 
 FOLD_FROM = 4   # agents whose lines read alike are told in one line from this many on
