@@ -37,6 +37,8 @@ _COMMAND_MODULES = {
     "tools.commands.explain": ("explain",),     # run records
     "tools.commands.plot": ("plot",),           # run records
     "tools.view": ("view",),                    # live web view
+    "tools.commands.pddl": ("pddl",),           # PDDL domains as programs
+    "tools.commands.solve": ("solve",),         # a PDDL problem in one process
 }
 _MODULE_OF = {name: module for module, names in _COMMAND_MODULES.items() for name in names}
 SUMMARY_CHARS = 66

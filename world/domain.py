@@ -131,6 +131,7 @@ _MODULES = {
     "driving": "world.driving",
     "blocks": "world.blocks",
     "office": "world.office",
+    "pddl": "world.pddl",
 }
 DOMAINS: tuple[str, ...] = tuple(_MODULES)
 DEFAULT_DOMAIN = "driving"

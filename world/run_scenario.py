@@ -20,6 +20,7 @@ from bus.keys import check_chunk
 from world.domain import DEFAULT_DOMAIN, DOMAINS
 from world.overrides import TABLES, Override, OverrideError, apply_overrides, parse_override
 from world.scenario_fields import REQUIRED, Errors, at_least, field, is_table, only, shown
+from world.scenario_paths import resolve as _resolve
 from world.scenario_types import (
     AGENT_STAGES,
     GOAL_OPS,
@@ -225,22 +226,6 @@ def agent_id_ok(agent_id: str) -> bool:
     except KeyFormatError:
         return False
     return agent_id.isprintable()
-
-
-def _resolve(program: str, scenario_path: Path) -> Path:
-    """A relative program path is looked up beside the scenario, then in each folder above
-    it (so `programs/driving.tlp` in scenarios/x.toml finds the repository's programs/ from
-    any working directory), then in the working directory."""
-    candidate = Path(program)
-    if candidate.is_absolute():
-        return candidate
-    for folder in scenario_path.resolve().parents:
-        try:
-            if (folder / candidate).exists():
-                return folder / candidate
-        except (OSError, ValueError):  # a name too long to look up, a NUL byte: not there
-            return candidate
-    return candidate
 
 
 def _goal(table: Any, index: int, agents: list[str], errors: Errors,

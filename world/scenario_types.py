@@ -9,6 +9,7 @@ from typing import Any
 from bus.cycle import CycleMode
 from world.domain import DEFAULT_DOMAIN
 from world.errors import WorldError
+from world.scenario_paths import world_files
 
 AGENT_STAGES = ("perception", "inference", "executive")
 GOAL_OPS = ("post", "cancel", "priority")
@@ -101,8 +102,9 @@ class Scenario:
 
     @property
     def world_table(self) -> dict[str, Any]:
-        """The `[world]` table without its `domain` key: the domain's own configuration."""
-        return {k: v for k, v in self.world.items() if k != "domain"}
+        """The `[world]` table without its `domain` key: the domain's own configuration
+        (a `*_file` path found as a program is, beside the scenario first)."""
+        return world_files({k: v for k, v in self.world.items() if k != "domain"}, self.path)
 
     @property
     def agent_ids(self) -> list[str]:

@@ -23,6 +23,7 @@ from world.driving.render import agent_trail, render_gif, render_png
 from world.driving.snapshot import WorldSnapshot
 from world.errors import WorldError
 from world.pictures import is_animation
+from world.scenario_paths import world_files
 from world.toml_text import read_toml
 
 _POSITIVE = click.FloatRange(min=0, min_open=True)  # --scale [px/m], --follow [m]
@@ -81,6 +82,7 @@ def _from_scenario(path: Path, steps: int, seed: int | None) -> list[dict[str, A
         raise click.ClickException(str(exc)) from None
     table = dict(doc.get("world", {}) if isinstance(doc.get("world"), dict) else {})
     domain = get_domain(str(table.pop("domain", DEFAULT_DOMAIN)))
+    table = world_files(table, path)
     agents = [a.get("id") for a in doc.get("agents", []) if isinstance(a, dict)]
     agents = agents or [c.get("agent") for c in table.get("cars", [])] or ["ME"]
     run = doc.get("run") if isinstance(doc.get("run"), dict) else {}

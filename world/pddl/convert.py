@@ -1,0 +1,154 @@
+"""The pddl package's domain and problem objects turned into world/pddl/task.py's data, with the
+checks the library leaves to its user: constructs outside the STRIPS fragment, and a problem
+naming an object, type or predicate its domain does not declare."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from world.errors import ConfigError
+from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate
+
+_UNSUPPORTED = {
+    "When": "conditional effects (when)", "Forall": "universal quantifiers (forall)",
+    "ForallCondition": "universal quantifiers (forall)",
+    "ExistsCondition": "existential quantifiers (exists)", "Or": "disjunctions (or)",
+    "Imply": "implications (imply)", "OneOf": "non-deterministic effects (oneof)",
+}
+
+
+def domain_model(d: Any, path: str, text: str) -> DomainModel:
+    """A DomainModel of the library's Domain ``d`` (read from ``text`` in ``path``)."""
+    types = tuple(sorted((str(t).lower(), str(p).lower() if p else ROOT_TYPE)
+                         for t, p in d.types.items() if str(t).lower() != ROOT_TYPE))
+    declared = {t for t, _ in types} | {ROOT_TYPE}
+    constants = tuple(sorted((str(c.name).lower(), _one_type(c.type_tags, declared, path, text,
+                                                             str(c.name)))
+                             for c in d.constants))
+    preds = tuple(sorted((str(p.name).lower(), _params(p.terms, declared, path, text))
+                         for p in d.predicates))
+    arity = {p: len(ps) for p, ps in preds}
+    if "object" in arity:   # the type of the objects' percepts (perception.py)
+        raise ConfigError(f"{locate(path, text, 'object', ':predicates')}: pddl: a predicate "
+                          f"named 'object' is not supported: the world's object percepts "
+                          f"are (object NAME type T)")
+    ops = []
+    for a in d.actions:
+        name = str(a.name).lower()
+        where = locate(path, text, name, after=":action")
+        params = _params(a.parameters, declared, path, text)
+        known = {v for v, _ in params} | {c for c, _ in constants}
+        pre = _literals(a.precondition, where, f"the precondition of {name}")
+        add, delete = [], []
+        for lit in _literals(a.effect, where, f"the effect of {name}"):
+            if lit.pred == "=":
+                raise ConfigError(f"{where}: pddl: action {name}: an effect cannot be an "
+                                  f"equality: {lit.text()}")
+            (delete if lit.negated else add).append(Lit(lit.pred, lit.args))
+        for lit in [*pre, *add, *delete]:
+            _check_lit(lit, arity, known, where, f"action {name}")
+        ops.append(Operator(name, params, tuple(pre), tuple(add), tuple(delete)))
+    return DomainModel(str(d.name).lower(), types, constants, preds, tuple(ops), path)
+
+
+def task_of(model: DomainModel, p: Any, path: str, text: str) -> Task:
+    """A Task of the library's Problem ``p`` for ``model``, every name checked against it."""
+    if p.domain_name is not None and str(p.domain_name).lower() != model.name:
+        raise ConfigError(f"{locate(path, text, str(p.domain_name), ':domain')}: pddl: the "
+                          f"problem is for domain {str(p.domain_name).lower()!r}, not "
+                          f"{model.name!r} ({model.path})")
+    declared = {t for t, _ in model.types} | {ROOT_TYPE}
+    objects = dict(model.constants)
+    for o in p.objects:
+        name = str(o.name).lower()
+        objects[name] = _one_type(o.type_tags, declared, path, text, str(o.name))
+    arity = {q: len(ps) for q, ps in model.predicates}
+    init = set()
+    for f in p.init:
+        lit = _literal(f, path, "the initial state")
+        if lit.negated or lit.pred == "=":
+            raise ConfigError(f"{path}: pddl: the initial state holds atoms only, got "
+                              f"{lit.text()}")
+        _check_lit(lit, arity, set(objects), path, "the initial state", text, ":init")
+        init.add((lit.pred, *lit.args))
+    goal = _literals(p.goal, path, "the goal") if p.goal is not None else []
+    for lit in goal:
+        _check_lit(lit, arity, set(objects), path, "the goal", text, ":goal")
+    return Task(model, str(p.name).lower(), tuple(sorted(objects.items())), frozenset(init),
+                tuple(goal), path)
+
+
+def _one_type(tags, declared: set[str], path: str, text: str, name: str) -> str:
+    tags = sorted(str(t).lower() for t in tags) or [ROOT_TYPE]
+    if len(tags) > 1:
+        raise ConfigError(f"{locate(path, text, name)}: pddl: object {name.lower()} has "
+                          f"several types ({' '.join(tags)}); an object has one")
+    if tags[0] not in declared:
+        raise ConfigError(f"{locate(path, text, name)}: pddl: object {name.lower()} is of "
+                          f"the undeclared type {tags[0]!r} (declared: "
+                          f"{', '.join(sorted(declared))})")
+    return tags[0]
+
+
+def _params(terms, declared: set[str], path: str, text: str
+            ) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    out = []
+    for t in terms:
+        tags = tuple(sorted(str(x).lower() for x in t.type_tags)) or (ROOT_TYPE,)
+        for tag in tags:
+            if tag not in declared:
+                raise ConfigError(f"{locate(path, text, tag)}: pddl: ?{str(t.name).lower()} "
+                                  f"is of the undeclared type {tag!r}")
+        out.append((f"?{str(t.name).lower()}", tags))
+    return tuple(out)
+
+
+def _literals(formula: Any, where: str, what: str) -> list[Lit]:
+    """The conjuncts of ``formula``: atoms, negated atoms, (in)equalities."""
+    if formula is None:
+        return []
+    kind = type(formula).__name__
+    if kind == "And":
+        return [lit for op in formula.operands for lit in _literals(op, where, what)]
+    return [_literal(formula, where, what)]
+
+
+def _literal(f: Any, where: str, what: str) -> Lit:
+    kind = type(f).__name__
+    if kind == "Not":
+        inner = _literal(f.argument, where, what)
+        if inner.negated:
+            return Lit(inner.pred, inner.args)
+        return Lit(inner.pred, inner.args, True)
+    if kind == "Predicate":
+        return Lit(str(f.name).lower(), tuple(_term(t) for t in f.terms))
+    if kind == "EqualTo":
+        return Lit("=", (_term(f.left), _term(f.right)))
+    name = _UNSUPPORTED.get(kind)
+    if name is None:
+        name = "numeric fluents" if kind in ("Increase", "Decrease", "Assign", "ScaleUp",
+                                             "ScaleDown", "NumericFunction") else kind
+    raise ConfigError(f"{where}: pddl: {what}: {name} not supported; the pddl world runs "
+                      f"STRIPS conjunctions of literals")
+
+
+def _term(t: Any) -> str:
+    name = str(t.name).lower()
+    return f"?{name}" if type(t).__name__ == "Variable" else name
+
+
+def _check_lit(lit: Lit, arity: dict[str, int], known: set[str], where: str, what: str,
+               text: str = "", after: str = "") -> None:
+    at = (lambda n: locate(where, text, n, after)) if text else (lambda n: where)
+    if lit.pred != "=":
+        if lit.pred not in arity:
+            raise ConfigError(f"{at(lit.pred)}: pddl: {what}: undeclared predicate "
+                              f"{lit.pred!r} in {lit.text()}")
+        if arity[lit.pred] != len(lit.args):
+            raise ConfigError(f"{at(lit.pred)}: pddl: {what}: {lit.text()}: {lit.pred} takes "
+                              f"{arity[lit.pred]} argument(s), got {len(lit.args)}")
+    for a in lit.args:
+        if a not in known:
+            kind = "variable" if a.startswith("?") else "object"
+            raise ConfigError(f"{at(a)}: pddl: {what}: undeclared {kind} {a!r} in "
+                              f"{lit.text()}")
