@@ -111,6 +111,7 @@ class Task(WayFilters):
         self._holds: dict = {}
         self._alternatives: dict = {}
         self._situation = ""
+        self._kinds: frozenset[str] | None = None
 
     @property
     def situation(self) -> str:
@@ -148,9 +149,17 @@ class Task(WayFilters):
         return tuple(show(c, b) for c in self.skill(number).start)
 
     def type_of(self, value: object) -> str | None:
-        """The type of the percept whose id is ``value`` (first in name order), if any."""
+        """The type of the percept whose id is ``value``, if any: the first in name order of
+        the types the primitive skills' :percepts name (what the program treats as its
+        objects: ``block``; in a PDDL world ``object``, not a fact that happens to hold of
+        ``value`` now, such as ``(boarded p0)``), else the first in name order."""
         types = sorted(t for (t, pid) in self.pidx.by_id if pid == value)
-        return types[0] if types else None
+        if not types:
+            return None
+        if self._kinds is None:
+            self._kinds = frozenset(p.type for s in self.program.skills
+                                    if s.kind == "primitive" for p in s.percepts)
+        return next((t for t in types if t in self._kinds), types[0])
 
     # -- ways to chain off a goal ----------------------------------------------------------
     def nothing_to_chain(self, goal: str) -> str:
