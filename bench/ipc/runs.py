@@ -32,7 +32,8 @@ class Run:
     (killed at the time limit), invalid (teleo claimed the goal achieved, the replay denies it;
     ``detail`` why) or error. ``claimed``: teleo's summary said achieved. ``length`` in
     actions, ``cycles`` and ``solving`` (problem-solving cycles) teleo's, ``wall_s`` [s]
-    including the interpreter's start; ``learned``: the file of the skills the run learned
+    including the interpreter's start, ``solve_s`` [s] teleo's own time for the run (its
+    ``elapsed_s``, without the start of the interpreter and the import of teleo); ``learned``: the file of the skills the run learned
     (teleo), ``plan``: the actions."""
 
     domain: str
@@ -45,6 +46,7 @@ class Run:
     solving: int = 0
     learned_count: int = 0
     wall_s: float = 0.0
+    solve_s: float = 0.0
     detail: str = ""
     learned: str = ""
     source: str = ""
@@ -99,7 +101,8 @@ def run_teleo(domain: str, task: str, domain_file: str, problem_file: str, limit
     common = dict(claimed=status == "achieved", length=len(plan),
                   cycles=int(data.get("cycles", 0)), solving=int(data.get("solving_cycles", 0)),
                   learned_count=len(learned) if isinstance(learned, list) else int(learned or 0),
-                  wall_s=wall, learned=str(out) if out.exists() else "", source=source,
+                  wall_s=wall, solve_s=float(data.get("elapsed_s", 0.0) or 0.0),
+                  learned=str(out) if out.exists() else "", source=source,
                   plan=plan)
     if status == "achieved":
         verdict = strips.check(strips.load(domain_file, problem_file), plan)
