@@ -33,8 +33,8 @@ class Run:
     ``detail`` why) or error. ``claimed``: teleo's summary said achieved. ``length`` in
     actions, ``cycles`` and ``solving`` (problem-solving cycles) teleo's, ``wall_s`` [s]
     including the interpreter's start, ``solve_s`` [s] teleo's own time for the run (its
-    ``elapsed_s``, without the start of the interpreter and the import of teleo); ``learned``: the file of the skills the run learned
-    (teleo), ``plan``: the actions."""
+    ``elapsed_s``, without the start of the interpreter and the import of teleo);
+    ``learned``: the file of the skills the run learned (teleo), ``plan``: the actions."""
 
     domain: str
     task: str
