@@ -18,9 +18,11 @@ from __future__ import annotations
 from collections import defaultdict
 from itertools import islice
 
-from ..core.matcher import solve
+from ..core.matcher import solve, unify_head
 from ..core.program import Program
 from ..core.terms import Literal, Var
+from ..execution.effects import Effects
+from .landmarks import key
 
 MAX_LEVELS = 64        # rounds of forward application [rounds]
 MAX_GROUND = 20000     # ground skill applications per round before giving up [applications]
@@ -180,3 +182,62 @@ def _product(choices: list, b: dict):
     (v, values), rest = choices[0], choices[1:]
     for x in values:
         yield from _product(rest, {**b, v: x})
+
+
+class InferredEffects(Effects):
+    """The program's effect model (agents/lang/execution/effects.py), and for a program the
+    relaxed estimate applies to (its concepts read from percepts, so no definition says what
+    an action undoes) what achieving a literal undoes as a STRIPS operator's start implies:
+    the conditions of the start of every primitive skill that achieves it which some
+    primitive skill achieves (fluents, not static facts such as (in-city ?l ?c)), those
+    common to all such skills. In the PDDL Blocks World, (on ?x ?y) by (*stack ?x ?y)
+    undoes (holding ?x) and (clear ?y). An estimate for ordering the solver's choices
+    (agents/lang/solving/ordering.py), as the seed's skills state their effects; a start
+    condition an operator keeps is claimed undone only if every way keeps it (gripper's
+    (at-robby ?room) by (*pick ...)), and only one about the same thing as the head (``_about``:
+    (*depart ?f ?p) serves ?p, and undoes (boarded ?p), not (lift-at ?f))."""
+
+    def __init__(self, program: Program, base: Effects) -> None:
+        super().__init__(program)
+        self.base = base
+        skills = _eligible(program)
+        self.skills = [s for s in program.skills if s.kind == "primitive"] if skills else []
+        self.fluents = {s.head.pred for s in self.skills}
+        self._inferred: dict[Literal, tuple[Literal, ...]] = {}
+
+    def undoes(self, e: Literal) -> tuple[Literal, ...]:
+        hit = self._inferred.get(e)
+        if hit is None:
+            hit = tuple(dict.fromkeys((*self.base.undoes(e), *self._implied(e))))
+            if len(self._inferred) < MAX_DOMAIN:
+                self._inferred[e] = hit
+        return hit
+
+    def _implied(self, e: Literal) -> list[Literal]:
+        common: dict[str, Literal] | None = None
+        for s in self.skills:
+            if s.head.pred != e.pred or len(s.head.args) != len(e.args):
+                continue
+            b = unify_head(s.head, e, {})
+            if b is None:
+                continue
+            mine = {}
+            for c in (*s.start, *s.requires):
+                if isinstance(c, Literal) and not c.negated and c.pred in self.fluents \
+                        and _about(c, s.head):
+                    p = Literal(c.pred, tuple(b.get(a, a) if isinstance(a, Var) else a
+                                              for a in c.args))
+                    if p != e:
+                        mine[key(p)] = p
+            common = mine if common is None else {k: v for k, v in common.items()
+                                                  if k in mine}
+        return list((common or {}).values())
+
+
+def _about(c: Literal, head: Literal) -> bool:
+    """Whether the start condition ``c`` speaks of what ``head`` does: the same predicate (a
+    place left for another), the head's first argument (its subject: (holding ?x) for (on ?x
+    ?y)), or nothing but the head's arguments ((clear ?y) for (on ?x ?y))."""
+    args = [a for a in c.args]
+    return c.pred == head.pred or (bool(head.args) and head.args[0] in args) or \
+        (bool(args) and all(a in head.args for a in args))
