@@ -84,3 +84,22 @@ def test_bad_options_are_one_usage_error_without_a_traceback():
                               capture_output=True, text=True, timeout=60, cwd=ROOT)
         assert done.returncode == 2 and hint in done.stderr
         assert "Traceback" not in done.stderr and done.stdout == ""
+
+
+def test_quick_on_one_tiny_task_prints_the_tables_and_every_target(tmp_path):
+    done = subprocess.run([sys.executable, str(ROOT / "bench" / "ipc" / "ipc.py"), "--quick",
+                           "--domains", "movie", "--tasks", "1", "--jobs", "1", "--keep",
+                           str(tmp_path)], capture_output=True, text=True, timeout=300, cwd=ROOT)
+    assert done.returncode == 0, done.stderr
+    out = done.stdout
+    row = next(line.split() for line in out.splitlines() if line.startswith("task01"))
+    # teleo fresh and learned, no cross run (one task), gbf+hff and astar+lmcut: each 7 steps,
+    # the best plan, replayed by bench/ipc/strips.py
+    assert row[1:5] == ["7", "x1.00", "c8", "s0"] and row[6:10] == ["7", "x1.00", "c8", "s0"]
+    assert row[11] == "-" and row[12:14] == ["7", "x1.00"] and row[15:17] == ["7", "x1.00"]
+    summary = next(line.split() for line in out.splitlines() if line.startswith("movie "))
+    assert summary[1:6] == ["1/1", "1/1", "-", "1/1", "1/1"]
+    targets = [line for line in out.splitlines() if line.startswith("  [")]
+    assert len(targets) == 6 and all(t.startswith("  [met]") for t in targets)
+    assert (tmp_path / "movie-task01-teleo-fresh.tlp").exists()
+    assert (tmp_path / "movie-task01-gbf-hff" / "problem.pddl.soln").exists()
