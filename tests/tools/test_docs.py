@@ -18,8 +18,9 @@ ROOT = Path(__file__).resolve().parents[2]
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
         *sorted((ROOT / "world").glob("*/percepts.md"))]
 CONFIGS = {"driving": "world.driving.config", "blocks": "world.blocks.config",
-           "office": "world.office.config"}
-HEADINGS = {"driving": "## Driving", "blocks": "## The Blocks World", "office": "## Office"}
+           "office": "world.office.config", "pddl": "world.pddl.config"}
+HEADINGS = {"driving": "## Driving", "blocks": "## The Blocks World", "office": "## Office",
+            "pddl": "## PDDL"}
 
 
 def section(text: str, heading: str) -> str:

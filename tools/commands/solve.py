@@ -52,6 +52,19 @@ class Solved:
                 "elapsed_s": round(self.elapsed_s, 3), "learned_file": self.learned_file}
 
 
+def _write_learned(out: Path, program: Path, skills: tuple[str, ...]) -> list[Path]:
+    """The learned skills in ``out`` and, beside it, the program they were learned with
+    (``<stem>-program.tlp``: the run's own is in a temporary folder), which the learned file
+    names, so that `teleo check` finds it."""
+    from agents.lang.registry import learned_text
+
+    out.parent.mkdir(parents=True, exist_ok=True)
+    kept = out.with_name(f"{out.stem}-program.tlp")
+    kept.write_text(program.read_text())
+    out.write_text(learned_text(skills, str(kept)))
+    return [out, kept]
+
+
 def _scenario_text(name: str, domain: Path, problem: Path, program: Path, goal: str,
                    cycles: int) -> str:
     return (f'[run]\nname = {json.dumps(name)}\nmode = "lockstep"\ncycles = {cycles}\n'
@@ -100,7 +113,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
           extra: str = "", learned_out: Path | None = None) -> Solved:
     """Run the problem; raises WorldError, ScenarioError or LangError for bad input."""
     from tools.commands.scenario_check import load_checked
-    from tools.commands.simulate import simulate, write_learned
+    from tools.commands.simulate import simulate
     from tools.records import sim_summary
     from world.pddl.files import load_task
     from world.pddl.program import goal_text, program_text
@@ -110,7 +123,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
     limit = cycles or default_cycles(len(task.objects), len(task.goal))
     with tempfile.TemporaryDirectory(prefix="teleo-solve-") as folder:
         program = Path(folder) / f"{task.domain.name}.tlp"
-        program.write_text(program_text(task.domain, None, extra, str(domain)))
+        program.write_text(program_text(task.domain, task, extra, str(domain), goals=False))
         path = Path(folder) / "solve.toml"
         name = f"solve-{task.name}"[:40].replace(".", "-")
         path.write_text(_scenario_text(name, domain.resolve(), problem.resolve(), program,
@@ -121,7 +134,8 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
         watch = _Watch()
         run = simulate(scenario, limit, learned=learned, recorder=watch,
                        until=lambda states: watch.over)
-        written = write_learned(run, scenario, learned_out) if learned_out else []
+        written = _write_learned(learned_out, program, run.learned[AGENT]) \
+            if learned_out else []
     summary = sim_summary.build(run, scenario, 0, limit)
     g = next((x for x in summary["goals"] if x["id"] == "g1"), {})
     holds = bool(run.final.get("goal_holds"))
@@ -150,7 +164,8 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               default=None, help="Start from the skills in this learned file.")
 @click.option("--learned-out", type=OutputPath(path_type=Path), default=None,
-              help="Write the skills learned (those started from, then the new ones) here.")
+              help="Write the skills learned (those started from, then the new ones) here, "
+                   "and the program they fit beside it (STEM-program.tlp).")
 @click.option("--extra", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               default=None, help="Add this file of your own concepts and skills to the "
                                  "domain's program.")
@@ -186,7 +201,8 @@ def _echo(r: Solved) -> None:
     for k, a in enumerate(r.actions, start=1):
         click.echo(f"  {k:3d} ({' '.join(a)})")
     if r.learned_file:
-        click.echo(f"learned skills written to {r.learned_file}")
+        click.echo(f"learned skills written to {r.learned_file} (with the program beside it, "
+                   f"-program.tlp)")
 
 
 commands = [solve_command]

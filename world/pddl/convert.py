@@ -4,10 +4,11 @@ naming an object, type or predicate its domain does not declare."""
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from world.errors import ConfigError
-from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate
+from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate, uncommented
 
 _UNSUPPORTED = {
     "When": "conditional effects (when)", "Forall": "universal quantifiers (forall)",
@@ -33,14 +34,20 @@ def domain_model(d: Any, path: str, text: str) -> DomainModel:
                           f"named 'object' is not supported: the world's object percepts "
                           f"are (object NAME type T)")
     ops = []
-    for a in d.actions:
+    low = uncommented(text).lower()
+    for a in sorted(d.actions, key=lambda a: (_find(low, rf"\(\s*:action\s+"
+                                                        rf"{re.escape(str(a.name).lower())}"
+                                                        rf"(?![\w-])"), str(a.name))):
         name = str(a.name).lower()
         where = locate(path, text, name, after=":action")
+        start = _find(low, rf"\(\s*:action\s+{re.escape(name)}(?![\w-])")
         params = _params(a.parameters, declared, path, text)
         known = {v for v, _ in params} | {c for c, _ in constants}
-        pre = _literals(a.precondition, where, f"the precondition of {name}")
+        pre = in_text_order(_literals(a.precondition, where, f"the precondition of {name}"),
+                            low, _find(low, r":precondition\b", start))
         add, delete = [], []
-        for lit in _literals(a.effect, where, f"the effect of {name}"):
+        for lit in in_text_order(_literals(a.effect, where, f"the effect of {name}"), low,
+                                 _find(low, r":effect\b", start)):
             if lit.pred == "=":
                 raise ConfigError(f"{where}: pddl: action {name}: an effect cannot be an "
                                   f"equality: {lit.text()}")
@@ -72,10 +79,29 @@ def task_of(model: DomainModel, p: Any, path: str, text: str) -> Task:
         _check_lit(lit, arity, set(objects), path, "the initial state", text, ":init")
         init.add((lit.pred, *lit.args))
     goal = _literals(p.goal, path, "the goal") if p.goal is not None else []
+    low = uncommented(text).lower()
+    goal = in_text_order(goal, low, _find(low, r"\(\s*:goal\b"))
     for lit in goal:
         _check_lit(lit, arity, set(objects), path, "the goal", text, ":goal")
     return Task(model, str(p.name).lower(), tuple(sorted(objects.items())), frozenset(init),
                 tuple(goal), path)
+
+
+def _find(text: str, pattern: str, start: int = 0) -> int:
+    """Where ``pattern`` first matches in ``text`` from ``start`` (len(text) if nowhere)."""
+    m = re.compile(pattern).search(text, start if start < len(text) else 0)
+    return m.start() if m else len(text)
+
+
+def in_text_order(lits: list[Lit], text: str, start: int) -> list[Lit]:
+    """``lits`` in the order they are written in ``text`` (lower-case) from ``start``: the
+    library keeps a conjunction as a set, whose order changes from one process to the next,
+    and the order of a skill's conditions and of a goal's conjuncts matters to the solver."""
+    def key(lit: Lit) -> tuple[int, str]:
+        body = r"\s+".join(re.escape(x) for x in (lit.pred, *lit.args))
+        return _find(text, rf"\(\s*{body}\s*\)", start), lit.text()
+
+    return sorted(lits, key=key)
 
 
 def _one_type(tags, declared: set[str], path: str, text: str, name: str) -> str:

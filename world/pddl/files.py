@@ -17,43 +17,54 @@ from pathlib import Path
 
 from world.errors import ConfigError
 from world.pddl.convert import domain_model, task_of
-from world.pddl.task import DomainModel, Task, position
+from world.pddl.task import DomainModel, Task, locate, position, uncommented
 
 INSTALL = "pip install 'teleo[pddl]'"
 SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality"})
 
 
+_PARSERS: list = []   # the library's two parsers, made once per process (each builds its grammar)
+
+
 def _library():
+    """(domain parser, problem parser); ConfigError when the pddl package is missing."""
+    if _PARSERS:
+        return _PARSERS[0]
     try:
         from pddl.parser.domain import DomainParser
         from pddl.parser.problem import ProblemParser
     except ImportError:
         raise ConfigError(f"the pddl world needs the pddl package: {INSTALL}") from None
-    return DomainParser(), ProblemParser()
+    _PARSERS.append((DomainParser(), ProblemParser()))
+    return _PARSERS[0]
 
 
-def load_domain(path: str | Path) -> DomainModel:
-    """The domain in ``path``; raises ConfigError (one line) for anything it cannot run."""
+def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
+    """The domain in ``path`` (or ``text``, read from there); raises ConfigError (one line)
+    for anything it cannot run."""
     parse_domain, _ = _library()
-    text = _read(path)
-    _check_requirements(text, path)
+    text = _read(path) if text is None else text
+    code = uncommented(text)
+    _check_requirements(code, path)
     for construct, name in (("durative-action", "durative actions (:durative-action)"),
                             ("functions", "numeric fluents (:functions)"),
                             ("derived", "derived predicates (:derived)")):
-        m = re.search(rf"\(\s*:{construct}\b", text, re.I)
+        m = re.search(rf"\(\s*:{construct}\b", code, re.I)
         if m:
-            raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not supported; the "
-                              f"pddl world runs STRIPS with {_fragment()}")
+            raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not "
+                              f"supported; the pddl world runs STRIPS with {_fragment()}")
     d = _parsed(parse_domain, path, text)
     return domain_model(d, str(path), text)
 
 
-def load_task(domain_path: str | Path, problem_path: str | Path) -> Task:
-    """The problem in ``problem_path`` of the domain in ``domain_path``, checked against it."""
-    model = load_domain(domain_path)
+def load_task(domain_path: str | Path, problem_path: str | Path,
+              texts: tuple[str, str] | None = None) -> Task:
+    """The problem in ``problem_path`` of the domain in ``domain_path`` (or ``texts``, the
+    two files' text), checked against it."""
+    model = load_domain(domain_path, texts[0] if texts else None)
     _, parse_problem = _library()
-    text = _read(problem_path)
-    _check_requirements(text, problem_path)
+    text = _read(problem_path) if texts is None else texts[1]
+    _check_requirements(uncommented(text), problem_path)
     p = _parsed(parse_problem, problem_path, text)
     return task_of(model, p, str(problem_path), text)
 
@@ -116,8 +127,22 @@ def _parsed(parse, path: str | Path, text: str):
         raise ConfigError(f"{path}:{exc.line}:{exc.column}: pddl: syntax error") from None
     except (PDDLError, LarkError, AssertionError, ValueError, TypeError, KeyError) as exc:
         cause = exc.__context__ if isinstance(exc, LarkError) and exc.__context__ else exc
-        message = " ".join(str(cause).split()) or type(cause).__name__
-        raise ConfigError(f"{path}: pddl: {message}") from None
+        raise ConfigError(_library_error(path, text, " ".join(str(cause).split())
+                                         or type(cause).__name__)) from None
+
+
+def _library_error(path: str | Path, text: str, message: str) -> str:
+    """The library's own check failing, as one line at the place it names where it can."""
+    m = re.fullmatch(r"types \['([^']+)'.*\] of term Variable\((\S+)\) are not in available "
+                     r"types \{(.*)\}", message)
+    if m:
+        declared = ", ".join(sorted(re.findall(r"'([^']+)'", m.group(3))))
+        return (f"{locate(path, text, m.group(1))}: pddl: ?{m.group(2)} is of the undeclared "
+                f"type {m.group(1)!r} (declared: {declared})")
+    names = re.findall(r"'([\w?-]+)'", message)
+    where = next((w for w in (locate(path, text, n) for n in names) if w != str(path)),
+                 str(path))
+    return f"{where}: pddl: {message}"
 
 
 def _implied(text: str, exc: Exception) -> str:

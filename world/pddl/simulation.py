@@ -2,7 +2,8 @@
 true atoms. Every agent of the run acts on the one state, in agent order, one action a cycle:
 an agent's second action in a cycle fails (`one action a cycle: ... was this cycle's`), as
 does an action whose precondition is false (naming the literal), an unknown action, a wrong
-arity or object (semantics.py); a failed action changes nothing. No time passes but the
+arity or object (semantics.py); a failed action changes nothing. ``*wait`` (the safe action of
+a silent agent) does nothing and is no action of the plan. No time passes but the
 cycle's (1 s a cycle); nothing changes by itself."""
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from world.pddl.task import Task
 
 DT = 1.0   # [s] a cycle
 COUNTERS = ("actions_done", "actions_failed")
+WAIT = "*wait"
 
 
 class PddlWorld:
@@ -29,6 +31,8 @@ class PddlWorld:
         self.counters = {a: dict.fromkeys(COUNTERS, 0) for a in agents}
         self._acted: dict[str, list[Any]] = {}
         self.plan: list[list[str]] = []   # every action done, in order
+        self.actions = tuple(f"*{o.name}" for o in task.domain.operators)  # what it knows
+        self.waits = "wait" not in {o.name for o in task.domain.operators}  # *wait: a no-op
 
     def apply_actions(self, agent: str, actions: list[list[Any]]) -> list[dict[str, Any]]:
         """One outcome per action, in order; never raises."""
@@ -43,6 +47,8 @@ class PddlWorld:
             return _failed(shown, f"unknown agent {agent!r}; agents: {sorted(self.counters)}")
         if not isinstance(action, list | tuple):
             why = f"expected an action [*name, arg, ...], got {action!r:.80}"
+        elif self.waits and list(action) == [WAIT]:
+            return {"action": shown, "status": "done", "reason": ""}
         elif agent in self._acted:
             why = f"one action a cycle: {_text(self._acted[agent])} was this cycle's"
         else:
@@ -55,8 +61,9 @@ class PddlWorld:
             {"action": shown, "status": "done", "reason": ""}
 
     def safe_actions(self, agent: str) -> list[list[Any]]:
-        """A silent agent does nothing."""
-        return []
+        """A silent agent waits: ``*wait`` changes nothing and counts as no action (nothing,
+        in a domain with an operator called wait)."""
+        return [[WAIT]] if self.waits else []
 
     def inject(self, event: dict[str, Any]) -> dict[str, Any]:
         """The pddl world knows no events."""

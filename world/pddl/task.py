@@ -102,3 +102,8 @@ def locate(path: str | Path, text: str, name: str, after: str = "") -> str:
         if ";" not in text[line_start:k]:
             return position(path, text, k)
     return str(path)
+
+
+def uncommented(text: str) -> str:
+    """``text`` with each comment blanked out (same length: positions stay)."""
+    return re.sub(r";[^\n]*", lambda m: " " * len(m.group()), text)

@@ -46,6 +46,7 @@ class Skill:
     loc: Loc | None = None
     index: int = 1  # 1-based clause number among skills for this head predicate
     number: int = 0  # 0-based position among all skills (stable id inside a program)
+    effects: tuple[Literal, ...] = ()  # a primitive skill's stated effects: adds, (not L) deletes
 
     @property
     def kind(self) -> str:

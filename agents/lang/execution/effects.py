@@ -15,6 +15,12 @@ achieving a literal E undoes follows from the concept definitions:
 * then, twice more, a concept each of whose clauses needs, positively, something undone
   (``(unstackable C B)`` needs ``(on C B)``).
 
+A primitive skill may also state its actions' effects, ``:effects ((clear ?x) (not (holding
+?x)))`` (the pddl world's programs: world/pddl/program.py): its positive effects are achieved
+with its head, its ``(not L)`` undone; and achieving E undoes what every primitive skill with
+E's predicate in its head and stated effects deletes (``(on A B)``, which only *stack achieves,
+undoes ``(clear B)``; ``(holding A)``, by *pick-up or *unstack, undoes ``(clear A)``).
+
 Only fully known effects count: a clause whose action arguments are expressions, or whose head
 keeps a variable the action does not bind, says nothing. So the prediction never claims too
 much; an effect the program does not state (``(*pickup A T)`` empties the table spot, fills the
@@ -46,10 +52,15 @@ class Effects:
         key = tuple((a.name, a.args) for a in actions)
         hit = self._actions.get(key)
         if hit is None:
-            achieved = tuple(dict.fromkeys(h for s in self.program.skills
-                                           if s.kind == "primitive" and s.actions
-                                           for h in [_head_of(s, actions)] if h is not None))
-            undone = tuple(dict.fromkeys(p for e in achieved for p in self.undoes(e)))
+            stated = [(s, b) for s in self.program.skills
+                      if s.kind == "primitive" and s.actions
+                      for b in [_action_binding(s, actions)] if b is not None]
+            heads = [_pattern(s.head, b) for s, b in stated]
+            adds = [_pattern(e, b) for s, b in stated for e in s.effects if not e.negated]
+            achieved = tuple(dict.fromkeys(h for h in heads + adds if not h.variables()))
+            deletes = [_pattern(e, b) for s, b in stated for e in s.effects if e.negated]
+            undone = tuple(dict.fromkeys([*(d for d in deletes if not d.variables()),
+                                          *(p for e in achieved for p in self.undoes(e))]))
             undone = tuple(p for p in undone if not any(_covers(p, e) for e in achieved))
             hit = (achieved, undone)
             if len(self._actions) < _MAX_CACHE:
@@ -62,7 +73,7 @@ class Effects:
         hit = self._undoes.get(e)
         if hit is not None:
             return hit
-        out = list(self._excluded_by(e)) + list(self._excluding(e))
+        out = list(self._excluded_by(e)) + list(self._excluding(e)) + self._deleted_with(e)
         frontier = list(out)
         for _ in range(CLOSURE):
             frontier = [p for q in frontier for p in self._needing(q) if p not in out]
@@ -71,6 +82,32 @@ class Effects:
         if len(self._undoes) < _MAX_CACHE:
             self._undoes[e] = hit
         return hit
+
+    def _deleted_with(self, e: Literal) -> list[Literal]:
+        """What every primitive skill that states its effects and can achieve ``e`` deletes
+        (its head or a positive effect matching ``e``); variables ``e`` leaves open stand for
+        any value."""
+        return self._stated_with(e, True)
+
+    def achieved_with(self, e: Literal) -> list[Literal]:
+        """What every primitive skill that states its effects and can achieve ``e`` also
+        achieves (``(on A B)`` by *stack comes with ``(clear A)``), as patterns."""
+        return [p for p in self._stated_with(e, False) if p != _canonical(e)]
+
+    def _stated_with(self, e: Literal, negated: bool) -> list[Literal]:
+        common: list[Literal] | None = None
+        for s in self.program.skills:
+            if s.kind != "primitive" or not s.effects:
+                continue
+            for made in (s.head, *(x for x in s.effects if not x.negated)):
+                b = _bind(Literal(made.pred, made.args), e)
+                if b is None:
+                    continue
+                found = {_canonical(_pattern(x, b)) for x in (s.head, *s.effects)
+                         if x.negated == negated}
+                common = sorted(found, key=str) if common is None else \
+                    [x for x in common if x in found]
+        return common or []
 
     def _clauses(self, pred: str) -> tuple[ConceptClause, ...]:
         return self.program.concepts.get(pred, ())
@@ -198,9 +235,16 @@ def _pattern(lit: Literal, b: dict) -> Literal:
     return Literal(lit.pred, tuple(b.get(a, a) if isinstance(a, Var) else a for a in lit.args))
 
 
-def _head_of(skill, actions) -> Literal | None:
-    """The head of primitive ``skill`` when its :actions are exactly ``actions`` (ground),
-    or None (another action, an expression argument, a head variable left open)."""
+def _canonical(lit: Literal) -> Literal:
+    """``lit`` with its variables renamed ?_1, ?_2, ... in order (patterns compared as such)."""
+    names: dict = {}
+    return Literal(lit.pred, tuple(names.setdefault(a, Var(f"_{len(names) + 1}"))
+                                   if isinstance(a, Var) else a for a in lit.args))
+
+
+def _action_binding(skill, actions) -> dict | None:
+    """The binding of primitive ``skill``'s variables when its :actions are exactly
+    ``actions`` (ground), or None (another action, an expression argument)."""
     if len(skill.actions) != len(actions):
         return None
     b: dict = {}
@@ -215,5 +259,4 @@ def _head_of(skill, actions) -> Literal | None:
                     return None
             elif ta != aa:
                 return None
-    head = _pattern(skill.head, b)
-    return None if head.variables() else head
+    return b

@@ -156,6 +156,8 @@ class Checker:
             self.use(g, f":subgoals of skill {s.name}")
             self.unbound(g.variables() - bound, g.loc, f"subgoal {g}",
                          "bind it in the head, :percepts, :start or :requires", bound)
+        for e in s.effects:
+            self.use(e, f":effects of skill {s.name}")
         for a in s.actions:
             self.unbound(a.variables() - bound, a.loc, f"action {a}",
                          "bind it in the head, :percepts, :start or :requires", bound)

@@ -20,7 +20,8 @@ from ..core.terms import Literal, Loc, Test
 from .pieces import PieceParser, op_name, suggest
 
 CONCEPT_KEYS = (":percepts", ":relations", ":tests")
-SKILL_KEYS = (":percepts", ":start", ":requires", ":subgoals", ":actions", ":tests", ":body")
+SKILL_KEYS = (":percepts", ":start", ":requires", ":subgoals", ":actions", ":tests", ":body",
+              ":effects")
 KEY_ALIASES = {":require": ":requires"}  # seed 000, Table 6 misspelling: accepted with a warning
 SKILL_MARKERS = {":start", ":requires", ":require", ":subgoals", ":actions", ":body"}
 
@@ -185,9 +186,15 @@ class Parser(PieceParser):
         body = self.read_body(f[":body"]) if ":body" in f else None
         if ":body" in f and body is None and len(self.parts.diags) == before:
             self.err(f[":body"], f"skill {head}: :body could not be read")
+        effects = tuple(x for x in (self.literal(e, "effect") for e in self.items(
+            f.get(":effects"), "effects (concept ?x) or (not (concept ?x))")) if x is not None)
+        if effects and ":actions" not in f:
+            self.err(f[":effects"], f"skill {head}: :effects are those of a primitive skill's "
+                     ":actions; give :actions")
         self.parts.skills.append(Skill(
             head, self.patterns(f.get(":percepts")), tuple(start),
-            tuple(self.conditions(f.get(":requires"))), subgoals, actions, body, self.loc(node)))
+            tuple(self.conditions(f.get(":requires"))), subgoals, actions, body, self.loc(node),
+            effects=effects))
 
     def read_body(self, node: SList) -> object:
         """The step tree of a ``:body``, read by the mechanism that reads bodies."""

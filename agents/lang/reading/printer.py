@@ -19,7 +19,7 @@ def clause_text(clause: ConceptClause | Skill) -> str:
     if isinstance(clause, Skill):
         fields = ((":percepts", clause.percepts), (":start", clause.start),
                   (":requires", clause.requires), (":subgoals", clause.subgoals),
-                  (":actions", clause.actions))
+                  (":actions", clause.actions), (":effects", clause.effects))
     else:
         fields = ((":percepts", clause.percepts), (":relations", clause.relations),
                   (":tests", clause.tests))

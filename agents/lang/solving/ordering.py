@@ -29,10 +29,8 @@ Pure; regressions are kept for the cycle in ``Task.memo``, agendas across cycles
 
 from __future__ import annotations
 
-from ..core.arith import evaluate
-from ..core.errors import EvalError
 from ..core.matcher import solve, unify_head
-from ..core.terms import Action, Literal, Test, Var
+from ..core.terms import Literal, Test, Var
 from ..execution.effects import undone_by
 from .landmarks import key as _key
 from .landmarks import landmarks
@@ -55,8 +53,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
     free, promote = [], []
     for g in unsat:
         threats = [(h, need, above) for h in unsat if h != g
-                   for need, above in plans[h].items() if _threatens(task, g, need)
-                   and not _serves(task, g, above)]
+                   for need, above in plans[h].items() if _threatens(task, g, need, above)]
         if not threats:
             free.append(g)
         elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
@@ -137,36 +134,16 @@ def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
     return []
 
 
-def _threatens(task: Task, g: str, need: Literal) -> bool:
-    """True when achieving the conjunct ``g`` makes ``need`` false."""
+def _threatens(task: Task, g: str, need: Literal, above: str = "") -> bool:
+    """True when achieving the conjunct ``g`` makes ``need`` false, unless it also achieves
+    ``above``, the goal ``need`` is needed for (a program stating its skills' effects:
+    stacking B, held to be put down to clear it, on A clears it as well)."""
     lit = literal(g)
     if need.negated:
         return undone_by(lit, (Literal(need.pred, need.args),))
-    return not need.variables() and undone_by(need, task.effects.undoes(lit))
-
-
-def _serves(task: Task, g: str, above: str) -> bool:
-    """True when the action that achieves the conjunct ``g`` also achieves ``above`` (the goal
-    a threatened need was for): (*stack a b) for (on a b) undoes (holding a), which the plan
-    to clear a needed, but it clears a itself."""
-    if not above:
+    if need.variables() or not undone_by(need, task.effects.undoes(lit)):
         return False
-    key = ("serves", g)
-    if key not in task.memo:
-        lit, made = literal(g), set()
-        for s in task.program.skills_for(lit.pred):
-            b = unify_head(s.head, lit, {}) if s.kind == "primitive" and s.actions else None
-            if b is None:
-                continue
-            try:
-                acts = [Action(a.name, tuple(evaluate(x, b) for x in a.args))
-                        for a in s.actions]
-            except EvalError:
-                continue
-            if not any(isinstance(x, Var) for a in acts for x in a.args):
-                made |= {str(x) for x in task.effects.of_actions(acts)[0]}
-        task.memo[key] = made
-    return above in task.memo[key]
+    return not (above and undone_by(literal(above), tuple(task.effects.achieved_with(lit))))
 
 
 def one_step(task: Task, g: str) -> bool:

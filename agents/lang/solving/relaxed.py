@@ -186,22 +186,24 @@ def _product(choices: list, b: dict):
 
 class InferredEffects(Effects):
     """The program's effect model (agents/lang/execution/effects.py), and for a program the
-    relaxed estimate applies to (its concepts read from percepts, so no definition says what
-    an action undoes) what achieving a literal undoes as a STRIPS operator's start implies:
-    the conditions of the start of every primitive skill that achieves it which some
-    primitive skill achieves (fluents, not static facts such as (in-city ?l ?c)), those
-    common to all such skills. In the PDDL Blocks World, (on ?x ?y) by (*stack ?x ?y)
-    undoes (holding ?x) and (clear ?y). An estimate for ordering the solver's choices
-    (agents/lang/solving/ordering.py), as the seed's skills state their effects; a start
-    condition an operator keeps is claimed undone only if every way keeps it (gripper's
-    (at-robby ?room) by (*pick ...)), and only one about the same thing as the head (``_about``:
-    (*depart ?f ?p) serves ?p, and undoes (boarded ?p), not (lift-at ?f))."""
+    relaxed estimate applies to that states no :effects (its concepts read from percepts, so
+    nothing says what an action undoes) what achieving a literal undoes as a STRIPS
+    operator's start implies: the start conditions of every primitive skill that achieves
+    it which some primitive skill achieves (fluents, not static facts such as (in-city ?l
+    ?c)), those common to all such skills, and only those about the same thing as the head
+    (``_about``: (*depart ?f ?p) undoes (boarded ?p), not (lift-at ?f)). In the PDDL Blocks
+    World, (on ?x ?y) by (*stack ?x ?y) undoes (holding ?x) and (clear ?y). An estimate for
+    ordering the solver's choices (agents/lang/solving/ordering.py), as the seed's skills
+    state their effects."""
 
     def __init__(self, program: Program, base: Effects) -> None:
         super().__init__(program)
         self.base = base
         skills = _eligible(program)
-        self.skills = [s for s in program.skills if s.kind == "primitive"] if skills else []
+        prims = [s for s in program.skills if s.kind == "primitive"]
+        # a program that states its effects (:effects, as teleo pddl program writes) needs
+        # no inference: the base model has them
+        self.skills = prims if skills and not any(s.effects for s in prims) else []
         self.fluents = {s.head.pred for s in self.skills}
         self._inferred: dict[Literal, tuple[Literal, ...]] = {}
 

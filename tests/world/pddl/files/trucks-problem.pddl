@@ -1,0 +1,6 @@
+(define (problem deliver) (:domain trucks)
+  (:objects t1 - truck v1 - van home shop - place p1 p2 - parcel)
+  (:init (at t1 home) (at v1 depot) (broken v1) (parcel-at p1 home) (parcel-at p2 shop)
+         (link home shop) (link shop home) (link home depot) (link depot home)
+         (link shop shop))
+  (:goal (and (parcel-at p1 shop) (parcel-at p2 home))))
