@@ -85,7 +85,7 @@ def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) 
     that a positive :start literal ties to one replaced (see the module docstring)."""
     names: dict[object, Var] = {}
     taken = {v.name for c in (head, *start, *subgoals) for v in c.variables()}
-    types: list[tuple[Var, str]] = []
+    types: list[tuple[Var, str, tuple]] = []
     ids = {x for x in head.args if isinstance(x, str) and task.type_of(x) is not None}
     ties = [c for c in start if isinstance(c, Literal) and not c.negated]
     grown = True
@@ -108,7 +108,7 @@ def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) 
             n += 1
         taken.add(f"{kind[0]}{n}")
         names[x] = Var(f"{kind[0]}{n}")
-        types.append((names[x], kind))
+        types.append((names[x], kind, task.attrs_of(x, kind)))
         return names[x]
 
     def lit(c: Literal) -> Literal:
@@ -120,7 +120,7 @@ def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) 
     new_head = lit(head)
     new_subgoals = tuple(lit(g) for g in subgoals)
     new_start = tuple(lit(c) if isinstance(c, Literal) else Test(expr(c.expr)) for c in start)
-    percepts = tuple(PerceptPattern(kind, v, ()) for v, kind in types)
+    percepts = tuple(PerceptPattern(kind, v, attrs) for v, kind, attrs in types)
     return Skill(new_head, percepts, new_start, (), new_subgoals)
 
 

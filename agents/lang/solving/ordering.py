@@ -51,9 +51,15 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
     plans = {h: needs(task, h) for h in unsat}
     free, promote = [], []
+    # achieving a conjunct that another undoes outright is left for after it (the movie is
+    # rewound, which resets the counter, before the counter is reset); the one that undoes it
+    # is not held back for that (achieving it first is the way round)
+    later = {h for h in unsat if any(g != h and _threatens(task, g, literal(h), "")
+                                     for g in unsat)}
     for g in unsat:
         threats = [(h, need, above) for h in unsat if h != g
-                   for need, above in plans[h].items() if _threatens(task, g, need, above)]
+                   for need, above in plans[h].items() if _threatens(task, g, need, above)
+                   and not (h in later and need == literal(h) and not above)]
         if not threats:
             free.append(g)
         elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
@@ -63,6 +69,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
         now += [p for p in dict.fromkeys(promote) if p not in now and one_step(task, p)]
         out = now + [g for g in free if g == current and g not in now] + \
             [g for g in free if g not in now and g != current]
+        out = [g for g in out if g not in later] + [g for g in out if g in later]
     elif promote:
         out = list(dict.fromkeys(promote))
     else:

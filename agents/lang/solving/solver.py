@@ -22,12 +22,14 @@ from dataclasses import replace
 
 from ..core.conjunction import Conjunction
 from ..core.terms import Literal
+from ..execution.effects import Effects
 from ..execution.executive import Impasse
 from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, one_step
+from .relaxed import InferredEffects
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry
@@ -52,9 +54,19 @@ class MeansEndsSolver:
         task = self._tasks.get(goal_id)
         if task is None or task.program is not finder.program:
             task = Task(finder.program, walk.pidx, walk.store, tuple(walk.protected),
-                        finder.effects, self._shared)
+                        self._effects(finder), self._shared)
             self._tasks[goal_id] = task
         return task
+
+    def _effects(self, finder: PathFinder) -> Effects:
+        """The effect model the solver orders its choices by: the program's, with what a
+        STRIPS-like program's starts imply (agents/lang/solving/relaxed.py), kept while the
+        program is the same."""
+        hit = self._shared.get(("effects", id(finder.program)))
+        if hit is None or hit.program is not finder.program:
+            hit = InferredEffects(finder.program, finder.effects)
+            self._shared[("effects", id(finder.program))] = hit
+        return hit
 
     def agenda(self, finder: PathFinder, walk: Walk, entry: GoalEntry,
                conj: Conjunction | Literal, current: str) -> list[Literal]:

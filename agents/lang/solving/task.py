@@ -16,7 +16,7 @@ from ..core.matcher import binding_key, holds, match_fact, solve, test_holds, un
 from ..core.program import ConceptClause, Program, Skill
 from ..core.sexpr import Atom, read
 from ..core.store import FactStore, PerceptIndex
-from ..core.terms import Literal, Test, Var, fmt
+from ..core.terms import Literal, PerceptPattern, Test, Var, fmt
 from ..execution.effects import Effects
 from ..execution.loops import situation
 from ..execution.paths import btuple, show
@@ -24,10 +24,12 @@ from ..reading.goals import parse_goal
 from ..reading.parser import Parser, Parts
 from .bindings import BindingChoice, cheapest
 from .filters import WayFilters
+from .relaxed import Relaxed
 from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
 MAX_PER_CLAUSE = 3     # alternatives kept per clause (the best-ranked bindings)
+_INF = float("inf")
 
 
 @lru_cache(maxsize=4096)
@@ -113,6 +115,8 @@ class Task(WayFilters, BindingChoice):
         self._alternatives: dict = {}
         self._situation = ""
         self._reach = None   # (BindingChoice.reach)
+        self._kinds: frozenset[str] | None = None
+        self._relaxed: Relaxed | None = None
 
     @property
     def situation(self) -> str:
@@ -155,9 +159,39 @@ class Task(WayFilters, BindingChoice):
         return tuple(show(c, b) for c in self.skill(number).start)
 
     def type_of(self, value: object) -> str | None:
-        """The type of the percept whose id is ``value`` (first in name order), if any."""
+        """The type of the percept whose id is ``value``, if any: the first in name order of
+        the types the primitive skills' :percepts name (what the program treats as its
+        objects: ``block``; in a PDDL world ``object``, not a fact that happens to hold of
+        ``value`` now, such as ``(boarded p0)``), else the first in name order."""
         types = sorted(t for (t, pid) in self.pidx.by_id if pid == value)
-        return types[0] if types else None
+        if not types:
+            return None
+        if self._kinds is None:
+            self._kinds = frozenset(p.type for s in self.program.skills
+                                    if s.kind == "primitive" for p in s.percepts)
+        return next((t for t in types if t in self._kinds), types[0])
+
+    def attrs_of(self, value: object, kind: str) -> tuple:
+        """The attributes a learned skill's :percepts pattern for ``value`` (a percept of type
+        ``kind``) carries: those of the primitive skills' patterns of that type whose
+        attributes are all constants and which ``value``'s percept matches, the one fewest
+        percepts match (``(object ?o1 type truck)``, not ``(object ?o1)``, which any object
+        matches: a skill with three such patterns would try every triple of objects)."""
+        key = ("attrs", kind)
+        pats = self.memo.get(key)
+        if pats is None:
+            found = {p.attrs for s in self.program.skills if s.kind == "primitive"
+                     for p in s.percepts if p.type == kind and p.attrs and
+                     not any(isinstance(t, Var) for _, t in p.attrs)}
+            pats = self.memo[key] = sorted(
+                (sum(1 for _ in islice(solve([PerceptPattern(kind, Var("x"), a)], {},
+                                             self.pidx, self.store), MAX_BINDINGS)), a)
+                for a in found)
+        for _, attrs in pats:
+            if next(solve([PerceptPattern(kind, value, attrs)], {}, self.pidx, self.store),
+                    None) is not None:
+                return attrs
+        return ()
 
     # -- ways to chain off a goal ----------------------------------------------------------
     def nothing_to_chain(self, goal: str) -> str:
@@ -281,7 +315,9 @@ class Task(WayFilters, BindingChoice):
         """The best-ranked bindings of a clause, at most ``per_clause``; with ``closest``
         (the solver's chaining), none that holds fewer of the conditions than the best one
         (a block not on B3 is no way to clear B3: it would first have to be put there). The
-        planner, which projects its operators, keeps them all."""
+        planner, which projects its operators, keeps them all. The relaxed estimate comes
+        first where there is one (agents/lang/solving/relaxed.py): a binding whose conditions
+        are fewer rounds away goes first, one that can never hold last."""
         ranked.sort(key=lambda r: (r[0], r[1]))
         best = ranked[:self.per_clause]
         return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
@@ -297,7 +333,27 @@ class Task(WayFilters, BindingChoice):
             bits.append(int(ok))
             if not ok and isinstance(c, Literal) and not c.negated:
                 bits += self._sub_bits(c)
-        return (-sum(bits), tuple(-x for x in bits))
+        base = (-sum(bits), tuple(-x for x in bits))
+        h = self.estimate(conds)
+        return base if h is None else (h, *base)
+
+    def estimate(self, conds: list) -> float | None:
+        """The relaxed distance of ``conds`` (agents/lang/solving/relaxed.py): the sum of the
+        levels of the positive ground literals that do not hold, infinite when one never
+        can; None where the program admits no such estimate."""
+        if self._relaxed is None:
+            self._relaxed = Relaxed(self)
+        if not self._relaxed.available:
+            return None
+        total = 0
+        for c in conds:
+            if isinstance(c, Literal) and not c.negated and not c.variables() and \
+                    not self.holds(c):
+                k = self._relaxed.level(c)
+                if k is None:
+                    return _INF
+                total += k
+        return total
 
     def _sub_bits(self, lit: Literal) -> list[int]:
         best: list[int] = []

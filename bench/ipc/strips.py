@@ -1,0 +1,152 @@
+"""An independent STRIPS replay of a plan (issue 35): the domain and problem parsed by
+pyperplan's PDDL parser (not the `pddl` package the world uses), each ground action checked
+against its operator's typed parameters and preconditions in the current state, its delete
+then add effects applied, and the goal checked on the result. Nothing of teleo's world or
+engine is used, so a teleo summary that claims a success the replay denies is caught.
+
+Covers what pyperplan parses: STRIPS with typing and domain constants (the five IPC domains of
+bench/ipc/suites). An action is a sequence of lower-case names, ``("stack", "a", "b")``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from pyperplan.pddl.parser import Parser
+
+Atom = tuple[str, ...]
+"""A ground atom: ("on", "a", "b")."""
+
+
+class Illegal(Exception):
+    """A step that names no operator, has the wrong arguments, or whose precondition is
+    false."""
+
+
+@dataclass(frozen=True)
+class Operator:
+    """One PDDL action: parameters (name, allowed type names), preconditions, adds and deletes
+    as (predicate, argument names) with parameters written ``?x``."""
+
+    name: str
+    params: tuple[tuple[str, tuple[str, ...]], ...]
+    pre: tuple[Atom, ...]
+    adds: tuple[Atom, ...]
+    dels: tuple[Atom, ...]
+
+
+@dataclass(frozen=True)
+class StripsTask:
+    """A parsed problem: ``kinds`` object -> its type and every supertype; ``init`` and
+    ``goal`` ground atoms; ``operators`` by name."""
+
+    operators: dict[str, Operator]
+    kinds: dict[str, frozenset[str]]
+    init: frozenset[Atom]
+    goal: frozenset[Atom]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """The replay's judgement of a plan: ``valid`` (every step legal and the goal holds at the
+    end), ``length`` in actions, ``reason`` why not."""
+
+    valid: bool
+    length: int
+    reason: str = ""
+
+
+def _atom(pred) -> Atom:
+    return (pred.name.lower(), *(name.lower() for name, _ in pred.signature))
+
+
+def _lineage(t) -> frozenset[str]:
+    names = set()
+    while t is not None:
+        names.add(str(t.name).lower())
+        t = t.parent
+    return frozenset(names)
+
+
+def load(domain: str | Path, problem: str | Path) -> StripsTask:
+    """Parse ``domain`` and ``problem`` (PDDL files) with pyperplan's parser."""
+    parser = Parser(str(domain), str(problem))
+    dom = parser.parse_domain()
+    prob = parser.parse_problem(dom)
+    kinds = {name.lower(): _lineage(t) for name, t in {**dom.constants,
+                                                       **prob.objects}.items()}
+    ops = {}
+    for a in dom.actions.values():
+        params = tuple((n.lower(), tuple(str(t.name).lower() for t in ts))
+                       for n, ts in a.signature)
+        ops[a.name.lower()] = Operator(a.name.lower(), params,
+                                       tuple(_atom(p) for p in a.precondition),
+                                       tuple(_atom(p) for p in a.effect.addlist),
+                                       tuple(_atom(p) for p in a.effect.dellist))
+    return StripsTask(ops, kinds, frozenset(_atom(p) for p in prob.initial_state),
+                      frozenset(_atom(p) for p in prob.goal))
+
+
+def _text(atom: Sequence[str]) -> str:
+    return "(" + " ".join(atom) + ")"
+
+
+def apply(task: StripsTask, state: frozenset[Atom], step: Sequence[str]) -> frozenset[Atom]:
+    """The state after ``step``; raises Illegal naming what is wrong (the false precondition)."""
+    name, *args = [str(x).lower() for x in step]
+    op = task.operators.get(name)
+    if op is None:
+        raise Illegal(f"{_text(step)}: no operator {name}; expected one of "
+                      f"{', '.join(sorted(task.operators))}")
+    if len(args) != len(op.params):
+        raise Illegal(f"{_text(step)}: {name} takes {len(op.params)} arguments, got "
+                      f"{len(args)}")
+    b: dict[str, str] = {}
+    for (var, types), value in zip(op.params, args, strict=True):
+        kinds = task.kinds.get(value)
+        if kinds is None:
+            raise Illegal(f"{_text(step)}: {value} is no object of the problem")
+        if not kinds & set(types):
+            raise Illegal(f"{_text(step)}: {value} is not of type {' or '.join(types)}")
+        b[var] = value
+
+    def ground(atom: Atom) -> Atom:
+        return (atom[0], *(b.get(x, x) for x in atom[1:]))
+
+    for p in op.pre:
+        if ground(p) not in state:
+            raise Illegal(f"{_text(step)}: precondition {_text(ground(p))} is false")
+    return (state - {ground(d) for d in op.dels}) | {ground(a) for a in op.adds}
+
+
+def replay(task: StripsTask, steps: Iterable[Sequence[str]]) -> frozenset[Atom]:
+    """The state after ``steps`` from the problem's initial state; raises Illegal at the first
+    bad step, saying which (1-based)."""
+    state = task.init
+    for k, step in enumerate(steps, 1):
+        try:
+            state = apply(task, state, step)
+        except Illegal as exc:
+            raise Illegal(f"step {k}: {exc}") from None
+    return state
+
+
+def check(task: StripsTask, steps: Sequence[Sequence[str]]) -> Verdict:
+    """Replay ``steps`` and check the goal."""
+    try:
+        state = replay(task, steps)
+    except Illegal as exc:
+        return Verdict(False, len(steps), str(exc))
+    missing = sorted(task.goal - state)
+    if missing:
+        return Verdict(False, len(steps), "the goal's " + " ".join(map(_text, missing[:5]))
+                       + (" ..." if len(missing) > 5 else "") + " false at the end")
+    return Verdict(True, len(steps))
+
+
+def read_plan(text: str) -> list[tuple[str, ...]]:
+    """A plan as pyperplan writes it (one ``(op a b)`` a line) as steps."""
+    return [tuple(line.strip().strip("()").lower().split()) for line in text.splitlines()
+            if line.strip() and not line.strip().startswith(";")]
