@@ -47,6 +47,7 @@ from bus.cycle import CycleMode
 from bus.errors import BusError, NotReady
 from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
+from bus.pause import Gate
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
 from world.domain import Domain, World, get_domain
@@ -162,6 +163,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         clock = Clock(node, pipelines(agents), mode=CycleMode(mode),
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
+        gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event)  # bus/pause.py
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
         pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
@@ -177,6 +179,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 if stop.is_set():
                     reason = "stopped by a signal"
                     break
+                gate.hold(t)  # `teleo pause` / `step-run` hold the run here, between cycles
                 if pace and t > first:  # never more than `pace` cycles ahead of the record,
                     held = clock.keep_pace(  # and its first cycle in it before the next
                         keys.RECORDER, t - 1 - pace if t > first + 1 else -1,
@@ -208,6 +211,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
             reason, unwritable = f"stopped: {exc}", exc
         collector.close()
         asked.close("the run ended before the event could be applied")
+        gate.close(rec.cycles)
         completed = rec.cycles >= cycles if cycles else True  # a forever run ends by a stop
         rec.finish(completed, time.monotonic() - start, reason, memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
