@@ -15,7 +15,7 @@ to run and whose outcome is {"op", "paused", "cycle", "stepped"}. A pause, resum
 is answered at the next boundary; a step when its N cycles have run and the run is held
 again ("paused at cycle 123 after 3 cycles"), so the asker hears the world's verdict, not
 that something was sent. A realtime run refuses them all: its cycles keep wall-clock time,
-and a held clock would be a different run (launch with --run-mode lockstep to pause it).
+and a held clock would be a different run (launch with --mode lockstep to pause it).
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ OPS = ("pause", "resume", "status", "step")
 MAX_STEP = 1_000_000  # [cycles] in one step-run
 POLL_S = 0.02         # [s] how often a held run looks for a request or a stop
 REALTIME = ("pause and step hold a lockstep run between cycles; this run is realtime (its "
-            "cycles keep wall-clock time); launch it with --run-mode lockstep to pause it")
+            "cycles keep wall-clock time); launch it with --mode lockstep to pause it")
 __all__ = ["Gate", "OPS"]
 
 
