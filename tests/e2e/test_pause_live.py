@@ -66,6 +66,13 @@ def test_a_paused_and_stepped_launch_gives_the_trace_of_one_never_paused(teleo, 
     assert paused != never
     assert Path(paused).read_bytes() == Path(never).read_bytes()
     assert trace_lines(info) == int(CYCLES)
+    # the launch's record holds every cycle of it, held or not (`teleo record info`, item 3)
+    summary = teleo("record", "info", info["run_dir"], "--json")
+    assert summary.returncode == 0, summary.stderr
+    held = json.loads(summary.stdout)
+    assert held["cycles"]["states_held"] == [[0, int(CYCLES) - 1]] and held["agents"] == ["ME"]
+    states = [c["count"] for c in held["channels"] if c["key"].endswith("/world/state")]
+    assert len(states) == 1 and states[0] >= int(CYCLES)   # a state re-sent is recorded again
 
 
 def test_a_realtime_launch_refuses_to_pause_and_nothing_running_is_said(teleo):
