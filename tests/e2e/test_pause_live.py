@@ -91,3 +91,19 @@ def test_a_realtime_launch_refuses_to_pause_and_nothing_running_is_said(teleo):
             assert len(refused.stderr.splitlines()) == 1, refused.stderr
     finally:
         assert interrupt(launcher) == 0, teleo.launch_output()
+
+
+def test_a_held_launch_stops_at_ctrl_c_where_it_was_held(teleo):
+    launcher = teleo.start("launch", str(HOLD_SPEED), "--cycles", "0")
+    try:
+        info = teleo.run_info()
+        held = teleo("pause", "--json", "--quiet")
+        assert held.returncode == 0, held.stderr + teleo.launch_output()
+        k = json.loads(held.stdout)["cycle"]
+    finally:
+        status = interrupt(launcher)
+    assert status == 0, teleo.launch_output()
+    final = json.loads((Path(info["run_dir"]) / "world-final.json").read_text())
+    assert final["reason"].startswith("stopped by a signal"), final
+    assert trace_lines(info) == k        # no cycle ran after the hold
+    assert ("paused", k) in [(h["kind"], h.get("cycle")) for h in _health(info)]
