@@ -5,6 +5,7 @@ publishers and matching status keep working across cycles):
 
     teleo/<run>/world/state                  WorldState
     teleo/<run>/world/events                 WorldEvent; queryable: WorldEvent -> EventReply
+    teleo/<run>/world/control                queryable: WorldEvent -> EventReply (pause, step)
     teleo/<run>/agent/<agent>/percepts       Percepts
     teleo/<run>/agent/<agent>/beliefs        Beliefs
     teleo/<run>/agent/<agent>/actions        Actions
@@ -98,6 +99,12 @@ def world_events(run: str) -> str:
     return f"{run_root(run)}/world/events"
 
 
+def world_control(run: str) -> str:
+    """The world's control desk, asked as a query (`teleo pause`, `step-run`, `resume`):
+    answered by the world process at a cycle boundary with its verdict (bus/pause.py)."""
+    return f"{run_root(run)}/world/control"
+
+
 def _agent(run: str, agent: str, leaf: str) -> str:
     return f"{run_root(run)}/agent/{check_chunk(agent, 'agent')}/{leaf}"
 
@@ -175,7 +182,7 @@ def kind_of_key(key: str) -> frozenset[str]:
     tail = tuple(parts[2:])
     if tail == ("world", "state"):
         return frozenset({"WorldState"})
-    if tail == ("world", "events"):
+    if tail in (("world", "events"), ("world", "control")):
         return frozenset({"WorldEvent", "EventReply"})
     if len(tail) == 2 and tail[0] == "stats":
         return frozenset({"ProcessStats"})

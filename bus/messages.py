@@ -106,6 +106,8 @@ class GoalRequest:
     priority: int = 0
     goal_id: str = ""
     force: bool = False  # rank above the program's goals or cancel an achieved goal all the same
+    once: bool = False   # a post: dropped when achieved, not kept as a maintenance goal
+    deadline: int = 0    # a post: failed unless achieved within this many cycles (0: none)
 
 
 @dataclass(frozen=True)

@@ -127,6 +127,7 @@ def _grants(run: str, user: str) -> dict[str, list[str]]:
         own["put"] += [keys.world_state(run)]
         own["sub"] += [keys.all_actions(run), keys.all_stats(run), keys.world_events(run)]
         own["serve"] += [keys.world_events(run)]   # `teleo event` asks for a verdict
+        own["serve"] += [keys.world_control(run)]  # `teleo pause`, `step-run`, `resume`
     elif user == "goals":
         own["put"] += [f"{root}/agent/*/goal-list"]
         own["sub"] += [keys.world_state(run), f"{root}/agent/*/intention"]
@@ -135,6 +136,7 @@ def _grants(run: str, user: str) -> dict[str, list[str]]:
         own["put"] = [keys.world_events(run), keys.stats(run, keys.RECORDER)]
         own["sub"] += [keys.run_all(run)]
         own["ask"] += [f"{root}/agent/*/goals", keys.world_events(run)]
+        own["ask"] += [keys.world_control(run)]
         own["token"] = [keys.proc(run, "record"), keys.proc(run, keys.RECORDER)]
     elif user == LAUNCH:
         own["put"] = []

@@ -33,6 +33,7 @@ _COMMAND_MODULES = {
     "tools.commands.run": ("ps", "stop"),       # runs on this host
     "tools.commands.goal": ("goal",),           # goal post/list/cancel/priority
     "tools.commands.event": ("event",),         # world events into a running launch
+    "tools.commands.pause": ("pause", "step-run", "resume"),  # hold a lockstep launch
     "tools.commands.inspect": ("inspect",),
     "tools.commands.simulate": ("simulate",),   # one process, no bus
     "tools.commands.explain": ("explain",),     # run records

@@ -47,6 +47,7 @@ from bus.cycle import CycleMode
 from bus.errors import BusError, NotReady, PaceLost
 from bus.messages import EventReply, WorldEvent, WorldState
 from bus.node import Inbox, open_node
+from bus.pause import Gate
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
 from world.domain import Domain, World, episode_over, get_domain
@@ -168,6 +169,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         clock = Clock(node, pipelines(agents), mode=CycleMode(mode),
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
+        gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event)  # bus/pause.py
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
         pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
@@ -183,6 +185,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 if stop.is_set():
                     reason = "stopped by a signal"
                     break
+                gate.hold(t)  # `teleo pause` / `step-run` hold the run here, between cycles
                 if pace and t > first:  # never more than `pace` cycles ahead of the record,
                     held = clock.keep_pace(  # and its first cycle in it before the next
                         keys.RECORDER, t - 1 - pace if t > first + 1 else -1,
@@ -225,6 +228,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
             log.error("%s", reason)
         collector.close()
         asked.close("the run ended before the event could be applied")
+        gate.close(rec.cycles)
         # a forever run (or an episode that ended) ends by a stop; one whose recorder
         # was lost did not complete
         completed = (rec.cycles >= cycles if cycles and not ended else True) and not lost

@@ -247,8 +247,8 @@ def _goal(table: Any, index: int, agents: list[str], errors: Errors,
     if not is_table(table, where, errors):
         spoilt.add(f"goal {index + 1}")
         return ScriptedGoal(agent="")
-    only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id", "force"}, where,
-         errors)
+    only(table, {"agent", "goal", "priority", "at_cycle", "op", "goal_id", "force", "once",
+                 "deadline"}, where, errors)
     sole = agents[0] if len(agents) == 1 else REQUIRED
     goal = ScriptedGoal(
         agent=field(table, "agent", str, sole, where, errors) or "",
@@ -258,6 +258,9 @@ def _goal(table: Any, index: int, agents: list[str], errors: Errors,
         op=field(table, "op", str, "post", where, errors),
         goal_id=field(table, "goal_id", str, "", where, errors),
         force=field(table, "force", bool, False, where, errors),
+        once=field(table, "once", bool, False, where, errors),
+        deadline=field(table, "deadline", int, 0, where, errors, at_least(1))
+        if "deadline" in table else 0,
     )
     if goal.agent and goal.agent not in agents:
         errors.add(f"{where}.agent: expected one of {agents}, got {shown(goal.agent)}")

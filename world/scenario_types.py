@@ -80,6 +80,8 @@ class ScriptedGoal:
     op: str = "post"
     goal_id: str = ""
     force: bool = False  # rank above the program's goals, or cancel an achieved goal
+    once: bool = False   # a post: dropped when achieved, not kept
+    deadline: int = 0    # a post: failed unless achieved within this many cycles (0: none)
 
 
 @dataclass(frozen=True)

@@ -94,9 +94,12 @@ class Engine:
         return ex
 
     def add_goal(self, state: EngineState, goal: str, priority: int | None = None,
-                 goal_id: str | None = None) -> EngineState:
+                 goal_id: str | None = None, once: bool = False,
+                 deadline: int | None = None) -> EngineState:
         """Add ``goal`` (text such as ``(package-delivered PACKET2)``); it ranks after every goal
-        with priority <= ``priority`` (default: last). Raises GoalError."""
+        with priority <= ``priority`` (default: last). ``once``: dropped when achieved, not
+        kept; ``deadline`` [cycles]: failed unless achieved within that many cycles from
+        this state's cycle. Raises GoalError."""
         lit = parse_goal(goal, self.program)
         why = enumerable(lit, self.program)
         if why:
@@ -108,7 +111,11 @@ class Engine:
         gid = goal_id or f"g{state.next_seq + 1}"
         if any(e.id == gid for e in state.goals):
             raise GoalError(f"goal id {gid!r} is already in use")
-        entry = GoalEntry(gid, lit, priority, state.next_seq, "user")
+        if deadline is not None and (type(deadline) is not int or deadline < 1):
+            raise GoalError(f"goal {goal}: deadline must be a whole number of cycles >= 1, "
+                            f"got {deadline!r}")
+        entry = GoalEntry(gid, lit, priority, state.next_seq, "user", bool(once),
+                          -1 if deadline is None else state.cycle + deadline)
         return replace(state, goals=state.goals + (entry,), next_seq=state.next_seq + 1)
 
     def remove_goal(self, state: EngineState, goal_id: str) -> EngineState:

@@ -29,6 +29,8 @@ and an agent that has done 16 errands takes a 17th (seed 003's office robot serv
 all day)."""
 MAX_KEPT_WITHDRAWN = 100
 """Cancelled and failed goals kept per agent (for `teleo goal list`); older ones are dropped."""
+MAX_DEADLINE = 100_000_000
+"""[cycles] the longest deadline a goal may be given."""
 MAX_ID_CHARS = 32
 """[characters] of a goal id in a request (ids are g1, g2, ...)."""
 
@@ -82,11 +84,18 @@ class GoalRecord:
     posted_cycle: int = 0
     updated_cycle: int = 0
     note: str = ""
+    once: bool = False   # dropped when achieved (the executive ends it), not kept
+    deadline: int = 0    # [cycles] failed unless achieved within them (0: none)
 
     def to_dict(self) -> dict[str, Any]:
         return {"id": self.id, "agent": self.agent, "goal": self.goal, "priority": self.priority,
                 "status": self.status.value, "posted_cycle": self.posted_cycle,
-                "updated_cycle": self.updated_cycle, "note": self.note}
+                "updated_cycle": self.updated_cycle, "note": self.note, **self._ends()}
+
+    def _ends(self) -> dict[str, Any]:
+        """once and deadline, only when set (a goal without them is written as before)."""
+        return {**({"once": True} if self.once else {}),
+                **({"deadline": self.deadline} if self.deadline else {})}
 
     @classmethod
     def from_dict(cls, d: object, where: str = "goal") -> GoalRecord:
@@ -100,12 +109,13 @@ class GoalRecord:
         return cls(_field(d, "id", str, where), _field(d, "agent", str, where),
                    _field(d, "goal", str, where), _field(d, "priority", int, where),
                    GoalState(status), _field(d, "posted_cycle", int, where, 0),
-                   _field(d, "updated_cycle", int, where, 0), _field(d, "note", str, where, ""))
+                   _field(d, "updated_cycle", int, where, 0), _field(d, "note", str, where, ""),
+                   _field(d, "once", bool, where, False), _field(d, "deadline", int, where, 0))
 
     def brief(self) -> dict[str, Any]:
         """The GoalList entry form: {id, goal, priority, status} (docs/architecture.md)."""
         return {"id": self.id, "goal": self.goal, "priority": self.priority,
-                "status": self.status.value}
+                "status": self.status.value, **self._ends()}
 
 
 @dataclass(frozen=True)
@@ -129,7 +139,8 @@ class GoalStore:
         return tuple(g for g in self.goals if agent is None or g.agent == agent)
 
     def post(self, agent: str, goal: str, priority: int, cycle: int,
-             validate: Validator) -> tuple[GoalStore, GoalRecord]:
+             validate: Validator, once: bool = False,
+             deadline: int = 0) -> tuple[GoalStore, GoalRecord]:
         """Add a goal after the agent's program accepted it; raises GoalStoreError if refused
         (too long, priority out of range, MAX_LIVE_GOALS reached, a duplicate, or the
         program's reason)."""
@@ -148,8 +159,11 @@ class GoalStore:
         reason = validate(agent, text, priority)
         if reason:
             raise GoalStoreError(f"{agent} cannot take {reason}")  # its reason names the goal
+        if type(deadline) is not int or not 0 <= deadline <= MAX_DEADLINE:
+            raise GoalStoreError(f"{text}: deadline must be a number of cycles in "
+                                 f"1..{MAX_DEADLINE}, got {shorten(repr(deadline))}")
         record = GoalRecord(f"g{self.next_id}", agent, text, priority, GoalState.PENDING,
-                            cycle, cycle)
+                            cycle, cycle, once=bool(once), deadline=deadline)
         return replace(self, goals=self.goals + (record,), next_id=self.next_id + 1), record
 
     def cancel(self, goal_id: str, cycle: int, force: bool = False) -> GoalStore:

@@ -30,6 +30,8 @@ class GoalSync:
         from agents.lang import GoalError
 
         wanted = {g["id"]: (g["goal"], int(g["priority"])) for g in goal_list}
+        ends = {g["id"]: (bool(g.get("once", False)), g.get("deadline") or None)
+                for g in goal_list}
         for goal_id in [i for i in self.user if i not in wanted]:
             state = engine.remove_goal(state, goal_id)
             del self.user[goal_id]
@@ -37,7 +39,9 @@ class GoalSync:
             known = self.user.get(goal_id)
             try:
                 if known is None and goal_id not in self.refused:
-                    state = engine.add_goal(state, text, priority=priority, goal_id=goal_id)
+                    once, deadline = ends[goal_id]   # goals that end (docs/scenarios.md)
+                    state = engine.add_goal(state, text, priority=priority, goal_id=goal_id,
+                                            once=once, deadline=deadline)
                 elif known is not None and known[1] != priority:
                     state = engine.set_priority(state, goal_id, priority)
                 else:

@@ -129,7 +129,8 @@ class GoalEntry:
                 if refusal:
                     raise GoalStoreError(refusal)
                 reason = self._apply(request.op, request.agent, request.goal, request.priority,
-                                     request.goal_id, self.cycle + 1, request.force)
+                                     request.goal_id, self.cycle + 1, request.force,
+                                     (request.once, request.deadline))
                 ok = True
             except GoalStoreError as exc:
                 reason, ok = str(exc), False
@@ -140,7 +141,7 @@ class GoalEntry:
         return ok, reason, goals, cycle
 
     def _apply(self, op: str, agent: str, goal: str, priority: int, goal_id: str,
-               at: int, force: bool = False) -> str:
+               at: int, force: bool = False, ends: tuple[bool, int] = (False, 0)) -> str:
         """Apply one request taking effect at cycle `at`; returns what was done. A post or a
         priority that ranks a goal above the program's standing goals is refused unless
         `force` (then the reply says what it outranks)."""
@@ -152,10 +153,12 @@ class GoalEntry:
                                  "characters")
         if op == "post":
             forced = self._rank(agent, priority, force)
-            store, record = self.store.post(agent, goal, priority, at, self.validate)
+            store, record = self.store.post(agent, goal, priority, at, self.validate, *ends)
             self._commit(store)
             warning = self.warn(agent, record.goal) if self.warn is not None else ""
-            return (f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){forced}"
+            how = "; once" * record.once + (f"; deadline {record.deadline} cycles"
+                                            if record.deadline else "")
+            return (f"posted {record.id} for {agent}: {record.goal} (from cycle {at}){how}{forced}"
                     + (f"; warning: {warning}" if warning else ""))
         if op in ("cancel", "priority"):
             self._not_a_program_goal(agent, goal_id, op)
@@ -226,7 +229,7 @@ class GoalEntry:
     def _run_scripted(self, g: ScriptedGoal) -> None:
         try:
             reason = self._apply(g.op, g.agent, g.goal, g.priority, g.goal_id, self.cycle,
-                                 g.force)
+                                 g.force, (g.once, g.deadline))
             self.log.info("scripted request at cycle %d: %s", self.cycle, reason)
         except GoalStoreError as exc:
             self.log.warning("scripted request refused: %s", exc)

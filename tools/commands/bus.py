@@ -25,6 +25,7 @@ from bus.errors import BusError, CodecError
 from bus.node import open_node
 from bus.router import router_config, run_until_signalled
 from bus.stage import stop_on_signals
+from tools.commands.record_info import RecordWithInfo
 from tools.paths import OutputPath, suffix_check
 from tools.runs import runfile
 
@@ -125,7 +126,7 @@ def _print_messages(inbox, text: str | None, count: int | None, end: float | Non
     return seen, printed
 
 
-@click.command()
+@click.command(cls=RecordWithInfo)  # `teleo record info RECORD`: tools/commands/record_info.py
 @click.argument("file", type=OutputPath(suffix_check((".mcap",), "a run record"),
                                         path_type=Path, create_folders=False))
 @click.option("--run", "run_id", default=None,
@@ -142,7 +143,7 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
 
     FILE ends in .mcap, in a folder that exists, and is not replaced without --force.
     Without --connect it records the running launch; with --connect, the run given by --run
-    on that router."""
+    on that router. `teleo record info RECORD` summarises a record instead."""
     from tools.records.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
     from tools.runs.target import find_target
 

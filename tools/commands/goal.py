@@ -46,8 +46,9 @@ def _session(run: str | None, agent: str | None) -> Iterator[tuple[runfile.RunIn
     try:
         with open_node(runfile.bus_config(info), info.run, "goal-cli") as node:
             def ask(op: str, name: str, goal: str = "", priority: int = 0, goal_id: str = "",
-                    force: bool = False):
-                request = GoalRequest(node.envelope(), op, name, goal, priority, goal_id, force)
+                    force: bool = False, once: bool = False, deadline: int = 0):
+                request = GoalRequest(node.envelope(), op, name, goal, priority, goal_id, force,
+                                      once, deadline)
                 return node.query(keys.goals(info.run, name), request, scaled(QUERY_TIMEOUT))
 
             yield info, node, ask
@@ -130,6 +131,12 @@ _FORCE = click.option("--force", is_flag=True,
               help="Rank: the goal goes after every goal of priority <= P (lower = sooner).")
 @click.option("--agent", "-a", help="Agent (needed when the run has several).")
 @_FORCE
+@click.option("--once", is_flag=True,
+              help="Drop the goal when it is achieved (not kept as a maintenance goal, "
+                   "pursued again should it stop holding).")
+@click.option("--deadline", type=click.IntRange(1, 100_000_000), default=None,
+              metavar="CYCLES", help="Fail the goal, with that reason, unless it is achieved "
+                                     "within CYCLES cycles.")
 @click.option("--wait", "-w", is_flag=True,
               help="Follow the goal to its end, a line at each change; exit 0 achieved, 1 "
                    "failed, 3 cancelled by another or the run ended, 124 --timeout, 130 "
@@ -142,8 +149,9 @@ _FORCE = click.option("--force", is_flag=True,
                    "asked; without one the goal stays posted).")
 @runfile.run_option
 @runfile.quiet_option
-def post(text: str, priority: int, agent: str | None, force: bool, wait: bool,
-         timeout: float | None, cancel_on_interrupt: bool, run_id: str | None) -> None:
+def post(text: str, priority: int, agent: str | None, force: bool, once: bool,
+         deadline: int | None, wait: bool, timeout: float | None, cancel_on_interrupt: bool,
+         run_id: str | None) -> None:
     """Post GOAL, such as '(package-delivered PACKET2)'; with --wait, follow it to its end.
 
     --wait works as ros2 action send_goal --feedback: after the verdict it prints a line at
@@ -158,7 +166,8 @@ def post(text: str, priority: int, agent: str | None, force: bool, wait: bool,
     with _session(run_id, agent) as (info, node, ask):
         name = _addressed(info, "post", agent, "", ask)[0]
         inbox = subscribe(node, info.run, name) if wait else None
-        reply = ask("post", name, goal=text, priority=priority, force=force)
+        reply = ask("post", name, goal=text, priority=priority, force=force, once=once,
+                    deadline=deadline or 0)
         _check(reply)
         click.echo(reply.reason or "posted")
         if inbox is None:

@@ -96,7 +96,8 @@ def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalSto
     process logs it)."""
     try:
         if g.op == "post":
-            return store.post(g.agent, g.goal, g.priority, cycle, validate)[0]
+            return store.post(g.agent, g.goal, g.priority, cycle, validate, g.once,
+                              g.deadline)[0]
         if g.op == "cancel":
             return store.cancel(g.goal_id, cycle, g.force)
         return store.set_priority(g.goal_id, g.priority, cycle)

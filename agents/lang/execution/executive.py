@@ -90,14 +90,30 @@ class Executive:
                                           for x in m.intention(state)), len(state.learned)))
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
         possible = getattr(self.solver, "possible", None)
+        ends: dict[str, str] = {}  # goal id -> why it ended this cycle (once, deadline)
         for e in goals:
             walk.goal_id = e.id
+            if e.ended:  # over: reported as it ended, never pursued nor protected again
+                status = GoalStatus.SATISFIED if e.ended.startswith("achieved") else \
+                    GoalStatus.FAILED
+                reports.append(_report(e, status, e.literal, e.ended))
+                continue
             insts = instances(e.literal, self.program, pidx)
             if possible is not None and len(insts) > 1:   # never (on D D) for (on D ?x)
                 insts = [i for i in insts if satisfied(i, store) or possible(self.finder, walk, i)]
             unsat = [i for i in insts if not satisfied(i, store)]
             prev = remembered.get(e.id, ())
             seen.append((e.id, not unsat))
+            if not unsat and e.once:
+                ends[e.id] = f"achieved at cycle {state.cycle}; once: not kept"
+                reports.append(_report(e, GoalStatus.SATISFIED, e.literal, ends[e.id]))
+                remembered.pop(e.id, None)
+                continue
+            if unsat and 0 <= e.deadline <= state.cycle:
+                ends[e.id] = f"{e.text} not achieved by cycle {e.deadline}, its deadline"
+                reports.append(_report(e, GoalStatus.FAILED, unsat[0], ends[e.id]))
+                remembered.pop(e.id, None)
+                continue
             if not unsat:
                 reports.append(GoalReport(e.id, e.text, e.priority, GoalStatus.SATISFIED))
                 remembered.pop(e.id, None)
@@ -176,6 +192,9 @@ class Executive:
         achieved = self.finder.effects.of_actions([a for p in paths for a in p.actions])[0]
         loops = watcher.state(seen, paths[0].goal_id if paths else "",
                               tuple((x.pred, *x.args) for x in achieved), dict(remembered))
+        if ends:
+            walk.updates["goals"] = tuple(replace(e, ended=ends[e.id]) if e.id in ends else e
+                                          for e in walk.current("goals"))
         new_state = replace(
             state, paths=tuple(sorted((k, v) for k, v in remembered.items() if k in live)),
             cycle=state.cycle + 1, active=tuple(p.goal_id for p in paths) + tuple(idle),

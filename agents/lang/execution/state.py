@@ -132,8 +132,7 @@ class EngineState:
         """Plain data (str/int/float/list/dict) for JSON or msgpack."""
         return {"version": STATE_VERSION, "cycle": self.cycle, "next_seq": self.next_seq,
                 "seed": self.seed,
-                "goals": [{"id": e.id, "goal": e.text, "priority": e.priority, "seq": e.seq,
-                           "origin": e.origin} for e in self.goals],
+                "goals": [_goal_dict(e) for e in self.goals],
                 "paths": {gid: [s.to_dict() for s in steps] for gid, steps in self.paths},
                 "active": list(self.active), "failed": {g: why for g, why in self.failed},
                 "learned": list(self.learned),
@@ -151,7 +150,9 @@ class EngineState:
                 raise StateError(f"engine state version {d.get('version')!r}, expected "
                                  f"{STATE_VERSION}")
             goals = tuple(GoalEntry(str(g["id"]), parse_goal(g["goal"]), int(g["priority"]),
-                                    int(g["seq"]), str(g.get("origin", "user")))
+                                    int(g["seq"]), str(g.get("origin", "user")),
+                                    bool(g.get("once", False)), int(g.get("deadline", -1)),
+                                    str(g.get("ended", "")))
                           for g in d["goals"])
             paths = tuple((str(gid), tuple(StoredStep.from_dict(s) for s in steps))
                           for gid, steps in sorted(d.get("paths", {}).items()))
@@ -169,3 +170,16 @@ class EngineState:
             raise
         except (KeyError, TypeError, ValueError, AttributeError, LangError) as exc:
             raise StateError(f"engine state: bad shape ({type(exc).__name__}: {exc})") from None
+
+
+def _goal_dict(e: GoalEntry) -> dict:
+    """A goal entry as plain data; once, deadline and ended only when set (so the state of a
+    run without them is what it was)."""
+    d = {"id": e.id, "goal": e.text, "priority": e.priority, "seq": e.seq, "origin": e.origin}
+    if e.once:
+        d["once"] = True
+    if e.deadline >= 0:
+        d["deadline"] = e.deadline
+    if e.ended:
+        d["ended"] = e.ended
+    return d

@@ -41,13 +41,19 @@ from .parser import Parser, Parts
 
 @dataclass(frozen=True, slots=True)
 class GoalEntry:
-    """One goal in the list: ``origin`` is "program" or "user"."""
+    """One goal in the list: ``origin`` is "program" or "user". ``once``: dropped from pursuit
+    once achieved, not kept as a maintenance goal; ``deadline``: the engine cycle by which it
+    must be achieved, else it fails (-1: none); ``ended``: why a once goal or one with a
+    deadline is over ("" while it is pursued; agents/lang/execution/executive.py)."""
 
     id: str
     literal: Goal
     priority: int
     seq: int
     origin: str = "user"
+    once: bool = False
+    deadline: int = -1
+    ended: str = ""
 
     @property
     def text(self) -> str:
