@@ -376,3 +376,14 @@ def test_check_warns_of_a_goal_naming_an_object_the_world_has_not(tmp_path):
            "'r-5399' in the office world as it starts, nor in ME's program (the goal would " \
            "wait for a percept of it, then fail)" in result.output.splitlines()
     assert "'mail-reid'" not in result.output
+
+
+def test_a_misspelt_world_is_the_one_error_not_the_default_worlds_actions_too(tmp_path):
+    """A [world] in error is read as the default (driving) world; the blocks program's
+    actions must not then be refused as unknown to driving: one error, the domain's."""
+    path = scenario(tmp_path, '[world]\ndomain = "ofice"\n\n[[agents]]\nid = "ME"\n'
+                              f'program = "{ROOT / "programs" / "blocks.tlp"}"\n')
+    with pytest.raises(ScenarioError) as err:
+        load_checked(str(path))
+    assert len(err.value.errors) == 1, err.value.errors
+    assert "did you mean 'office'" in err.value.errors[0]

@@ -59,7 +59,9 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
     programs: dict[str, Program] = {}
     for agent in scenario.agents:
         if f"agent {agent.id}" not in spoilt:
-            problem = _agent_problem(agent, domain, programs)
+            # a [world] in error is read as the default world: its actions would mislead
+            known = domain.actions if "world" not in spoilt else ()
+            problem = _agent_problem(agent, domain.name, known, programs)
             if problem:
                 errors.append(f"{where}: agent {agent.id}: {problem}")
     checked = [(k, g) for k, g in enumerate(scenario.goals) if f"goal {k + 1}" not in spoilt]
@@ -88,9 +90,11 @@ def _checks(scenario: Scenario, spoilt: frozenset[str]) -> tuple[dict[str, Progr
     return programs, errors
 
 
-def _agent_problem(agent: AgentSpec, domain: Any, programs: dict[str, Program]) -> str:
-    """What is wrong with one agent's mechanism and program ("" if nothing); its program,
-    loaded, is added to ``programs``."""
+def _agent_problem(agent: AgentSpec, domain: str, known: tuple[str, ...],
+                   programs: dict[str, Program]) -> str:
+    """What is wrong with one agent's mechanism and program ("" if nothing), ``known`` the
+    actions its world knows (none: not checked); its program, loaded, is added to
+    ``programs``."""
     if agent.mechanism not in SOLVERS:
         return f"mechanism: expected one of {list(SOLVERS)}, got {agent.mechanism!r}"
     if not _is_file(Path(agent.program)):
@@ -99,7 +103,7 @@ def _agent_problem(agent: AgentSpec, domain: Any, programs: dict[str, Program]) 
         programs[agent.id] = load_program(str(agent.program))
     except ProgramError as exc:
         return f"program {agent.program}:\n{exc}"
-    return _unknown_action(programs[agent.id], domain.name, domain.actions)
+    return _unknown_action(programs[agent.id], domain, known)
 
 
 def _goal_id_problems(scenario: Scenario) -> list[str]:
