@@ -42,28 +42,12 @@ if str(ROOT) not in sys.path:
 
 from bench.ipc import report  # noqa: E402
 from bench.ipc.runs import PLANNERS, Run, run_pyperplan, run_teleo  # noqa: E402
+from bench.planning.planning import numbers  # noqa: E402
 
 SUITES = Path(__file__).resolve().parent / "suites"
 DOMAINS = ("blocks", "gripper", "logistics", "miconic", "movie")
 FULL = {"domains": ",".join(DOMAINS), "tasks": "1-10", "limit": 60.0}
 QUICK = {"domains": "blocks,gripper,movie", "tasks": "1-2", "limit": 20.0}
-
-
-def numbers(text: str) -> list[int]:
-    """"1-3,7" as [1, 2, 3, 7]; raises click.BadParameter."""
-    out: list[int] = []
-    for part in text.split(","):
-        a, sep, b = part.strip().partition("-")
-        try:
-            first, last = int(a), int(b) if sep else int(a)
-        except ValueError:
-            raise click.BadParameter(f"expected numbers or ranges such as 1-10,12, got "
-                                     f"{part.strip()!r}", param_hint="--tasks") from None
-        if not 1 <= first <= last <= 99:
-            raise click.BadParameter(f"expected 1..99 (a range low-high), got {part.strip()!r}",
-                                     param_hint="--tasks")
-        out += [x for x in range(first, last + 1) if x not in out]
-    return out
 
 
 def plan_jobs(domains: list[str], tasks: list[int], limit: float, folder: str, cross: bool,
@@ -145,7 +129,7 @@ def main(domains: str | None, tasks: str | None, limit: float | None, cycles: in
     if unknown or not chosen:
         raise click.BadParameter(f"no suite {', '.join(unknown) or '(none given)'}; expected "
                                  f"some of {', '.join(DOMAINS)}", param_hint="--domains")
-    numbers_ = numbers(tasks)
+    numbers_ = numbers(tasks, "--tasks", 1, 99)
     folder = keep or tempfile.mkdtemp(prefix="teleo-ipc-")
     Path(folder).mkdir(parents=True, exist_ok=True)
     echo = click.echo
