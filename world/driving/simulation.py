@@ -48,7 +48,6 @@ AGENT_BIT, TRAFFIC_BIT, PED_BIT = 1, 2, 4
 CT_AGENT, CT_TRAFFIC, CT_PED = 1, 2, 3
 PED_RADIUS = 0.35   # [m]
 HIT_SPEED = 0.3    # [m/s] a car slower than this does not hit a walker who bumps into it
-CITY_EDGE = 20.0   # [m] beyond the outer streets: an agent's car stops there (issue 31, N18)
 
 
 @dataclass
@@ -213,7 +212,6 @@ class Simulation(BaseWorld):
         self.cycle += 1
         self._handle_contacts()
         for car in self.cars.values():
-            self._keep_in_city(car)
             self._check_laws(car)
         self._events, self._incoming = self._incoming, []
 
@@ -243,17 +241,6 @@ class Simulation(BaseWorld):
                 for t in self.traffic:
                     if t.id in other:
                         t.speed = 0.0
-
-    def _keep_in_city(self, car: AgentCar) -> None:
-        """Stop a car that drives more than CITY_EDGE [m] past the outer streets at that
-        distance: it left the map, and the view and its percepts lost it (issue 31, N18)."""
-        width, height = self.city.size
-        x, y = car.body.position
-        kept = (min(max(x, -CITY_EDGE), width + CITY_EDGE),
-                min(max(y, -CITY_EDGE), height + CITY_EDGE))
-        if kept != (x, y):
-            car.body.position, car.body.velocity, car.speed = kept, (0.0, 0.0), 0.0
-            self.space.reindex_shapes_for_body(car.body)
 
     def _count(self, agent: str, counter: str, kind: str, **extra: Any) -> None:
         car = self.cars[agent]
