@@ -19,6 +19,7 @@ from world import registry
 from world.domain import DOMAINS, Domain, get_domain
 from world.errors import ConfigError
 
+BUILT_IN = ("blocks", "driving", "office")
 ROOT = Path(__file__).resolve().parents[2]
 TELEO = [str(Path(sys.executable).parent / "teleo")]
 
@@ -66,7 +67,8 @@ def test_an_unknown_name_is_one_line_naming_the_near_and_the_known_ones() -> Non
         get_domain("ofice")
     text = str(err.value)
     assert "\n" not in text and "unknown domain 'ofice'" in text
-    assert "did you mean 'office'?" in text and "known: blocks, driving, office" in text
+    known = text.split("known: ")[1]
+    assert "did you mean 'office'?" in text and all(n in known for n in BUILT_IN)
 
 
 def test_broken_plugins_are_listed_with_their_reasons_and_the_others_still_load(broken):
