@@ -116,10 +116,12 @@ def _rule(rid: str, messages: Iterable[str], flows: Iterable[str],
             "flows": list(flows), "key_exprs": list(key_exprs)}
 
 
-def _grants(run: str, user: str) -> dict[str, list[str]]:
+def grants(run: str, user: str) -> dict[str, list[str]]:
     """What `user` may do, as {"put": keys, "sub": keys, "serve": keys, "ask": keys,
     "token": keys}: put = publish; sub = subscribe and receive; serve = answer queries;
-    ask = send queries and receive the replies; token = declare liveliness tokens."""
+    ask = send queries and receive the replies; token = declare liveliness tokens. The one
+    declaration of which keys each process of a run uses: the secured router enforces it,
+    `teleo graph --run` draws it (tools/records/run_graph.py)."""
     root = keys.run_root(run)
     own = {"put": [keys.stats(run, user)], "sub": [], "serve": [], "ask": [],
            "token": [keys.proc(run, user)]}
@@ -168,7 +170,7 @@ def _stage_outputs(run: str, agent: str, stage: str) -> list[str]:
 
 def access_control(run: str, users: Iterable[str]) -> dict[str, Any]:
     """zenoh's `access_control` config for a run's router: deny by default; each user may
-    only what `_grants` lists (ingress: what it sends; egress: what the router delivers to
+    only what `grants` lists (ingress: what it sends; egress: what the router delivers to
     it). Every user may watch the liveliness tokens of the run (who is up)."""
     procs = keys.all_procs(run)
     rules = [_rule("presence-in", ["declare_liveliness_subscriber", "liveliness_query"],
@@ -185,7 +187,7 @@ def access_control(run: str, users: Iterable[str]) -> dict[str, Any]:
         subject = f"s{n}"
         subjects.append({"id": subject, "usernames": [user]})
         policies[0]["subjects"].append(subject)
-        g = _grants(run, user)
+        g = grants(run, user)
         mine = [
             _rule(f"u{n}-put", ["put", "delete"], ["ingress"], g["put"]),
             _rule(f"u{n}-sub", _SUB, ["ingress"], g["sub"]),

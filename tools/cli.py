@@ -38,6 +38,8 @@ _COMMAND_MODULES = {
     "tools.commands.simulate": ("simulate",),   # one process, no bus
     "tools.commands.explain": ("explain",),     # run records
     "tools.commands.plot": ("plot",),           # run records
+    "tools.commands.graph": ("graph",),         # programs and runs as pictures
+    "tools.commands.why": ("why",),             # why a concept instance is believed
     "tools.view": ("view",),                    # live web view
     "tools.commands.pddl": ("pddl",),           # PDDL domains as programs
     "tools.commands.solve": ("solve",),         # a PDDL problem in one process

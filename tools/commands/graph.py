@@ -1,0 +1,127 @@
+"""`teleo graph PROGRAM` and `teleo graph --run RUN`: pictures of a program's goals, skills and
+concepts (tools/records/program_graph.py, as py_trees renders a tree) and of a running run's
+processes and keys (tools/records/run_graph.py, as ROS 2's rqt_graph), written as SVG or PNG
+(tools/records/drawing.py); `--json` prints the nodes and edges.
+
+    teleo graph programs/blocks.tlp --out blocks.svg
+    teleo graph scenarios/errands_demo.toml --agent ME --json
+    teleo graph --run driving-demo-ab12cd --out run.png
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+
+import click
+
+from tools.commands.lang import include_option
+from tools.paths import OutputPath, suffix_check
+from tools.records.drawing import PICTURE_SUFFIXES, Graph, write_picture
+
+graph_check = suffix_check(PICTURE_SUFFIXES, "a graph")
+PRESENCE_WAIT = 1.0  # [s] for the run's liveliness tokens to be seen
+
+
+def _fail(message: str) -> None:
+    click.echo(message if message.startswith("Error") else f"Error: {message}", err=True)
+    sys.exit(1)
+
+
+def program_of(path: str, includes: tuple[str, ...], agent: str | None):
+    """The program of ``path`` (a program file, or a scenario's agent's program), loaded as
+    `teleo check` loads it; exits 1 with the loader's first `file:line:col` error."""
+    from agents.lang import ProgramError, load_program
+    from tools.commands.check import is_scenario
+    from tools.commands.examples import scenario_path
+
+    path = path if path.endswith(".tlp") else scenario_path(path)
+    if not is_scenario(path):
+        if agent is not None:
+            raise click.UsageError("--agent names an agent of a scenario: PROGRAM is a program")
+        try:
+            return load_program(path, *includes)
+        except ProgramError as exc:
+            _fail(str(exc.errors[0] if exc.errors else exc.diagnostics[0]))
+    from tools.commands.scenario_check import load_checked
+    from world.run_scenario import ScenarioError
+
+    try:
+        scenario, programs = load_checked(path)
+    except ScenarioError as exc:
+        _fail(f"{path}: {exc.errors[0]}")
+    if agent is None and len(programs) != 1:
+        raise click.UsageError(f"{path} has agents {', '.join(programs)}: choose one with "
+                               "--agent")
+    agent = agent if agent is not None else next(iter(programs))
+    if agent not in programs:
+        raise click.UsageError(f"{path} has no agent {agent!r}; agents: {', '.join(programs)}")
+    return programs[agent]
+
+
+def live_graph(run: str | None) -> Graph:
+    """The graph of the running launch ``run`` (or the only one) from the processes whose
+    liveliness tokens are up; exits 1 with one line when none is running."""
+    from bus.errors import BusError
+    from bus.node import open_node
+    from tools.records.run_graph import run_graph
+    from tools.runs import runfile
+
+    try:
+        info = runfile.find(run)
+        with open_node(runfile.bus_config(info), info.run, f"graph-{os.getpid()}"
+                       ) as node:
+            node.presence.wait_for(bool, PRESENCE_WAIT)
+            alive = node.alive()
+    except runfile.NoRunningLaunch as exc:
+        _fail(str(exc))
+    except BusError as exc:
+        _fail(f"run {run}: cannot reach its router: {exc}")
+    if not alive:
+        _fail(f"run {info.run}: no process of it is up (no liveliness token under "
+              f"teleo/{info.run}/proc/*)")
+    return run_graph(info.run, set(alive))
+
+
+@click.command()
+@click.argument("program", required=False)
+@click.option("--run", "run_id", default=None, metavar="RUN",
+              help="Draw this running launch's processes and keys instead (as rqt_graph).")
+@click.option("--agent", default=None,
+              help="With a scenario as PROGRAM: whose program (default: the only agent).")
+@click.option("--out", "out", type=OutputPath(graph_check), default=None,
+              help="Write the picture here: .svg or .png.")
+@click.option("--json", "as_json", is_flag=True, help="Print the nodes and edges as JSON.")
+@include_option
+def graph(program: str | None, run_id: str | None, agent: str | None, out: str | None,
+          as_json: bool, includes: tuple[str, ...]) -> None:
+    """Draw a program's goals, skills and concepts, or a running launch's processes and keys.
+
+    PROGRAM is a program file or a scenario (its agent's program, --agent): goals point to
+    the skills that achieve them, skills to their subgoals' skills (an SCS body to its
+    steps), concepts to the concepts they are defined from (dashed through `not`).
+    Primitive skills and percept-only concepts are drawn apart. `--run RUN` draws the
+    processes of a running launch that are up (liveliness) and the keys each publishes
+    and subscribes to (bus/security.py's grants). Name --out F.svg|F.png, --json or both."""
+    if (program is None) == (run_id is None):
+        raise click.UsageError("name a PROGRAM or --run RUN (one of them)")
+    if out is None and not as_json:
+        raise click.UsageError("name --out F.svg|F.png, or --json for the nodes and edges")
+    if run_id is not None:
+        if agent is not None or includes:
+            raise click.UsageError("--agent and -I go with a PROGRAM, not --run")
+        g = live_graph(run_id)
+    else:
+        from tools.records.program_graph import program_graph
+
+        g = program_graph(program_of(program, includes, agent), program)
+    if out is not None:
+        write_picture(g, out)
+        if not as_json:
+            click.echo(f"{out}: {len(g.nodes)} nodes, {len(g.edges)} edges")
+    if as_json:
+        click.echo(json.dumps(g.to_json(), indent=1))
+
+
+commands = [graph]
