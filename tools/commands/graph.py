@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import os
 import sys
+import time
 
 import click
 
@@ -21,7 +22,8 @@ from tools.paths import OutputPath, suffix_check
 from tools.records.drawing import PICTURE_SUFFIXES, Graph, write_picture
 
 graph_check = suffix_check(PICTURE_SUFFIXES, "a graph")
-PRESENCE_WAIT = 1.0  # [s] for the run's liveliness tokens to be seen
+PRESENCE_WAIT = 3.0  # [s] at most for the run's liveliness tokens to be seen
+PRESENCE_QUIET = 0.5  # [s] with no token appearing after which all are taken as seen
 
 
 def _fail(message: str) -> None:
@@ -60,7 +62,21 @@ def program_of(path: str, includes: tuple[str, ...], agent: str | None):
     return programs[agent]
 
 
-def live_graph(run: str | None) -> Graph:
+def settled(presence) -> set[str]:
+    """The processes up, once no token has appeared for PRESENCE_QUIET seconds (the tokens
+    of a run come in one by one) or PRESENCE_WAIT has passed."""
+    end = time.monotonic() + PRESENCE_WAIT
+    seen = set(presence.snapshot())
+    while time.monotonic() < end:
+        presence.wait_change(PRESENCE_QUIET)
+        now = set(presence.snapshot())
+        if now == seen and now:
+            break
+        seen = now
+    return seen
+
+
+def live_graph(run: str | None, stats: bool = False) -> Graph:
     """The graph of the running launch ``run`` (or the only one) from the processes whose
     liveliness tokens are up; exits 1 with one line when none is running."""
     from bus.errors import BusError
@@ -72,8 +88,7 @@ def live_graph(run: str | None) -> Graph:
         info = runfile.find(run)
         with open_node(runfile.bus_config(info), info.run, f"graph-{os.getpid()}"
                        ) as node:
-            node.presence.wait_for(bool, PRESENCE_WAIT)
-            alive = node.alive()
+            alive = settled(node.presence)
     except runfile.NoRunningLaunch as exc:
         _fail(str(exc))
     except BusError as exc:
@@ -81,21 +96,23 @@ def live_graph(run: str | None) -> Graph:
     if not alive:
         _fail(f"run {info.run}: no process of it is up (no liveliness token under "
               f"teleo/{info.run}/proc/*)")
-    return run_graph(info.run, set(alive))
+    return run_graph(info.run, set(alive), stats)
 
 
 @click.command()
 @click.argument("program", required=False)
 @click.option("--run", "run_id", default=None, metavar="RUN",
               help="Draw this running launch's processes and keys instead (as rqt_graph).")
+@click.option("--stats", is_flag=True,
+              help="With --run: draw the keys of each process's compute times too.")
 @click.option("--agent", default=None,
               help="With a scenario as PROGRAM: whose program (default: the only agent).")
 @click.option("--out", "out", type=OutputPath(graph_check), default=None,
               help="Write the picture here: .svg or .png.")
 @click.option("--json", "as_json", is_flag=True, help="Print the nodes and edges as JSON.")
 @include_option
-def graph(program: str | None, run_id: str | None, agent: str | None, out: str | None,
-          as_json: bool, includes: tuple[str, ...]) -> None:
+def graph(program: str | None, run_id: str | None, stats: bool, agent: str | None,
+          out: str | None, as_json: bool, includes: tuple[str, ...]) -> None:
     """Draw a program's goals, skills and concepts, or a running launch's processes and keys.
 
     PROGRAM is a program file or a scenario (its agent's program, --agent): goals point to
@@ -104,6 +121,8 @@ def graph(program: str | None, run_id: str | None, agent: str | None, out: str |
     Primitive skills and percept-only concepts are drawn apart. `--run RUN` draws the
     processes of a running launch that are up (liveliness) and the keys each publishes
     and subscribes to (bus/security.py's grants). Name --out F.svg|F.png, --json or both."""
+    if stats and run_id is None:
+        raise click.UsageError("--stats goes with --run")
     if (program is None) == (run_id is None):
         raise click.UsageError("name a PROGRAM or --run RUN (one of them)")
     if out is None and not as_json:
@@ -111,7 +130,7 @@ def graph(program: str | None, run_id: str | None, agent: str | None, out: str |
     if run_id is not None:
         if agent is not None or includes:
             raise click.UsageError("--agent and -I go with a PROGRAM, not --run")
-        g = live_graph(run_id)
+        g = live_graph(run_id, stats)
     else:
         from tools.records.program_graph import program_graph
 

@@ -73,29 +73,45 @@ def short(run: str, key: str) -> str:
     return key.removeprefix(keys.run_root(run) + "/")
 
 
-def run_graph(run: str, processes: set[str]) -> Graph:
-    """The graph of ``run`` with ``processes`` up (see the module doc)."""
+def _order(process: str) -> tuple:
+    """The cycle's order: the world (and its clock), each agent's stages, the rest."""
+    stage = process.rpartition(".")[2]
+    stages = ("perception", "inference", "executive")
+    return (0,) if process == "world" else (1, stages.index(stage), process) \
+        if stage in stages else (2, process)
+
+
+def run_graph(run: str, processes: set[str], stats: bool = False) -> Graph:
+    """The graph of ``run`` with ``processes`` up (see the module doc); ``stats``: with the
+    keys each process says its compute time on (`stats/<process>`; left out by default, as
+    rqt_graph leaves out debug topics)."""
     g = Graph(f"run {run}: processes and keys")
     agents = agents_of(processes)
-    used = {p: uses(run, p, agents) for p in sorted(processes)}
-    concrete: set[str] = set()
-    for u in used.values():
-        for expr in u["put"] + u["serve"]:
-            concrete |= {k for k in _expand(run, expr, agents) if "*" not in k}
-    for p, u in used.items():
+    used = {p: uses(run, p, agents) for p in sorted(processes, key=_order)}
+    if not stats:
+        for u in used.values():
+            for mode in u:
+                u[mode] = [k for k in u[mode] if not matches(keys.all_stats(run), k)
+                           and k != keys.all_stats(run)]
+    published = {p: [k for e in u["put"] for k in _expand(run, e, agents)]
+                 for p, u in used.items()}
+    put = {k for ks in published.values() for k in ks}
+    for p in used:
         g.node(f"proc:{p}", p, "process", f"process {p} (liveliness token "
                f"{keys.proc(run, p)})")
-        for expr in u["put"]:
-            for k in _expand(run, expr, agents):
-                g.node(f"key:{k}", short(run, k), "key", k)
-                g.edge(f"proc:{p}", f"key:{k}", "publishes")
+        for k in published[p]:
+            g.node(f"key:{k}", short(run, k), "key", k)
+            g.edge(f"proc:{p}", f"key:{k}", "publishes")
     for p, u in used.items():
         for mode in ("sub", "serve"):
             for expr in u[mode]:
-                for k in sorted(concrete):
-                    if any(matches(e, k) for e in _expand(run, expr, agents)):
-                        g.node(f"key:{k}", short(run, k), "key", k)
-                        g.edge(f"key:{k}", f"proc:{p}",
-                               "subscribes" if mode == "sub" else "serves",
-                               dashed=mode == "serve")
+                named = [e for e in _expand(run, expr, agents) if "*" not in e]
+                # a wildcard stands for the keys published; a key named, for itself
+                for k in sorted(put | set(named)):
+                    if k in published[p] or not any(matches(e, k) for e in
+                                                     _expand(run, expr, agents)):
+                        continue
+                    g.node(f"key:{k}", short(run, k), "key", k)
+                    g.edge(f"key:{k}", f"proc:{p}", "subscribes" if mode == "sub"
+                           else "serves", dashed=mode == "serve")
     return g
