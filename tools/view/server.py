@@ -9,6 +9,8 @@
     GET /api/map           the world's static map (tools/view/scene.py)
     GET /api/render.png?cycle=N&agent=A   the domain's own picture (A's path), for domains the
                            page cannot draw
+    GET /api/graph.svg?agent=A   A's program as a graph of goals, skills and concepts (`teleo
+                           graph PROGRAM`, tools/records/program_graph.py); the header links it
 """
 
 from __future__ import annotations
@@ -22,6 +24,8 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import parse_qs, urlparse
 
+from tools.records.drawing import to_svg
+from tools.records.program_graph import program_graph
 from tools.view import scene
 from tools.view.model import ViewModel
 
@@ -74,6 +78,8 @@ class _Handler(BaseHTTPRequestHandler):
             self._frame(model, query.get("cycle"))
         elif url.path == "/api/render.png":
             self._render(model, query.get("cycle"), query.get("agent"))
+        elif url.path == "/api/graph.svg":
+            self._graph(model, query.get("agent"))
         else:
             self._send(HTTPStatus.NOT_FOUND, f"no page {url.path}\n".encode(), "text/plain")
 
@@ -100,6 +106,15 @@ class _Handler(BaseHTTPRequestHandler):
         if agent not in model.agents:
             agent = next(iter(sorted(model.agents)), None)
         self._send(HTTPStatus.OK, scene.render_png(snaps, agent), "image/png")
+
+    def _graph(self, model: ViewModel, agent: str | None) -> None:
+        """The program of ``agent`` (default: the first) drawn as `teleo graph` draws it."""
+        agent = agent if agent in model.agents else next(iter(sorted(model.agents)), None)
+        program, source = model.programs.get(agent) if agent else (None, "no agent yet")
+        if program is None:
+            return self._send(HTTPStatus.NOT_FOUND, f"{source}\n".encode(), "text/plain")
+        svg = to_svg(program_graph(program, f"{agent}: {source}"))
+        self._send(HTTPStatus.OK, svg.encode(), "image/svg+xml")
 
     def _events(self, model: ViewModel) -> None:
         """Push frames and status until the page goes away (or the server closes)."""

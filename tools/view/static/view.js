@@ -50,6 +50,7 @@ function drawTabs(names) {
     }));
   }
   for (const b of tabs.children) b.classList.toggle("on", b.dataset.agent === view.agent);
+  if (view.agent) $("graph").href = "/api/graph.svg?agent=" + encodeURIComponent(view.agent);
 }
 
 function drawMap() {
