@@ -16,6 +16,7 @@ import pytest
 from bus import keys
 from tools.commands.scenario_check import load_checked
 from tools.commands.simulate import simulate
+from tools.records.program_graph import program_graph
 from tools.records.recorder import SimRecorder
 from tools.records.run_record import RecordWriter, RunRecord
 from tools.records.tree import decision_tree, to_json
@@ -128,6 +129,29 @@ def test_a_domain_the_page_cannot_draw_gets_its_own_picture(served):
     static, moving = scene.split(snap)
     assert static == {"table": {"columns": 3}} and "table" not in moving
     assert scene.map_of(snap)["drawn"] and not scene.map_of({**snap, "domain": "office"})["drawn"]
+
+
+def test_the_header_links_the_agents_program_as_a_graph(served):
+    """The view serves `teleo graph`'s picture of the shown agent's program (issue 34)."""
+    url, model = served
+    _, html = _get(url)
+    assert b'<a id="graph" href="/api/graph.svg"' in html
+    assert b'$("graph").href = "/api/graph.svg?agent="' in (STATIC / "view.js").read_bytes()
+    ctype, svg = _get(url + "api/graph.svg?agent=ME")
+    program, source = model.programs.get("ME")
+    assert ctype == "image/svg+xml" and svg.startswith(b"<svg ") and source.encode() in svg
+    assert svg.count(b'<g class="node ') == len(program_graph(program).nodes)
+    assert _get(url + "api/graph.svg")[1] == svg          # the first agent by default
+    empty = ViewServer(ViewModel(), 0)                     # no agent yet: said, not drawn
+    thread = threading.Thread(target=empty.serve_forever, daemon=True)
+    thread.start()
+    try:
+        with pytest.raises(urllib.error.HTTPError) as nothing:
+            _get(empty.url + "api/graph.svg")
+        assert nothing.value.code == 404 and nothing.value.read() == b"no agent yet\n"
+    finally:
+        empty.shutdown()
+        empty.server_close()
 
 
 def test_a_model_follows_one_run_only(record):

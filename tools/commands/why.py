@@ -42,6 +42,16 @@ def _instance(text: str, program) -> object:
     return lit
 
 
+def _prior_model(rec, agent: str, cycle: int) -> list:
+    """The world model (SCS facts, seed 002) the agent held after the previous cycle's
+    decision, what its inference read this cycle: a simulate record echoes no agent memory
+    with the percepts (as the web view reads it, tools/view/model.py)."""
+    decision = (rec.by_cycle("intention", agent).get(cycle - 1) or {}).get("decision")
+    section = decision.get("scs") if isinstance(decision, dict) else None
+    model = section.get("model") if isinstance(section, dict) else None
+    return model if isinstance(model, list) else []
+
+
 @click.command()
 @click.argument("run", metavar="RUN")
 @click.argument("instance", metavar="CONCEPT-INSTANCE")
@@ -72,7 +82,7 @@ def why(run: str, instance: str, cycle: int | None, agent: str | None, program: 
                                    "from its scenario; name it with --program")
     prog = _load(path)
     lit = _instance(instance, prog)
-    model = (seen.get("memory") or {}).get("model") or []
+    model = (seen.get("memory") or {}).get("model") or _prior_model(rec, agent, cycle)
     report = explain_why(prog, lit, seen["percepts"], model)
     recorded = rec.by_cycle("beliefs", agent).get(cycle)
     if recorded is not None and not lit.variables():  # what the run's own inference said
