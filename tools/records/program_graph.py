@@ -11,9 +11,8 @@ make it true. Every node's detail (the SVG's tooltip) is the clause as read.
 
 from __future__ import annotations
 
-from agents.lang import Program, Skill
+from agents.lang import Literal, Program, Skill
 from agents.lang.core.conjunction import Conjunction
-from agents.lang.scs.syntax import Act, Atomic, Branch, Construct, ModelUpdate, Subgoal, Wait
 from tools.records.drawing import Graph
 
 
@@ -75,23 +74,24 @@ class _Builder:
                 self.g.edge(src, self.concept(lit.pred), f"{label} (no skill)", dashed=True)
 
     def step(self, node: object) -> str:
-        """A node for one step of an SCS body, with its children."""
+        """A node for one step of an SCS body (seed 002), with its children. Read by their
+        fields (a construct's ``mods`` and ``steps``, a branch's ``conds`` and ``step``, a
+        subgoal's ``literal``): only the registry imports a mechanism's own modules
+        (tests/test_layering.py)."""
         self.steps += 1
         sid = f"step:{self.steps}"
-        if isinstance(node, Construct):
-            self.g.node(sid, node.name, "step", str(node))
+        if hasattr(node, "mods") and hasattr(node, "steps"):   # do, do-first, repeat, ...
+            self.g.node(sid, str(getattr(node, "name", "construct")), "step", str(node))
             for child in node.steps:
-                inner = child.step if isinstance(child, Branch) else child
-                label = "(" + " ".join(map(str, child.conds)) + ")" \
-                    if isinstance(child, Branch) else ""
+                inner = getattr(child, "step", child)           # a branch's step
+                conds = getattr(child, "conds", None) if inner is not child else None
+                label = "(" + " ".join(map(str, conds)) + ")" if conds else ""
                 self.g.edge(sid, self.step(inner), label)
-        elif isinstance(node, Subgoal):
+        elif isinstance(getattr(node, "literal", None), Literal):  # a subgoal
             self.g.node(sid, str(node.literal), "step", f"subgoal {node.literal}")
             self.achieve(sid, node.literal, "")
-        elif isinstance(node, Act | Atomic | ModelUpdate | Wait):
+        else:                                                   # act, assert, wait, atomic
             self.g.node(sid, str(node), "step", str(node))
-        else:
-            self.g.node(sid, type(node).__name__, "step", str(node))
         return sid
 
     def build(self) -> Graph:
