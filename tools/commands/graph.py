@@ -52,7 +52,8 @@ def program_of(path: str, includes: tuple[str, ...], agent: str | None):
     try:
         scenario, programs = load_checked(path)
     except ScenarioError as exc:
-        _fail(f"{path}: {exc.errors[0]}")
+        first = str(exc.errors[0])
+        _fail(first if first.startswith(f"{path}:") else f"{path}: {first}")
     if agent is None and len(programs) != 1:
         raise click.UsageError(f"{path} has agents {', '.join(programs)}: choose one with "
                                "--agent")
