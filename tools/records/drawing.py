@@ -18,7 +18,7 @@ from typing import Any
 from xml.sax.saxutils import escape
 
 PICTURE_SUFFIXES = (".svg", ".png")
-CHAR_W, NODE_H, GAP_X, GAP_Y, MARGIN = 7.0, 26, 18, 56, 16  # [px]
+CHAR_W, NODE_H, GAP_X, GAP_Y, MARGIN, LOOP = 7.0, 26, 18, 56, 16, 16  # [px]
 MAX_LABEL = 48  # [characters] of a node's label drawn; the rest is in its tooltip
 STYLE = {  # kind -> (fill, stroke, dashed border)
     "goal": ("#fde9c8", "#c77d12", False), "skill": ("#dbe8fb", "#2f6fd6", False),
@@ -134,7 +134,7 @@ def layout(g: Graph) -> tuple[dict[str, tuple[float, float, float]], float, floa
         for n in row:
             place[n] = (x, MARGIN + k * (NODE_H + GAP_Y), width[n])
             x += width[n] + GAP_X
-    right = max((x + w for x, _, w in place.values()), default=MARGIN)
+    right = max((x + w for x, _, w in place.values()), default=MARGIN) + LOOP
     for row in rows.values():  # each row centred
         shift = (right - max(place[n][0] + place[n][2] for n in row)) / 2
         for n in row:
@@ -167,10 +167,15 @@ def to_svg(g: Graph) -> str:
            'fill="#666"/></marker></defs>', '<rect width="100%" height="100%" fill="white"/>']
     for e in g.edges:
         x1, y1, x2, y2 = _ends(place[e.src], place[e.dst])
+        d = f"M{x1:.1f},{y1:.1f} C{x1:.1f},{(y1 + y2) / 2:.1f} {x2:.1f},{(y1 + y2) / 2:.1f} " \
+            f"{x2:.1f},{y2:.1f}"
+        if e.src == e.dst:  # a recursive skill or concept: a loop on the box's right side
+            x, y, bw = place[e.src]
+            d = f"M{x + bw:.1f},{y + 6:.1f} C{x + bw + LOOP:.1f},{y - 6:.1f} {x + bw + LOOP:.1f}," \
+                f"{y + NODE_H + 6:.1f} {x + bw:.1f},{y + NODE_H - 6:.1f}"
         dash = ' stroke-dasharray="4 3"' if e.dashed else ""
         out.append(f'<g class="edge"><title>{escape(e.src)} -> {escape(e.dst)} '
-                   f'{escape(e.label)}</title><path d="M{x1:.1f},{y1:.1f} C{x1:.1f},'
-                   f'{(y1 + y2) / 2:.1f} {x2:.1f},{(y1 + y2) / 2:.1f} {x2:.1f},{y2:.1f}" '
+                   f'{escape(e.label)}</title><path d="{d}" '
                    f'fill="none" stroke="#888"{dash} marker-end="url(#arrow)"/></g>')
     for n in g.nodes.values():
         x, y, bw = place[n.id]
@@ -196,6 +201,11 @@ def to_png(g: Graph, path: Path) -> None:
     draw = ImageDraw.Draw(img)
     font = ImageFont.load_default(size=11)
     for e in g.edges:
+        if e.src == e.dst:  # a loop on the box's right side
+            x, y, bw = place[e.src]
+            draw.arc([x + bw - LOOP / 2, y + 2, x + bw + LOOP / 2, y + NODE_H - 2], -90, 90,
+                     fill="#888888")
+            continue
         x1, y1, x2, y2 = _ends(place[e.src], place[e.dst])
         draw.line([(x1, y1), (x2, y2)], fill="#888888", width=1)
         draw.regular_polygon((x2, y2 - 3 if y2 > y1 else y2 + 3, 4), 3,
