@@ -1,6 +1,7 @@
 """`teleo graph --run RUN` over a real launch (issue 34, pictures; as ROS 2's rqt_graph): the
-processes whose liveliness tokens are up, and the keys each publishes and subscribes to; a run
-that is not running is one line, exit 1."""
+processes whose liveliness tokens are up, and the keys each publishes and subscribes to; once
+the run has ended, its record's senders; a run neither running nor recorded is one line,
+exit 1."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ def test_a_running_launch_is_drawn_as_its_processes_and_keys(teleo, tmp_path):
     nothing = teleo("graph", "--run", "hold-speed-x", "--json")
     assert nothing.returncode == 1 and nothing.stdout == ""
     assert nothing.stderr.startswith("Error: no run 'hold-speed-x' in ") and \
-        len(nothing.stderr.splitlines()) == 1
+        len(nothing.stderr.splitlines()) == 1 and "nor is there a record of it" in nothing.stderr
     launcher = teleo.start("launch", str(HOLD_SPEED), "--cycles", "100000")
     try:
         info = teleo.run_info()
@@ -53,6 +54,11 @@ def test_a_running_launch_is_drawn_as_its_processes_and_keys(teleo, tmp_path):
         assert f"key:{root}/stats/ME.executive" in {n["id"] for n in stats["nodes"]}
     finally:
         interrupt(launcher)
-    gone = teleo("graph", "--run", run, "--json")
-    assert gone.returncode == 1 and gone.stdout == "" and len(gone.stderr.splitlines()) == 1
-    assert gone.stderr.startswith(f"Error: no run {run!r} in "), gone.stderr
+    ended = teleo("graph", "--run", run, "--json")   # the run has ended: drawn from its record
+    assert ended.returncode == 0, ended.stderr
+    g = json.loads(ended.stdout)
+    assert g["title"] == f"run {run} (record): processes and keys"
+    assert {n["label"] for n in g["nodes"] if n["kind"] == "process"} >= \
+        {"world", "goals", "ME.perception", "ME.inference", "ME.executive"}
+    assert ("proc:ME.executive", f"key:teleo/{run}/agent/ME/actions", "publishes") in \
+        {(e["from"], e["to"], e["label"]) for e in g["edges"]}

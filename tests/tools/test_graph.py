@@ -172,3 +172,22 @@ def test_a_runs_graph_draws_the_keys_the_grants_give_each_process() -> None:
     assert any("/stats/" in n for n in run_graph("r1", procs, stats=True).nodes)
     assert matches("teleo/r1/**", "teleo/r1/agent/ME/percepts")
     assert not matches("teleo/r1/agent/*/goals", "teleo/r1/agent/ME/percepts")
+
+
+def test_a_run_that_has_ended_is_drawn_from_its_records_senders(tmp_path, monkeypatch):
+    monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path))
+    done = CliRunner().invoke(cli, ["simulate", "blocks_figure3", "--json"])
+    assert done.exit_code == 0, done.output
+    folder = Path(json.loads(done.stdout)["record"]).parent
+    g = _graph("--run", folder.name)                  # a run id under the runs folder
+    run = folder.name
+    assert g["title"] == f"run {run} (record): processes and keys"
+    published = {(e["from"], e["to"]) for e in g["edges"] if e["label"] == "publishes"}
+    assert published == {(f"proc:{p}", f"key:teleo/{run}/{k}") for p, k in (
+        ("world", "world/state"), ("ME.perception", "agent/ME/percepts"),
+        ("ME.inference", "agent/ME/beliefs"), ("ME.executive", "agent/ME/actions"),
+        ("ME.executive", "agent/ME/intention"), ("goals", "agent/ME/goal-list"))}
+    assert (f"key:teleo/{run}/agent/ME/actions", "proc:world") in _edges(g)
+    nothing = CliRunner().invoke(cli, ["graph", "--run", "no-such-run", "--json"])
+    assert nothing.exit_code == 1 and len(nothing.stderr.splitlines()) == 1
+    assert "no run 'no-such-run'" in nothing.stderr and "nor is there a record" in nothing.stderr

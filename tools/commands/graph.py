@@ -6,6 +6,7 @@ processes and keys (tools/records/run_graph.py, as ROS 2's rqt_graph), written a
     teleo graph programs/blocks.tlp --out blocks.svg
     teleo graph scenarios/errands_demo.toml --agent ME --json
     teleo graph --run driving-demo-ab12cd --out run.png
+    teleo graph --run out/runs/blocks-figure3-sim-0c1947 --json    (a run that has ended)
 """
 
 from __future__ import annotations
@@ -77,9 +78,13 @@ def settled(presence) -> set[str]:
     return seen
 
 
-def live_graph(run: str | None, stats: bool = False) -> Graph:
-    """The graph of the running launch ``run`` (or the only one) from the processes whose
-    liveliness tokens are up; exits 1 with one line when none is running."""
+class _NotRunning(Exception):
+    """No launch of that run is running here (the message says where it looked)."""
+
+
+def live_graph(run: str, stats: bool = False) -> Graph:
+    """The graph of the running launch ``run`` from the processes whose liveliness tokens are
+    up; _NotRunning when none is registered, exit 1 when none of its processes is up."""
     from bus.errors import BusError
     from bus.node import open_node
     from tools.records.run_graph import run_graph
@@ -91,7 +96,7 @@ def live_graph(run: str | None, stats: bool = False) -> Graph:
                        ) as node:
             alive = settled(node.presence)
     except runfile.NoRunningLaunch as exc:
-        _fail(str(exc))
+        raise _NotRunning(str(exc)) from None
     except BusError as exc:
         _fail(f"run {run}: cannot reach its router: {exc}")
     if not alive:
@@ -100,10 +105,29 @@ def live_graph(run: str | None, stats: bool = False) -> Graph:
     return run_graph(info.run, set(alive), stats)
 
 
+def record_graph(run: str, stats: bool, running: str) -> Graph:
+    """The graph of a run that has ended, from its record (its messages' senders and keys);
+    exit 1 naming both what was looked for when there is none (``running``: why no launch)."""
+    from tools.records.run_graph import run_graph
+    from tools.records.run_record import RecordError, RunRecord, locate
+
+    try:
+        rec = RunRecord(locate(run))
+        sent: dict[str, set[str]] = {}
+        for key, record in rec.records():
+            sender = (record.get("env") or {}).get("sender")
+            if isinstance(sender, str) and sender:
+                sent.setdefault(sender, set()).add(key)
+    except RecordError as exc:
+        _fail(f"{running}; nor is there a record of it ({exc})")
+    return run_graph(rec.run, set(sent), stats, sent)
+
+
 @click.command()
 @click.argument("program", required=False)
 @click.option("--run", "run_id", default=None, metavar="RUN",
-              help="Draw this running launch's processes and keys instead (as rqt_graph).")
+              help="Draw this run's processes and keys instead (as rqt_graph): a running "
+                   "launch, else its record.")
 @click.option("--stats", is_flag=True,
               help="With --run: draw the keys of each process's compute times too.")
 @click.option("--agent", default=None,
@@ -121,7 +145,8 @@ def graph(program: str | None, run_id: str | None, stats: bool, agent: str | Non
     steps), concepts to the concepts they are defined from (dashed through `not`).
     Primitive skills and percept-only concepts are drawn apart. `--run RUN` draws the
     processes of a running launch that are up (liveliness) and the keys each publishes
-    and subscribes to (bus/security.py's grants). Name --out F.svg|F.png, --json or both."""
+    and subscribes to (bus/security.py's grants); for a run that has ended, its record's
+    senders and the keys they sent on. Name --out F.svg|F.png, --json or both."""
     if stats and run_id is None:
         raise click.UsageError("--stats goes with --run")
     if (program is None) == (run_id is None):
@@ -131,7 +156,10 @@ def graph(program: str | None, run_id: str | None, stats: bool, agent: str | Non
     if run_id is not None:
         if agent is not None or includes:
             raise click.UsageError("--agent and -I go with a PROGRAM, not --run")
-        g = live_graph(run_id, stats)
+        try:
+            g = live_graph(run_id, stats)
+        except _NotRunning as exc:
+            g = record_graph(run_id, stats, str(exc))
     else:
         from tools.records.program_graph import program_graph
 

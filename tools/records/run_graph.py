@@ -10,7 +10,8 @@ Which keys a process uses is read from the one declaration of them, bus/security
 (`agent/*/intention`, `stats/*`, `**`) matched against the keys of the processes that are up.
 The recorder and `teleo record` hold tokens under the operator's grants: they are drawn with
 what they subscribe to and their own stats key, not with what the operator's other commands
-may send.
+may send. A run that has ended is drawn from its record: its processes are the senders of its
+messages (each envelope names one), with the keys each was seen to publish.
 """
 
 from __future__ import annotations
@@ -81,24 +82,29 @@ def _order(process: str) -> tuple:
         if stage in stages else (2, process)
 
 
-def run_graph(run: str, processes: set[str], stats: bool = False) -> Graph:
+def run_graph(run: str, processes: set[str], stats: bool = False,
+              sent: dict[str, set[str]] | None = None) -> Graph:
     """The graph of ``run`` with ``processes`` up (see the module doc); ``stats``: with the
     keys each process says its compute time on (`stats/<process>`; left out by default, as
-    rqt_graph leaves out debug topics)."""
-    g = Graph(f"run {run}: processes and keys")
+    rqt_graph leaves out debug topics); ``sent``: process -> the keys it was seen to publish
+    (a run record's senders), drawn instead of those its grants allow."""
+    g = Graph(f"run {run}{' (record)' if sent is not None else ''}: processes and keys")
     agents = agents_of(processes)
     used = {p: uses(run, p, agents) for p in sorted(processes, key=_order)}
-    if not stats:
-        for u in used.values():
-            for mode in u:
-                u[mode] = [k for k in u[mode] if not matches(keys.all_stats(run), k)
-                           and k != keys.all_stats(run)]
+    if sent is not None:
+        for p, u in used.items():
+            u["put"] = sorted(sent.get(p, ()))
+    for u in used.values():
+        for mode in u:
+            u[mode] = [k for k in u[mode] if stats or not (
+                matches(keys.all_stats(run), k) or k == keys.all_stats(run))]
     published = {p: [k for e in u["put"] for k in _expand(run, e, agents)]
                  for p, u in used.items()}
     put = {k for ks in published.values() for k in ks}
     for p in used:
         g.node(f"proc:{p}", p, "process", f"process {p} (liveliness token "
-               f"{keys.proc(run, p)})")
+               f"{keys.proc(run, p)})" if sent is None else f"process {p} (a sender in the "
+               "record)")
         for k in published[p]:
             g.node(f"key:{k}", short(run, k), "key", k)
             g.edge(f"proc:{p}", f"key:{k}", "publishes")
