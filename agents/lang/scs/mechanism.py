@@ -10,11 +10,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core.mechanism import Mechanism, SkillMap
+from .carry import carried
 from .checks import BodyChecks, known_actions, model_facts
 from .fitting import check_fits, check_model, model_arity
 from .reader import BodyReader
 from .runner import ScsBody
-from .carry import carried
 from .state import ScsState, from_memory, model_of, to_memory
 from .summary import bodies_entry, bodies_lines
 from .syntax import Act, Atomic, walk_steps
