@@ -16,6 +16,7 @@ from typing import Any
 
 from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.per_object import PerObject
+from agents.processes.swapping import note, read_program, said
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
@@ -27,7 +28,8 @@ def make_step(run: str, agent: str, process: str, program_path: str,
               log: logging.Logger | None = None):
     """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]. Percepts the engine
     cannot read are refused (bus Refused), naming the percept; a malformed world model is
-    logged and left out."""
+    logged and left out. A program that comes with the percepts is swapped in first
+    (agents/processes/swapping.py), and the beliefs of the cycle say so."""
     from agents.lang import Engine, LangError, SharedRows, load_program
 
     engine = Engine(load_program(program_path))
@@ -37,7 +39,15 @@ def make_step(run: str, agent: str, process: str, program_path: str,
     rows = BeliefRows()
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        nonlocal engine
         seen = inputs[in_key]
+        swap: dict = {}
+        if seen.program:
+            program, why = read_program(seen.program)
+            if program is not None:
+                engine = Engine(program)
+            swap = note(seen.program, why)
+            said(process, cycle, swap, log)
         percepts = SharedRows(seen.percepts)  # rows seen last cycle are the same lists
         try:
             beliefs = engine.infer(percepts, seen.memory.get("model") or ())
@@ -49,7 +59,7 @@ def make_step(run: str, agent: str, process: str, program_path: str,
                               f"{brief(seen.env.sender)}: {bad}") from None
             log.warning("cycle %d: world model dropped: %s", cycle, exc)
         return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent,
-                                  rows.of(beliefs)))]
+                                  rows.of(beliefs), swap))]
 
     return step
 
