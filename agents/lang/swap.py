@@ -122,7 +122,8 @@ def _goals(new: Engine, state: EngineState, fresh: EngineState, dropped: list[st
         try:   # checked as a goal posted to the new program is
             lit = new.add_goal(EngineState(), e.text, e.priority, e.id).goals[0].literal
         except LangError as exc:
-            dropped.append(f"goal {e.id} {e.text}: {exc}")
+            why = str(exc).removeprefix(f"goal {e.text}: ")
+            dropped.append(f"goal {e.id} {e.text}: {why}")
             continue
         goals.append(replace(e, literal=lit))
     return tuple(goals)
