@@ -52,11 +52,9 @@ def _report(run: str, outcome: dict, note: str, as_json: bool) -> None:
     if as_json:
         click.echo(json.dumps({"run": run, **outcome, "note": note}))
         return
-    where = "paused" if outcome.get("paused") else "running"
-    line = f"run {run}: {where} at cycle {outcome.get('cycle')}"
-    if outcome.get("op") == "step":
-        line += f" after {outcome.get('stepped')} cycles"
-    click.echo(line + (f" ({note})" if note else ""))
+    from tools.runs.control import verdict_line
+
+    click.echo(f"run {run}: {verdict_line(outcome, note)}")
 
 
 @click.command("pause")

@@ -39,12 +39,29 @@ def ask_world(node: Any, run: str, event: dict[str, Any], timeout: float
 
 def ask_once(info: Any, event: dict[str, Any], timeout: float) -> tuple[dict[str, Any], str]:
     """``ask_world`` through a node of its own on the launch of ``info`` (runfile.RunInfo)."""
-    from bus.errors import BusError
-    from bus.node import open_node
     from tools.runs import runfile
 
+    return ask_via(runfile.bus_config(info), info.run, event, timeout)
+
+
+def ask_via(cfg: Any, run: str, event: dict[str, Any], timeout: float,
+            process: str = "control-cli") -> tuple[dict[str, Any], str]:
+    """``ask_world`` through a node of its own on the bus ``cfg`` (bus.config.BusConfig)."""
+    from bus.errors import BusError
+    from bus.node import open_node
+
     try:
-        with open_node(runfile.bus_config(info), info.run, "control-cli") as node:
-            return ask_world(node, info.run, event, timeout)
+        with open_node(cfg, run, process) as node:
+            return ask_world(node, run, event, timeout)
     except BusError as exc:
-        raise ControlError(f"run {info.run}: {exc}") from exc
+        raise ControlError(f"run {run}: {exc}") from exc
+
+
+def verdict_line(outcome: dict[str, Any], note: str = "") -> str:
+    """The world's verdict on a pause, step or resume, as `teleo pause` prints it after the
+    run: "paused at cycle 120 after 3 cycles (already paused)"."""
+    where = "paused" if outcome.get("paused") else "running"
+    line = f"{where} at cycle {outcome.get('cycle')}"
+    if outcome.get("op") == "step":
+        line += f" after {outcome.get('stepped')} cycles"
+    return line + (f" ({note})" if note else "")
