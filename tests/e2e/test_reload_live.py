@@ -10,6 +10,10 @@ from pathlib import Path
 
 from e2e_helpers import FIXTURES, HOLD_SPEED, Teleo, interrupt
 
+from tools.records.run_record import locate
+from tools.view.feeds import load_file
+from tools.view.model import ViewModel
+
 SLOW = FIXTURES / "hold_slow.tlp"
 AT, CYCLES = 300, "600"
 
@@ -70,6 +74,14 @@ def test_the_same_swap_at_the_same_cycle_gives_the_same_trace_and_the_record_sho
               .splitlines()]
     assert [(h["cycle"], h["agent"], h["name"]) for h in health if h["kind"] == "program"] \
         == [(AT, "ME", str(SLOW))]
+    # the view of the record (as of its replay) explains each cycle with the program it ran
+    model = ViewModel(None, 5000)
+    load_file(model, locate(first["run_dir"]))
+    assert model.programs.get("ME", AT)[1] == f"{SLOW} (from cycle {AT})"
+    assert model.programs.get("ME", AT - 1)[1] == str(FIXTURES / "hold_speed.tlp")
+    replayed = teleo("replay", first["run_dir"], "--rate", "0", "--wait", "0",
+                     timeout=120)
+    assert f"cycle {AT}: ME runs {SLOW} from here on" in replayed.stderr, replayed.stderr
 
 
 def test_a_live_swap_reports_the_stages_verdict_and_a_bad_file_leaves_the_program(teleo,
