@@ -39,7 +39,7 @@ from agents.processes.goal_sync import GoalSync
 from agents.processes.hints import with_hints
 from agents.processes.per_object import PerObject
 from agents.processes.persist import LearnedFile, Saved, StateFile, read_back_learned
-from agents.processes.swapping import note, read_program, said
+from agents.processes.swapping import keep, kept, note, read_program, said
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
@@ -152,17 +152,19 @@ class BeliefReader:
 
 def make_executive(program_path: str, log: logging.Logger, state: Any = None,
                    learned: str | None = None, solver: bool = True,
-                   mechanism: str = "means-ends", own_learned: str | None = None) -> Executive:
+                   mechanism: str = "means-ends", own_learned: str | None = None,
+                   swapped: str | None = None) -> Executive:
     """The executive of ``program_path``: from ``state`` (read back after a restart) if
     given, else fresh, starting from the skills in its own learned file ``own_learned`` (the
     one it writes: after a restart whose state file could not be read, those skills are not
-    lost) or else in the learned file ``learned``. Raises LangError (a ProgramError naming
+    lost) or else in the learned file ``learned``; the program swapped in and kept in
+    ``swapped`` if any (agents/processes/swapping.py). Raises LangError (a ProgramError naming
     file:line:col) for a bad program or ``learned`` file."""
-    from agents.lang import Engine, load_program
+    from agents.lang import Engine
     from agents.lang.loader import read_text
     from agents.lang.registry import read_learned
 
-    program = load_program(program_path)
+    program = kept(swapped, program_path, log)
     engine = Engine(program, solver=mechanism if solver else None)
     if state is None:
         skills = read_back_learned(program, Path(own_learned), log) if own_learned else None
@@ -176,7 +178,7 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
 def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger,
               state_path: str | None = None, learned: str | None = None,
               learned_out: str | None = None, solver: bool = True,
-              mechanism: str = "means-ends"):
+              mechanism: str = "means-ends", swapped: str | None = None):
     """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)].
     Percepts or beliefs the engine cannot read are refused (bus Refused)."""
     from agents.lang import LangError
@@ -184,7 +186,7 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
     executive = make_executive(program_path, log, saved.state if saved else None, learned,
-                               solver, mechanism, learned_out)
+                               solver, mechanism, learned_out, swapped)
     out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
@@ -207,6 +209,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         swap = executive.swap(seen.program) if seen.program else {}   # the old program's
         if swap:                                                      # memory read first
             said(process, cycle, swap, log)
+            if swap["ok"]:
+                keep(swapped, seen.program, cycle, log)
         try:
             decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         except LangError as exc:   # percepts or beliefs the engine cannot read
@@ -230,13 +234,15 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
               help="Write the learned skills here (program syntax) whenever one is learned.")
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
               help="Start from the skills in this learned file (an earlier run's).")
+@click.option("--swapped", type=click.Path(dir_okay=False),
+              help="Keep a program swapped in here, and start from the one it holds.")
 @click.option("--state", "state_path", type=click.Path(dir_okay=False),
               help="Engine state file: read back at start if it exists, written after every "
                    "cycle (so a restart keeps paths, goal stacks and learned skills).")
 @agent_options(with_program=True)
 def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: str | None,
          learned: str | None, learned_out: str | None, no_solver: bool,
-         mechanism: str) -> None:
+         mechanism: str, swapped: str | None) -> None:
     """Prioritised executive of one agent."""
     from agents.lang import LangError
 
@@ -245,7 +251,7 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: 
     inputs = [keys.percepts(run, agent), keys.beliefs(run, agent), keys.goal_list(run, agent)]
     try:
         step = make_step(run, agent, process, program, log, state_path, learned, learned_out,
-                         not no_solver, mechanism)
+                         not no_solver, mechanism, swapped)
     except LangError as exc:
         raise click.ClickException(str(exc)) from exc
     run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)], step, log)

@@ -6,6 +6,11 @@ run the new program from the same cycle; each says what it did with its output o
 (Beliefs.swap, Intention.swap: {"program", "ok", "reason", "dropped"}), which is what
 `teleo program load` reports and what the record keeps.
 
+With `--swapped FILE` (the launcher gives both stages the same file in the run folder) each
+stage writes the program it swapped in there, and a stage that starts (a restart after a
+crash) runs the program that file holds rather than its `--program`: a restart does not undo
+a swap.
+
 The program is read here exactly as `teleo check` reads a file (agents/lang; every error as
 file:line:col); a program that does not read is refused by both stages alike (the same text,
 the same reader) and the agent goes on with the one it ran. The engine state carries over by
@@ -13,8 +18,12 @@ agents/lang/swap.py's pure carry_state."""
 
 from __future__ import annotations
 
+import json
 import logging
+from pathlib import Path
 from typing import Any
+
+from agents.processes.persist import write_atomically
 
 
 def read_program(entry: dict[str, Any]) -> tuple[Any, str]:
@@ -42,3 +51,36 @@ def said(process: str, cycle: int, verdict: dict[str, Any], log: logging.Logger)
                  f"; dropped: {'; '.join(verdict['dropped'])}" if verdict["dropped"] else "")
     else:
         log.warning("cycle %d: %s kept its program: %s", cycle, process, verdict["reason"])
+
+
+def keep(path: str | None, entry: dict[str, Any], cycle: int, log: logging.Logger) -> None:
+    """Write the program swapped in at `cycle` to `path` (nothing without one)."""
+    if not path:
+        return
+    try:
+        write_atomically(Path(path), json.dumps({"name": entry.get("name", ""),
+                                                 "text": entry.get("text", ""),
+                                                 "cycle": cycle}))
+    except OSError as exc:   # a full disk: the swap holds, a restart would undo it
+        log.error("the program swapped in at cycle %d was not kept in %s: %s", cycle, path,
+                  exc)
+
+
+def kept(path: str | None, program_path: str, log: logging.Logger) -> Any:
+    """The program to start with: the one swapped in and kept in `path` when there is one
+    that reads, else the file `program_path` (ProgramError when it does not read)."""
+    from agents.lang import load_program
+
+    if path and Path(path).exists():
+        try:
+            entry = json.loads(Path(path).read_text())
+            program, why = read_program(entry)
+        except (OSError, ValueError, AttributeError) as exc:
+            program, why = None, str(exc)
+        if program is not None:
+            log.info("running %s, swapped in at cycle %s (kept in %s)", entry.get("name"),
+                     entry.get("cycle"), path)
+            return program
+        log.error("the program kept in %s does not read (%s): running %s", path, why,
+                  program_path)
+    return load_program(program_path)

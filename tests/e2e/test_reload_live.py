@@ -6,11 +6,13 @@ the program each cycle ran."""
 from __future__ import annotations
 
 import json
+import os
+import signal
 from pathlib import Path
 
-from e2e_helpers import FIXTURES, HOLD_SPEED, Teleo, interrupt
+from e2e_helpers import FIXTURES, HOLD_SPEED, Teleo, interrupt, wait_for
 
-from tools.records.run_record import locate
+from tools.records.run_record import RunRecord, locate
 from tools.view.feeds import load_file
 from tools.view.model import ViewModel
 
@@ -137,3 +139,30 @@ def test_a_live_swap_reports_the_stages_verdict_and_a_bad_file_leaves_the_progra
     assert [sorted(c) for c in swaps] == [["programs"], ["programs"], ["set"], ["programs"]]
     assert swaps[2] == {"set": [{"key": "run.render_every", "value": 20}]}
     assert lines[k]["control"]["programs"]["ME"]["name"] == str(SLOW)
+
+
+def test_a_stage_restarted_after_a_swap_runs_the_program_swapped_in(teleo):
+    launcher = teleo.start("launch", str(HOLD_SPEED), "--cycles", "0")
+    try:
+        info = teleo.run_info()
+        load = teleo("program", "load", "ME", str(SLOW), "--json", "--quiet")
+        assert load.returncode == 0, load.stderr + teleo.launch_output()
+        k = json.loads(load.stdout)["cycle"]
+        for stage in ("ME.inference", "ME.executive"):
+            os.kill(teleo.run_info()["pids"][stage], signal.SIGKILL)
+            assert wait_for(lambda s=stage: teleo.run_info()["restarts"].get(s) == 1, 60), \
+                teleo.launch_output()
+        again = teleo("program", "load", "ME", str(SLOW), "--json", "--quiet")  # all up again
+        assert again.returncode == 0, again.stderr + teleo.launch_output()
+        held = teleo("pause", "--json", "--quiet")
+        c = json.loads(held.stdout)["cycle"]
+    finally:
+        assert interrupt(launcher) == 0, teleo.launch_output()
+    logs = Path(info["run_dir"]) / "logs"
+    for stage in ("ME.inference", "ME.executive"):
+        text = next(logs.glob(f"{stage}*")).read_text()
+        assert f"running {SLOW}, swapped in at cycle {k}" in text, text[-2000:]
+    last = json.loads(teleo("explain", info["run_dir"], "--cycle", str(c - 1), "--json").stdout)
+    assert [g["goal"] for g in last["decision"]["goals"]] == ["(at-slow-speed ME)"]
+    beliefs = RunRecord(locate(info["run_dir"])).by_cycle("beliefs", "ME")[c - 1]["beliefs"]
+    assert beliefs and {b[0] for b in beliefs} <= {"at-slow-speed", "crawling", "too-fast"}
