@@ -56,11 +56,15 @@ class Changes:
             return f"expected \"text\": \"KEY=VALUE\", got {text!r:.80}"
         try:
             o = parse_override(text)
-            if o.key not in RUNTIME_KEYS:
-                return fixed_key(".".join(o.key))
-            scenario = load_scenario(self.scenario.path, (*self.scenario.overrides, text))
         except WorldError as exc:
-            return str(exc).replace("\n", "; ")
+            return str(exc)
+        if o.key not in RUNTIME_KEYS:
+            return fixed_key(".".join(o.key))
+        try:
+            scenario = load_scenario(self.scenario.path, (*self.scenario.overrides, text))
+        except WorldError as exc:   # the scenario's errors with this set: named by it
+            errors = [e.removeprefix(f"{self.scenario.path}: ") for e in str(exc).splitlines()]
+            return f"{text.strip()}: {'; '.join(errors)}"
         event["key"], event["value"] = ".".join(o.key), getattr(scenario.run, o.key[1])
         return ""
 

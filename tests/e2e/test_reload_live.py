@@ -101,6 +101,10 @@ def test_a_live_swap_reports_the_stages_verdict_and_a_bad_file_leaves_the_progra
         errors = refused.stderr.splitlines()
         assert errors[0].startswith(f"{bad}:") and errors[0].split(":")[1].isdigit(), errors
         assert errors[-1] == f"Error: {bad}: not loaded: the running program is untouched"
+        past = teleo("program", "load", "ME", str(SLOW), "--at", "0", "--quiet")
+        assert past.returncode == 1 and past.stderr.startswith(
+            f"Error: run {info['run']}: the world refused: control: load: at: expected a "
+            "cycle >= "), past.stderr
         nobody = teleo("program", "load", "YOU", str(SLOW), "--quiet")
         assert nobody.stderr == f"Error: run {info['run']} has no agent 'YOU'; agents: ME\n"
         load = teleo("program", "load", "ME", str(SLOW), "--quiet")
