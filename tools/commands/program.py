@@ -169,7 +169,8 @@ def _say(verdict: dict[str, Any], as_json: bool) -> None:
         click.echo(f"  {line}")
 
 
-@click.command("set")
+@click.command("set", short_help="Change a field of the running launch at a cycle boundary "
+                                  "(run.deadline, ...)")
 @click.argument("assignment", metavar="KEY=VALUE")
 @_options
 def set_(assignment: str, at: int | None, timeout: float, as_json: bool,
