@@ -84,3 +84,36 @@ def kept(path: str | None, program_path: str, log: logging.Logger) -> Any:
         log.error("the program kept in %s does not read (%s): running %s", path, why,
                   program_path)
     return load_program(program_path)
+
+
+class ProgramWatch:
+    """The goal-entry process's view of each agent's program (agents/processes/goals.py): an
+    Engine to check a posted goal against and the program's own goals (the priority rule),
+    both following the programs swapped in (WorldState.control), so a goal of the new program
+    is taken and one it cannot pursue refused from the cycle of the swap on."""
+
+    def __init__(self, scenario: Any) -> None:
+        from agents.lang import Engine, load_program
+        from agents.processes.goal_sync import validator
+
+        self.engines = {a.id: Engine(load_program(str(a.program))) for a in scenario.agents}
+        self.standing = {a: _standing(e.program) for a, e in self.engines.items()}
+        self.validate = validator(self.engines)
+
+    def follow(self, control: dict[str, Any], log: logging.Logger) -> None:
+        """Take the programs of a world state's ``control`` (one that does not read: kept)."""
+        from agents.lang import Engine
+
+        for agent, entry in (control.get("programs") or {}).items():
+            program, why = read_program(entry) if isinstance(entry, dict) else (None, "")
+            if agent in self.engines and program is not None:
+                self.engines[agent] = Engine(program)
+                self.standing[agent] = _standing(program)
+                log.info("goals of %s now checked against %s", agent, entry.get("name"))
+            elif why:
+                log.warning("goals of %s: program %s not read: %s", agent, entry.get("name"),
+                            why)
+
+
+def _standing(program: Any) -> tuple[str, ...]:
+    return tuple(str(g.literal) for g in program.goals)

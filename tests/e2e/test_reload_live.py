@@ -116,6 +116,12 @@ def test_a_live_swap_reports_the_stages_verdict_and_a_bad_file_leaves_the_progra
         assert dropped == [
             "  program goal p1 (at-desired-speed ME): not a goal of the new program",
             "  goal g1 (package-delivered PACKET1): undefined concept 'package-delivered'"]
+        # goals are checked against the program the agent runs now
+        taken = teleo("goal", "post", "(crawling ME)", "--priority", "5", "--quiet")
+        assert taken.returncode == 0, taken.stderr
+        gone = teleo("goal", "post", "(package-delivered PACKET2)", "--priority", "5",
+                     "--quiet")
+        assert gone.returncode == 1 and "undefined concept 'package-delivered'" in gone.stderr
         # the verdict is the stages' own: their outputs of cycle k say it
         again = teleo("program", "load", "ME", str(SLOW), "--json", "--quiet")
         verdict = json.loads(again.stdout)
