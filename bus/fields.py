@@ -92,6 +92,15 @@ GOAL_ENTRY = Record({"id": Str(max_len=32, min_len=1, what="a goal id"),
                      "status": Str()}, open=True, what="a goal {id, goal, priority, status}")
 """One goal of an agent's GoalList (agents/processes/goal_store.py, GoalRecord.brief)."""
 NAME = Str(what="a name")
+PROGRAM = Record({}, {"name": Str(max_len=UNBOUNDED), "text": Str(max_len=UNBOUNDED)},
+                 open=True, what="a program {name, text}")
+"""A program sent to an agent's stages (`teleo program load`): its file name and text, read
+and checked by the stages (agents/lang, every error as file:line:col)."""
+SWAP = Record({}, {"program": Str(max_len=UNBOUNDED), "ok": Bool(),
+                   "reason": Str(max_len=UNBOUNDED), "dropped": ListOf(Str(max_len=UNBOUNDED))},
+              open=True, what="a swap {program, ok, reason, dropped}")
+"""A stage's verdict on a program swapped in at this cycle (docs/bus.md, "Changing a running
+launch")."""
 MAP = Record({}, open=True)   # a map, its inside checked by its reader
 TEXT = Str(max_len=UNBOUNDED, what="a string")
 
@@ -101,12 +110,14 @@ ENVELOPE = Record({"v": Int(), "run": TEXT, "cycle": Int(-1, INT64[1], what="a c
 FIELDS: dict[str, dict[str, Spec]] = {
     "WorldState": {"snapshot": MAP, "outcomes": All(Plain(16), MapOf(ListOf(OUTCOME))),
                    "events": Plain(16, top=list), "memory": All(Plain(MEMORY_DEPTH + 1),
-                                                                 MapOf(MAP))},
+                                                                 MapOf(MAP)),
+                   "control": Plain(8)},
     "Percepts": {"agent": NAME, "percepts": Rows(), "outcomes": Tuple(OUTCOMES),
-                 "memory": MEMORY},
-    "Beliefs": {"agent": NAME, "beliefs": Rows()},
+                 "memory": MEMORY, "program": All(Plain(4), PROGRAM)},
+    "Beliefs": {"agent": NAME, "beliefs": Rows(), "swap": All(Plain(4), SWAP)},
     "Actions": {"agent": NAME, "actions": Rows(), "memory": MEMORY},
-    "Intention": {"agent": NAME, "decision": Plain(MEMORY_DEPTH)},
+    "Intention": {"agent": NAME, "decision": Plain(MEMORY_DEPTH),
+                  "swap": All(Plain(4), SWAP)},
     "GoalRequest": {"op": OneOf(GOAL_OPS, what="a goal operation"), "agent": TEXT, "goal": TEXT,
                     "priority": Int(), "goal_id": TEXT, "force": Bool(),
                     "once": Bool(), "deadline": Int(0)},

@@ -44,7 +44,10 @@ class Envelope:
 @dataclass(frozen=True)
 class WorldState:
     """World state of a cycle, with each agent's action outcomes of the previous cycle and
-    the memory each agent last sent with its actions (docs/bus.md, "Agent memory")."""
+    the memory each agent last sent with its actions (docs/bus.md, "Agent memory").
+    ``control``: what changes at the start of this cycle ({} on every other cycle; docs/bus.md,
+    "Changing a running launch"): {"programs": {agent: {"name", "text"}}, "set": [{"key",
+    "value"}]}."""
 
     KIND: ClassVar[str] = "WorldState"
     env: Envelope
@@ -52,6 +55,7 @@ class WorldState:
     outcomes: dict  # agent -> list of outcome dicts {"action", "status", "reason"}
     events: list
     memory: dict = field(default_factory=dict)  # agent -> its memory map (as sent)
+    control: dict = field(default_factory=dict)  # what changes at this cycle (below)
 
 
 @dataclass(frozen=True)
@@ -65,6 +69,7 @@ class Percepts:
     percepts: tuple  # tuple of percept lists, e.g. ["self", "ME", "speed", 20.0]
     outcomes: tuple = ()  # tuple of {"action": [...], "status": "done"|"failed", "reason": str}
     memory: dict = field(default_factory=dict)  # the agent's memory, as the world echoed it
+    program: dict = field(default_factory=dict)  # {"name", "text"}: run it from this cycle
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,7 @@ class Beliefs:
     env: Envelope
     agent: str
     beliefs: tuple  # tuple of belief lists, e.g. ["at-street", "ME", "B"]
+    swap: dict = field(default_factory=dict)  # a program swapped in: {"program", "ok", "reason"}
 
 
 @dataclass(frozen=True)
@@ -94,6 +100,7 @@ class Intention:
     env: Envelope
     agent: str
     decision: dict  # the engine's Decision.to_dict()
+    swap: dict = field(default_factory=dict)  # {"program", "ok", "reason", "dropped"}
 
 
 @dataclass(frozen=True)

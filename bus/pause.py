@@ -10,12 +10,18 @@ paused. While it is held no cycle is running: the clock's deadline, stall and re
 timeouts do not count, and every stage waits for the next state with its token up.
 
 A request is a WorldEvent whose event is {"op": "pause"}, {"op": "resume"}, {"op": "status"}
-or {"op": "step", "cycles": N}; the answer is an EventReply whose env.cycle is the next cycle
+or {"op": "step", "cycles": N}, or a change of the running launch, {"op": "load", "agent",
+"name", "text"[, "at"]} (`teleo program load`) or {"op": "set", "key", "value"[, "at"]}
+(`teleo set`), which the world checks (its `check`) and schedules for cycle "at" (default: the
+next cycle to run), answering with that cycle; the world then hands each due change to the
+cycle's state (`due`), where every stage takes it at the same cycle (docs/bus.md, "Changing a
+running launch"). The answer is an EventReply whose env.cycle is the next cycle
 to run and whose outcome is {"op", "paused", "cycle", "stepped"}. A pause, resume or status
 is answered at the next boundary; a step when its N cycles have run and the run is held
 again ("paused at cycle 123 after 3 cycles"), so the asker hears the world's verdict, not
-that something was sent. A realtime run refuses them all: its cycles keep wall-clock time,
-and a held clock would be a different run (launch with --mode lockstep to pause it).
+that something was sent. A realtime run refuses to pause or step: its cycles keep wall-clock
+time, and a held clock would be a different run (launch with --mode lockstep to pause it); it
+takes changes as a lockstep run does.
 """
 
 from __future__ import annotations
@@ -30,7 +36,8 @@ from bus.clock import CycleInterrupted
 from bus.messages import EventReply, WorldEvent
 from bus.pending import Pending, serve_later
 
-OPS = ("pause", "resume", "status", "step")
+OPS = ("pause", "resume", "status", "step", "load", "set")
+CHANGES = ("load", "set")
 MAX_STEP = 1_000_000  # [cycles] in one step-run
 POLL_S = 0.02         # [s] how often a held run looks for a request or a stop
 REALTIME = ("pause and step hold a lockstep run between cycles; this run is realtime (its "
@@ -43,12 +50,16 @@ class Gate:
 
     lockstep: whether the run may be held (realtime runs refuse every request); stop: the
     world's stop event (a held run raises CycleInterrupted within POLL_S of it); note: where
-    each pause and resume is written (the world's health record, Recorder.event)."""
+    each pause and resume is written (the world's health record, Recorder.event); check: the
+    world's verdict on a change asked for ("" to take it, else why not)."""
 
     def __init__(self, node, lockstep: bool, stop: threading.Event,
-                 note: Callable[..., None] | None = None) -> None:
+                 note: Callable[..., None] | None = None,
+                 check: Callable[[dict], str] | None = None) -> None:
         self.node, self.lockstep, self.stop = node, lockstep, stop
         self.note = note or (lambda kind, **fields: None)
+        self.check = check or (lambda event: "this world takes no changes while it runs")
+        self.changes: dict[int, list[dict]] = {}  # cycle -> the changes due at its start
         self.desk = serve_later(node, keys.world_control(node.run))
         self.paused = False
         self.left: int | None = None  # cycles of a step still to run (None: not stepping)
@@ -74,6 +85,10 @@ class Gate:
         if self.left is not None:
             self.left -= 1
 
+    def due(self, t: int) -> list[dict]:
+        """The changes due at the start of cycle `t`, in the order they were asked for."""
+        return self.changes.pop(t, [])
+
     def close(self, t: int) -> None:
         """The run has ended at cycle `t`: every request still open gets that reason."""
         for pending, _, _ in self.steppers:
@@ -87,6 +102,8 @@ class Gate:
             op = event.get("op") if isinstance(event, dict) else None
             if op not in OPS:
                 pending.fail(f"control: expected {{\"op\": one of {list(OPS)}}}, got {event!r}")
+            elif op in CHANGES:
+                self._change(pending, event, t)
             elif not self.lockstep:
                 pending.fail(REALTIME)
             elif op == "step":
@@ -114,12 +131,29 @@ class Gate:
             self.paused, self.left = True, cycles
             self.steppers.append((pending, cycles, t))
 
+    def _change(self, pending: Pending, event: dict, t: int) -> None:
+        event = dict(event)   # the world's check adds what it made of it
+        at = event.get("at", t)
+        if not isinstance(at, int) or isinstance(at, bool) or at < t:
+            pending.fail(f"control: {event['op']}: at: expected a cycle >= {t} (the next to "
+                         f"run), got {at!r}")
+            return
+        why = self.check(event)
+        if why:
+            pending.fail(f"control: {event['op']}: {why}")
+            return
+        self.changes.setdefault(at, []).append(event)
+        said = {k: event[k] for k in ("agent", "name", "key", "value") if k in event}
+        self._answer(pending, at, str(event["op"]), "", said=said)
+
     def _settle(self, t: int) -> None:
         """Answer the step in progress: it ended at cycle `t` (done, or a pause or resume)."""
         for pending, _, start in self.steppers:
             self._answer(pending, t, "step", "", stepped=t - start)
         self.steppers = []
 
-    def _answer(self, pending: Pending, t: int, op: str, reason: str, stepped: int = 0) -> None:
-        outcome = {"op": op, "paused": self.paused, "cycle": t, "stepped": stepped}
+    def _answer(self, pending: Pending, t: int, op: str, reason: str, stepped: int = 0,
+                said: dict | None = None) -> None:
+        outcome = {"op": op, "paused": self.paused, "cycle": t, "stepped": stepped,
+                   **(said or {})}
         pending.answer(EventReply(self.node.envelope(t), True, reason, outcome))

@@ -34,6 +34,7 @@ _COMMAND_MODULES = {
     "tools.commands.goal": ("goal",),           # goal post/list/cancel/priority
     "tools.commands.event": ("event",),         # world events into a running launch
     "tools.commands.pause": ("pause", "step-run", "resume"),  # hold a lockstep launch
+    "tools.commands.program": ("program", "set"),  # change a running launch
     "tools.commands.inspect": ("inspect",),
     "tools.commands.simulate": ("simulate",),   # one process, no bus
     "tools.commands.explain": ("explain",),     # run records

@@ -50,6 +50,7 @@ from bus.node import Inbox, open_node
 from bus.pause import Gate
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
+from world.changes import Changes
 from world.domain import Domain, World, episode_over, get_domain
 from world.errors import CannotRecord
 from world.recorder import CHECKPOINT_EVERY, Recorder
@@ -169,7 +170,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         clock = Clock(node, pipelines(agents), mode=CycleMode(mode),
                       period_s=scenario.run.deadline, deadline_s=STALL_TIMEOUT,
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
-        gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event)  # bus/pause.py
+        changes = Changes(scenario)  # `teleo program load`, `teleo set` (world/changes.py)
+        gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event, changes.check)
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
         pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
@@ -194,11 +196,13 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     if held > HOLD_REPORT_S:
                         rec.event("record-wait", cycle=t, seconds=round(held, 3))
                 w0 = time.perf_counter()
+                control = changes.at_cycle(gate.due(t), clock, rec, t)
                 injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
                 snap = sim.snapshot_dict()
                 over = episode_over(sim)  # this state is the episode's last: the last cycle
                 world_ms = (time.perf_counter() - w0) * 1e3
-                state = WorldState(node.envelope(t), snap, outcomes, injected, dict(memory))
+                state = WorldState(node.envelope(t), snap, outcomes, injected, dict(memory),
+                                   control)
                 report = clock.run_cycle(t, state, meanwhile=partial(_off_the_path, rec,
                                                                       collector, t, snap))
                 changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
@@ -209,7 +213,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 outcomes = {a: sim.apply_actions(a, acts) for a, acts in applied.items()}
                 sim.step()
                 world_ms += (time.perf_counter() - w0) * 1e3
-                rec.cycle(t, snap, applied, injected, report, world_ms, changed)
+                rec.cycle(t, snap, applied, injected, report, world_ms, changed, control)
                 node.publish_stats(t, world_ms)   # after the report: not a stage of the cycle
                 if saving and (t + 1) % CHECKPOINT_EVERY == 0:
                     rec.checkpoint(t + 1, sim.checkpoint(), outcomes)

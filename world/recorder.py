@@ -167,12 +167,15 @@ class Recorder:
 
     def cycle(self, t: int, snap: dict[str, Any], applied: dict[str, list],
               injected: list[dict[str, Any]], report: CycleReport, world_ms: float,
-              memory: dict[str, Any] | None = None) -> None:
+              memory: dict[str, Any] | None = None,
+              control: dict[str, Any] | None = None) -> None:
         """Record cycle `t`: its trace line, a health line if it was not clean, totals.
-        `memory`: the agents whose memory changed this cycle, with the new one."""
+        `memory`: the agents whose memory changed this cycle, with the new one; `control`:
+        what changed at its start (world/changes.py)."""
         ready = self._prepared if self._prepared[0] == t and self._prepared[1] is snap \
             else (t, snap, "", "")
-        self._record(self.trace, trace_line(t, snap, applied, injected, memory, ready[2]), t)
+        self._record(self.trace, trace_line(t, snap, applied, injected, memory, ready[2],
+                                            control), t)
         self.cycles = t + 1
         if not report.clean or report.stalled or report.republished:
             self.event("cycle", cycle=t, noop=list(report.noop), late=list(report.late),

@@ -4,13 +4,16 @@ and seed, or a launch and a simulate of it, give the same file (docs/scenarios.m
 files").
 
     {"cycle": t, "actions": {agent: [[name, arg...]...]}, "counters": {agent: {name: n}},
-     "digest": "<16 hex>", "events": [outcome...], "memory": {agent: memory}}
+     "digest": "<16 hex>", "events": [outcome...], "memory": {agent: memory},
+     "control": {"programs": {agent: {"name", "text"}}, "set": [{"key", "value"}]}}
 
 `counters` and `digest` are those of the world state of cycle t (before its actions);
 `actions` are the actions applied to each agent for t (what it sent, or the world's safe
 action when they did not arrive); `events` the outcomes of the events injected at the start
 of t (only when some were); `memory` each agent memory that changed with t's actions (only
-when one did: docs/bus.md, "Agent memory"). A restarted world replays this file
+when one did: docs/bus.md, "Agent memory"); `control` what changed at the start of t (only
+when something did: a program swapped in, a `teleo set`; world/changes.py). A restarted
+world replays this file
 (world/resume.py).
 """
 
@@ -30,7 +33,8 @@ def digest(snapshot: dict[str, Any]) -> str:
 
 def trace_line(cycle: int, snapshot: dict[str, Any], actions: Mapping[str, Sequence],
                injected: Sequence[dict[str, Any]] = (),
-               memory: Mapping[str, Any] | None = None, state_digest: str = "") -> str:
+               memory: Mapping[str, Any] | None = None, state_digest: str = "",
+               control: Mapping[str, Any] | None = None) -> str:
     """The trace line of one cycle, JSON with sorted keys and a newline. ``state_digest``:
     ``digest(snapshot)`` when the caller already has it."""
     line: dict[str, Any] = {
@@ -41,4 +45,6 @@ def trace_line(cycle: int, snapshot: dict[str, Any], actions: Mapping[str, Seque
         line["events"] = list(injected)
     if memory:
         line["memory"] = dict(memory)
+    if control:
+        line["control"] = dict(control)
     return json.dumps(line, sort_keys=True) + "\n"

@@ -13,6 +13,8 @@ goal list with statuses, the skill path with bindings, the actions and why (and 
 solver's goal stacks). The goals live in the goal-entry process; the engine state (paths, goal
 stacks, learned skills, SCS threads) lives here and, with --state, in a file written after
 every cycle and read back at start, so a restart loses none of it (agents/processes/persist.py).
+A program that comes with the percepts of a cycle (`teleo program load`) is swapped in before
+that cycle's step, the state carried over (agents/processes/swapping.py).
 The SCS state (body threads, discount factors, world model) also goes out with the actions as
 the agent's memory and comes back through the world with the next percepts, which is how the
 world model reaches the inference process (docs/bus.md, "Agent memory"). --learned starts
@@ -37,6 +39,7 @@ from agents.processes.goal_sync import GoalSync
 from agents.processes.hints import with_hints
 from agents.processes.per_object import PerObject
 from agents.processes.persist import LearnedFile, Saved, StateFile, read_back_learned
+from agents.processes.swapping import keep, kept, note, read_program, said
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
@@ -47,8 +50,9 @@ from bus.schema import brief
 class Executive:
     """The engine state of one agent plus the user goals it was last given."""
 
-    def __init__(self, engine: Any, log: logging.Logger, state: Any = None) -> None:
-        self.engine = engine
+    def __init__(self, engine: Any, log: logging.Logger, state: Any = None,
+                 solver: str | None = "means-ends") -> None:
+        self.engine, self.solver = engine, solver
         self.log = log
         self.state = engine.initial_state() if state is None else state
         self.goals = GoalSync.of(self.state)   # the user goals the state already holds
@@ -57,6 +61,25 @@ class Executive:
     def sync_goals(self, goal_list: tuple[dict[str, Any], ...]) -> None:
         """Add new goals, drop withdrawn ones, move reprioritised ones (in list order)."""
         self.state = self.goals.apply(self.engine, self.state, goal_list, self.log)
+
+    def swap(self, entry: dict[str, Any]) -> dict[str, Any]:
+        """Run the program of ``entry`` ({"name", "text"}) from now on, the engine state
+        carried over (agents/lang/swap.py); returns the verdict (swapping.note). A goal the
+        new program cannot pursue is not offered to it again."""
+        from agents.lang import Engine
+        from agents.lang.swap import carry_state
+
+        program, why = read_program(entry)
+        if program is None:
+            return note(entry, why)
+        new = Engine(program, solver=self.solver)
+        carried = carry_state(self.engine, new, self.state)
+        before = set(self.goals.user)
+        self.engine, self.state = new, carried.state
+        self.goals = GoalSync.of(self.state)   # one refused before is offered to the new one
+        self.goals.refused = before - set(self.goals.user)
+        self.beliefs = BeliefReader(new.program.arity)
+        return note(entry, "", carried.dropped)
 
     def remember(self, memory: dict[str, Any]) -> None:
         """Take the SCS state from the memory the world handed back (a malformed one is
@@ -129,17 +152,19 @@ class BeliefReader:
 
 def make_executive(program_path: str, log: logging.Logger, state: Any = None,
                    learned: str | None = None, solver: bool = True,
-                   mechanism: str = "means-ends", own_learned: str | None = None) -> Executive:
+                   mechanism: str = "means-ends", own_learned: str | None = None,
+                   swapped: str | None = None) -> Executive:
     """The executive of ``program_path``: from ``state`` (read back after a restart) if
     given, else fresh, starting from the skills in its own learned file ``own_learned`` (the
     one it writes: after a restart whose state file could not be read, those skills are not
-    lost) or else in the learned file ``learned``. Raises LangError (a ProgramError naming
+    lost) or else in the learned file ``learned``; the program swapped in and kept in
+    ``swapped`` if any (agents/processes/swapping.py). Raises LangError (a ProgramError naming
     file:line:col) for a bad program or ``learned`` file."""
-    from agents.lang import Engine, load_program
+    from agents.lang import Engine
     from agents.lang.loader import read_text
     from agents.lang.registry import read_learned
 
-    program = load_program(program_path)
+    program = kept(swapped, program_path, log)
     engine = Engine(program, solver=mechanism if solver else None)
     if state is None:
         skills = read_back_learned(program, Path(own_learned), log) if own_learned else None
@@ -147,13 +172,13 @@ def make_executive(program_path: str, log: logging.Logger, state: Any = None,
             skills = read_learned(program, read_text(learned), learned)
         if skills is not None:
             state = engine.initial_state(learned=skills)
-    return Executive(engine, log, state)
+    return Executive(engine, log, state, mechanism if solver else None)
 
 
 def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger,
               state_path: str | None = None, learned: str | None = None,
               learned_out: str | None = None, solver: bool = True,
-              mechanism: str = "means-ends"):
+              mechanism: str = "means-ends", swapped: str | None = None):
     """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)].
     Percepts or beliefs the engine cannot read are refused (bus Refused)."""
     from agents.lang import LangError
@@ -161,14 +186,15 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
     executive = make_executive(program_path, log, saved.state if saved else None, learned,
-                               solver, mechanism, learned_out)
+                               solver, mechanism, learned_out, swapped)
     out = LearnedFile(learned_out, program_path) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
 
-    def outputs(cycle: int, intention: dict, actions: list) -> list[tuple[str, Message]]:
+    def outputs(cycle: int, intention: dict, actions: list, swap: dict | None = None
+                ) -> list[tuple[str, Message]]:
         env = Envelope.now(run, cycle, process)
-        return [(keys.intention(run, agent), Intention(env, agent, intention)),
+        return [(keys.intention(run, agent), Intention(env, agent, intention, swap or {})),
                 (keys.actions(run, agent), Actions(env, agent, tuple(actions),
                                                    executive.memory()))]
 
@@ -180,6 +206,11 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         executive.sync_goals(inputs[g_key].goals)
         executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
         executive.remember(seen.memory)                           # after a restart
+        swap = executive.swap(seen.program) if seen.program else {}   # the old program's
+        if swap:                                                      # memory read first
+            said(process, cycle, swap, log)
+            if swap["ok"]:
+                keep(swapped, seen.program, cycle, log)
         try:
             decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         except LangError as exc:   # percepts or beliefs the engine cannot read
@@ -190,7 +221,7 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
             saver.save(Saved(cycle, executive.state, intention, actions))
         if out is not None:
             out.save(executive.state.learned)
-        return outputs(cycle, intention, actions)
+        return outputs(cycle, intention, actions, swap)
 
     return step
 
@@ -203,13 +234,15 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
               help="Write the learned skills here (program syntax) whenever one is learned.")
 @click.option("--learned", type=click.Path(exists=True, dir_okay=False),
               help="Start from the skills in this learned file (an earlier run's).")
+@click.option("--swapped", type=click.Path(dir_okay=False),
+              help="Keep a program swapped in here, and start from the one it holds.")
 @click.option("--state", "state_path", type=click.Path(dir_okay=False),
               help="Engine state file: read back at start if it exists, written after every "
                    "cycle (so a restart keeps paths, goal stacks and learned skills).")
 @agent_options(with_program=True)
 def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: str | None,
          learned: str | None, learned_out: str | None, no_solver: bool,
-         mechanism: str) -> None:
+         mechanism: str, swapped: str | None) -> None:
     """Prioritised executive of one agent."""
     from agents.lang import LangError
 
@@ -218,7 +251,7 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: 
     inputs = [keys.percepts(run, agent), keys.beliefs(run, agent), keys.goal_list(run, agent)]
     try:
         step = make_step(run, agent, process, program, log, state_path, learned, learned_out,
-                         not no_solver, mechanism)
+                         not no_solver, mechanism, swapped)
     except LangError as exc:
         raise click.ClickException(str(exc)) from exc
     run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)], step, log)

@@ -38,9 +38,9 @@ from agents.processes.goal_store import (
     rank_problem,
     refused_text,
 )
-from agents.processes.goal_sync import validator
 from agents.processes.goal_warnings import Warner, engine_warner
 from agents.processes.request_limits import RequestLimiter
+from agents.processes.swapping import ProgramWatch
 from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
@@ -53,18 +53,13 @@ SAVE_PERIOD = 1.0  # [s] between saves of statuses mirrored from the executives'
 
 def engine_validator(scenario: Scenario):
     """validate(agent, goal, priority) -> "" or the engine's reason, one Engine per agent."""
-    from agents.lang import Engine, load_program
-
-    return validator({a.id: Engine(load_program(str(a.program))) for a in scenario.agents})
+    return ProgramWatch(scenario).validate
 
 
 def standing_goals(scenario: Scenario) -> dict[str, tuple[str, ...]]:
     """Each agent's program goals (p1..pn) as text, in order: what a user goal may not rank
     above unless forced (goal_store.rank_problem)."""
-    from agents.lang import load_program
-
-    return {a.id: tuple(str(g.literal) for g in load_program(str(a.program)).goals)
-            for a in scenario.agents}
+    return ProgramWatch(scenario).standing
 
 
 class GoalEntry:
@@ -252,8 +247,9 @@ class GoalEntry:
 def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> None:
     log = setup_logging(PROCESS)
     stop = stop_on_signals()
-    entry = GoalEntry(scenario, store_path, engine_validator(scenario), log,
-                      standing=standing_goals(scenario), warn=engine_warner(scenario))
+    programs = ProgramWatch(scenario)   # swapped programs too (agents/processes/swapping.py)
+    entry = GoalEntry(scenario, store_path, programs.validate, log,
+                      standing=programs.standing, warn=engine_warner(scenario))
     with open_node(cfg, run, PROCESS) as node:
         entry.node = node
         inbox = node.subscribe(keys.world_state(run))
@@ -267,6 +263,7 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
         while not stop.is_set():
             msg = inbox.get(timeout=0.1)
             if isinstance(msg, WorldState):
+                programs.follow(msg.control, log)
                 entry.on_world_state(node, msg.env.cycle)
             elif isinstance(msg, Intention):
                 entry.on_intention(msg)

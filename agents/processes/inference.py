@@ -14,8 +14,11 @@ import logging
 from operator import itemgetter
 from typing import Any
 
+import click
+
 from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.per_object import PerObject
+from agents.processes.swapping import keep, kept, note, read_program, said
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
@@ -24,20 +27,30 @@ from bus.schema import brief
 
 
 def make_step(run: str, agent: str, process: str, program_path: str,
-              log: logging.Logger | None = None):
+              log: logging.Logger | None = None, swapped: str | None = None):
     """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]. Percepts the engine
     cannot read are refused (bus Refused), naming the percept; a malformed world model is
-    logged and left out."""
-    from agents.lang import Engine, LangError, SharedRows, load_program
+    logged and left out. A program that comes with the percepts is swapped in first
+    (agents/processes/swapping.py), and the beliefs of the cycle say so."""
+    from agents.lang import Engine, LangError, SharedRows
 
-    engine = Engine(load_program(program_path))
-    in_key, out_key = keys.percepts(run, agent), keys.beliefs(run, agent)
     log = log or logging.getLogger(process)
+    engine = Engine(kept(swapped, program_path, log))
+    in_key, out_key = keys.percepts(run, agent), keys.beliefs(run, agent)
 
     rows = BeliefRows()
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        nonlocal engine
         seen = inputs[in_key]
+        swap: dict = {}
+        if seen.program:
+            program, why = read_program(seen.program)
+            if program is not None:
+                engine = Engine(program)
+                keep(swapped, seen.program, cycle, log)
+            swap = note(seen.program, why)
+            said(process, cycle, swap, log)
         percepts = SharedRows(seen.percepts)  # rows seen last cycle are the same lists
         try:
             beliefs = engine.infer(percepts, seen.memory.get("model") or ())
@@ -49,7 +62,7 @@ def make_step(run: str, agent: str, process: str, program_path: str,
                               f"{brief(seen.env.sender)}: {bad}") from None
             log.warning("cycle %d: world model dropped: %s", cycle, exc)
         return [(out_key, Beliefs(Envelope.now(run, cycle, process), agent,
-                                  rows.of(beliefs)))]
+                                  rows.of(beliefs), swap))]
 
     return step
 
@@ -80,12 +93,15 @@ def _keyed(belief: Any) -> tuple[str, list]:
 _KEY = itemgetter(0)
 
 
+@click.option("--swapped", type=click.Path(dir_okay=False),
+              help="Keep a program swapped in here, and start from the one it holds.")
 @agent_options(with_program=True)
-def main(run: str, agent: str, program: str, bus_config: BusConfig) -> None:
+def main(run: str, agent: str, program: str, bus_config: BusConfig,
+         swapped: str | None) -> None:
     """Belief inference of one agent."""
     process = f"{agent}.inference"
     log = setup_logging(process)
-    step = make_step(run, agent, process, program, log)
+    step = make_step(run, agent, process, program, log, swapped)
     run_stage(bus_config, run, process, [keys.percepts(run, agent)], [keys.beliefs(run, agent)],
               step, log)
 

@@ -5,7 +5,8 @@
 Percepts are agent-centred and limited in range (seed 000, Table 3); the mapping is the
 pure `perceive` of the domain the snapshot names (world/domain.py). The agent's action
 outcomes of t-1 and its memory (world-model facts, SCS state), which the world state of t
-carries, travel on with the percepts.
+carries, travel on with the percepts, and so does a program swapped in at t (WorldState.control;
+agents/processes/swapping.py).
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
 from bus.config import BusConfig
 from bus.errors import Refused
-from bus.fields import MEMORY
+from bus.fields import MEMORY, PROGRAM
 from bus.messages import Envelope, Message, Percepts
 from bus.schema import FieldError, brief
 
@@ -38,13 +39,19 @@ def make_step(run: str, agent: str, process: str):
         percepts = tuple(list(p) for p in seen)
         outcomes = tuple(state.outcomes.get(agent, ()))
         memory = state.memory.get(agent) or {}
+        program = (state.control.get("programs") or {}).get(agent) or {}
         try:
             MEMORY.check(memory)   # what it forwards (the codec checked only its shape)
         except FieldError as exc:
             raise Refused(f"{state_key}: the world state of cycle {cycle}: memory."
                           f"{exc.within(agent)}") from None
+        try:
+            PROGRAM.check(program)   # a program swapped in at this cycle (teleo program load)
+        except FieldError as exc:
+            raise Refused(f"{state_key}: the world state of cycle {cycle}: control.programs."
+                          f"{exc.within(agent)}") from None
         return [(out_key, Percepts(Envelope.now(run, cycle, process), agent, percepts,
-                                   outcomes, memory))]
+                                   outcomes, memory, program))]
 
     return step
 

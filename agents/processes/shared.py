@@ -38,11 +38,12 @@ def make_chain(run: str, spec: dict, log: logging.Logger):
     agent = spec["agent"]
     names = [f"{agent}.{s}" for s in STAGE_NAMES]
     perceive = perception.make_step(run, agent, names[0])
-    infer = inference.make_step(run, agent, names[1], spec["program"], log)
+    infer = inference.make_step(run, agent, names[1], spec["program"], log,
+                                spec.get("swapped"))
     decide = executive.make_step(run, agent, names[2], spec["program"], log,
                                  spec.get("state"), spec.get("learned"),
                                  spec.get("learned_out"), spec.get("solver", True),
-                                 spec.get("mechanism", "means-ends"))
+                                 spec.get("mechanism", "means-ends"), spec.get("swapped"))
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
     stats_keys = [keys.stats(run, n) for n in names]

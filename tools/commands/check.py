@@ -201,5 +201,8 @@ def check(files: tuple[str, ...], includes: tuple[str, ...], overrides: tuple[st
     sys.exit(0 if ok else 1)
 
 
+program_checked = _program   # `teleo program load` checks a file as this command does
+echo_checked = _echo
+
 commands = [check]
 

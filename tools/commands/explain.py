@@ -5,6 +5,9 @@
     teleo explain RUN --goal g2                     when g2 became active, suspended, achieved
     teleo explain RUN --percepts --cycle N > f.txt  cycle N's percepts, as `teleo step` reads them
 
+A run whose agent was given another program while it ran (`teleo program load`) says which
+program each decision was made with, and the swap's verdict at the cycle it came.
+
 RUN is a run folder, a run id under the runs folder, or an .mcap file.
 """
 
@@ -78,7 +81,7 @@ def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None)
              if not PROGRAM_GOAL.fullmatch(str(g.get("id")))]
     flags = " ".join(f"--goal '{g['id']}={g['goal']}:{g['priority']}'" for g in goals)
     head = [f"; percepts of {agent} at cycle {cycle} of run {rec.run}",
-            f"; replay the decision: teleo step {_program(rec, agent)} --percepts FILE "
+            f"; replay the decision: teleo step {_ran(rec, agent, cycle)} --percepts FILE "
             f"{flags}".rstrip(),
             "; (user goals as listed that cycle; remembered paths and action outcomes are "
             "not in this file)"]
@@ -89,6 +92,11 @@ def percept_file(rec: RunRecord, agent: str, cycle: int, intention: dict | None)
     except LangError:
         pass
     return json.dumps(percepts) + "\n"
+
+
+def _ran(rec: RunRecord, agent: str, cycle: int) -> str:
+    ran = program_at(rec, agent, cycle)
+    return ran["name"] if ran else _program(rec, agent)
 
 
 def _program(rec: RunRecord, agent: str) -> str:
@@ -106,6 +114,21 @@ def _program(rec: RunRecord, agent: str) -> str:
         return str(next(a.program for a in scenario.agents if a.id == agent))
     except (WorldError, OSError, StopIteration, ValueError):
         return "PROGRAM"
+
+
+def program_at(rec: RunRecord, agent: str, cycle: int) -> dict[str, Any] | None:
+    """The program `agent` ran at `cycle` when the run swapped one in (`teleo program load`:
+    the percepts of the cycle it came at carry it), {"name", "since": that cycle, or 0 for
+    the scenario's}; None for a run that never swapped one."""
+    swaps = sorted((c, r["program"].get("name", "")) for c, r in
+                   rec.by_cycle("percepts", agent).items()
+                   if isinstance(r.get("program"), dict) and r["program"])
+    if not swaps:
+        return None
+    ran = [(c, name) for c, name in swaps if c <= cycle]
+    if not ran:
+        return {"name": _program(rec, agent), "since": 0}
+    return {"name": ran[-1][1], "since": ran[-1][0]}
 
 
 def _atom(v: Any) -> str:
@@ -158,9 +181,12 @@ def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
         click.echo(percept_file(rec, agent, cycle, intention), nl=False)
         return
     cycle, intention = _of_cycle(rec, "intention", agent, cycle)
+    ran = program_at(rec, agent, cycle)
+    title = f"goals of {agent} at cycle {cycle} (run {rec.run})"
+    if ran is not None:
+        title += f", program {ran['name']} (from cycle {ran['since']})"
     try:
-        tree = decision_tree(intention["decision"], f"goals of {agent} at cycle {cycle} "
-                                                    f"(run {rec.run})")
+        tree = decision_tree(intention["decision"], title)
     except (TypeError, KeyError, IndexError, AttributeError, ValueError) as exc:
         # a record is only shape-checked (bus/record.py): a decision that does not read is
         # said, never a traceback
@@ -169,6 +195,8 @@ def explain(run: str, agent: str | None, cycle: int | None, goal_id: str | None,
     tree = fold(tree) if brief else tree
     if as_json:
         click.echo(json.dumps({"run": rec.run, "agent": agent, "cycle": cycle,
+                               "program": ran or {"name": _program(rec, agent), "since": 0},
+                               "swap": intention.get("swap") or {},
                                "decision": intention["decision"], "tree": to_json(tree)},
                               indent=1))
     else:

@@ -38,39 +38,23 @@ def _json_option(f):
 def ask(run_id: str | None, event: dict, timeout: float) -> tuple[str, dict, str]:
     """Ask the world of the running launch `event` on its control key; returns (run, the
     world's outcome, its note); ClickException for no launch, no answer or a refusal."""
-    from bus import keys
-    from bus.errors import BusError, NobodyServing, QueryFailed
-    from bus.messages import EventReply, WorldEvent
-    from bus.node import open_node
+    from tools.runs.control import ControlError, ask_once
 
     info = runfile.locate(run_id)
     try:
-        with open_node(runfile.bus_config(info), info.run, "control-cli") as node:
-            reply = node.query(keys.world_control(info.run), WorldEvent(node.envelope(), event),
-                               timeout)
-    except NobodyServing as exc:
-        raise click.ClickException(
-            f"run {info.run}: no answer from the world within {timeout:g} s: it answers "
-            "between two cycles; is the run stalled, over, or started by an older teleo? "
-            "(teleo inspect)") from exc
-    except QueryFailed as exc:  # the world's refusal, in its words
-        raise click.ClickException(f"run {info.run}: the world refused: {exc.reason}") from exc
-    except BusError as exc:
-        raise click.ClickException(f"run {info.run}: {exc}") from exc
-    if not isinstance(reply, EventReply):
-        raise click.ClickException(f"run {info.run}: the world answered with a {reply.KIND}")
-    return info.run, dict(reply.outcome), reply.reason
+        outcome, note = ask_once(info, event, timeout)
+    except ControlError as exc:
+        raise click.ClickException(str(exc)) from exc
+    return info.run, outcome, note
 
 
 def _report(run: str, outcome: dict, note: str, as_json: bool) -> None:
     if as_json:
         click.echo(json.dumps({"run": run, **outcome, "note": note}))
         return
-    where = "paused" if outcome.get("paused") else "running"
-    line = f"run {run}: {where} at cycle {outcome.get('cycle')}"
-    if outcome.get("op") == "step":
-        line += f" after {outcome.get('stepped')} cycles"
-    click.echo(line + (f" ({note})" if note else ""))
+    from tools.runs.control import verdict_line
+
+    click.echo(f"run {run}: {verdict_line(outcome, note)}")
 
 
 @click.command("pause")

@@ -155,6 +155,8 @@ def bus_config(plan: Plan, user: str) -> BusConfig:
 
 def process_specs(plan: Plan) -> list[ProcSpec]:
     """The command of every local process of the plan, in start order."""
+    from tools.records import summary
+
     sc = plan.scenario
     path = str(sc.path.resolve())
     specs = []
@@ -181,7 +183,9 @@ def process_specs(plan: Plan) -> list[ProcSpec]:
         else:
             agent, _, stage = name.rpartition(".")
             spec = sc.agent(agent)
-            extra = [] if stage == "perception" else ["--program", str(spec.program.resolve())]
+            extra = [] if stage == "perception" else [
+                "--program", str(spec.program.resolve()),
+                "--swapped", str(summary.swapped_file(plan.run_dir, agent))]
             if stage == "executive":
                 extra += _executive_args(plan, spec)
             specs.append(ProcSpec(name, module_argv(_MODULES[stage], *common, "--agent", agent,
@@ -203,6 +207,7 @@ def _shared_specs(plan: Plan) -> dict[str, ProcSpec | None]:
         specs = [{"agent": a.id, "program": str(a.program.resolve()),
                   "state": str(summary.state_file(plan.run_dir, a.id)),
                   "learned_out": str(summary.learned_file(plan.run_dir, a.id)),
+                  "swapped": str(summary.swapped_file(plan.run_dir, a.id)),
                   "learned": plan.learned, "solver": a.solver, "mechanism": a.mechanism}
                  for a in group]
         argv = module_argv("agents.processes.shared", "--run", plan.run,

@@ -52,6 +52,10 @@ def replay_record(file: str, rate: float, start: int | None, loop: bool, paused:
             groups = from_cycle(groups, start)
         except ValueError as exc:
             raise click.BadParameter(f"{rec.path}: {exc}", param_hint="--start") from None
+    for _, r in rec.kinds("percepts"):   # the programs swapped in (teleo program load)
+        if isinstance(r.get("program"), dict) and r["program"]:
+            _say(f"cycle {r['env']['cycle']}: {r.get('agent')} runs "
+                 f"{r['program'].get('name')} from here on (swapped in while it ran)")
     target, router = _bus(bus_config, onto)
     try:
         _play(rec.run, groups, target, router, Player(

@@ -64,6 +64,12 @@ def learned_file(run_dir: Path, agent: str) -> Path:
     return run_dir / f"learned-{agent}.tlp"
 
 
+def swapped_file(run_dir: Path, agent: str) -> Path:
+    """Where the inference and executive of ``agent`` keep a program swapped in while the run
+    runs (`teleo program load`), so that a restart runs it (agents/processes/swapping.py)."""
+    return run_dir / f"program-{agent}.json"
+
+
 def state_file(run_dir: Path, agent: str) -> Path:
     """Where the executive of ``agent`` keeps its engine state across a restart."""
     return run_dir / f"state-{agent}.json"

@@ -19,6 +19,7 @@ from bus.errors import BusError
 from bus.stage import stop_on_signals
 
 DEFAULT_PORT = 8470
+CONTROL_TIMEOUT_S = 30.0   # [s] for the world's verdict on a button (a step of one cycle)
 
 
 @click.command()
@@ -41,7 +42,7 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
     from tools.view.server import ViewServer
 
     model = ViewModel(run_id, history)
-    feed = None
+    feed, control = None, None
     try:
         if record is not None:
             load_file(model, locate(record))
@@ -50,7 +51,8 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
             model.run = run_id or target.run
             model.programs.from_scenario(*scenario_of(model.run))
             feed = BusFeed(model, target).start()
-        server = ViewServer(model, port)
+            control = _control(target, model.run)
+        server = ViewServer(model, port, control)
     except RecordError as exc:
         raise click.ClickException(str(exc)) from exc
     except BusError as exc:
@@ -72,6 +74,16 @@ def view(record: str | None, run_id: str | None, port: int, history: int,
         server.server_close()
         if feed is not None:
             feed.close()
+
+
+def _control(target, run: str | None):
+    """The timeline's pause, step and resume (tools/runs/control.py), for a launch's own run
+    (None for a run `teleo replay` plays onto a launch's router: it has no world to ask)."""
+    from tools.runs.control import ask_via
+
+    if not run or target.run != run:
+        return None
+    return lambda event: ask_via(target.cfg, run, event, CONTROL_TIMEOUT_S, "view-control")
 
 
 def _target(bus_config: BusConfig, run_id: str | None):

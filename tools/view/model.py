@@ -128,6 +128,8 @@ class ViewModel:
                 slot["beliefs"] = orjson.dumps(record.get("beliefs", []))
             else:
                 slot["self"] = record.get("self", {})
+                if record.get("program"):   # a program swapped in (teleo program load)
+                    self.programs.swap(agent, cycle, record["program"])
                 memory = record.get("memory")
                 model = memory.get("model", []) if isinstance(memory, dict) else []
                 slot["percepts"] = orjson.dumps([record.get("percepts", []), model])
@@ -226,7 +228,7 @@ class ViewModel:
         beliefs = orjson.loads(slot["beliefs"])
         percepts, model = orjson.loads(slot["percepts"]) if "percepts" in slot else ([], [])
         model = model or slot["prior_model"]  # a simulate record echoes no agent memory
-        program, source = self.programs.get(agent)
+        program, source = self.programs.get(agent, cycle)
         if program is None:
             try:
                 return {"error": source, "goals": [], "path": [], **listing(beliefs)}

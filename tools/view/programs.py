@@ -5,6 +5,8 @@ record's `teleo.run` metadata, or of a live launch's registry entry), then each 
 of its decisions was written in (the `where` of a path step). The first that loads is used,
 and checked against the run: inference with it on a cycle's recorded percepts must give the
 recorded beliefs, else the panel says the program differs from the one the agent ran.
+A program swapped in while the run ran (`teleo program load`: the percepts of the cycle it came
+at carry its text) is the agent's from that cycle on, live, replayed or recorded alike.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from agents.lang import Engine, LangError, Program, load_program
+from agents.lang import Engine, LangError, Program, load_program, load_program_text
 
 log = logging.getLogger(__name__)
 
@@ -30,6 +32,7 @@ class Programs:
         self._loaded: dict[str, Program | str] = {}  # path -> the program, or why it failed
         self._engines: dict[str, Engine] = {}        # path -> an engine for the check
         self._base = ""   # the launch's folder, where relative paths start ("": this one)
+        self._swaps: dict[str, list[tuple[int, str]]] = {}  # agent -> (cycle, name), sorted
 
     def add(self, agent: str, path: str) -> None:
         """One more candidate program file for `agent` (ignored when already known); a
@@ -68,11 +71,31 @@ class Programs:
             if where.count(":") >= 2:
                 self.add(agent, where.rsplit(":", 2)[0])
 
-    def get(self, agent: str) -> tuple[Program | None, str]:
-        """(the program of `agent`, its file), or (None, why there is none). A file is read
-        once, outside the lock (a feed adding candidates meanwhile does not wait)."""
+    def swap(self, agent: str, cycle: int, entry: Any) -> None:
+        """`agent` ran the program of ``entry`` ({"name", "text"}, Percepts.program) from
+        `cycle` on."""
+        if not isinstance(entry, dict) or not isinstance(entry.get("text"), str):
+            return
+        name = f"{entry.get('name', 'program')} (from cycle {cycle})"
+        try:
+            found: Program | str = load_program_text(entry["text"], str(entry.get("name")))
+        except LangError as exc:
+            found = str(exc).splitlines()[0]
         with self._lock:
-            candidates = list(self._candidates.get(agent, ()))
+            self._loaded[name] = found
+            swaps = self._swaps.setdefault(agent, [])
+            if (cycle, name) not in swaps:
+                swaps.append((cycle, name))
+                swaps.sort()
+
+    def get(self, agent: str, cycle: int | None = None) -> tuple[Program | None, str]:
+        """(the program of `agent` at `cycle` (None: the newest), its file), or (None, why
+        there is none). A file is read once, outside the lock (a feed adding candidates
+        meanwhile does not wait)."""
+        with self._lock:
+            ran = [name for c, name in self._swaps.get(agent, ())
+                   if cycle is None or c <= cycle]
+            candidates = ran[-1:] or list(self._candidates.get(agent, ()))
         tried = []
         for path in candidates:
             with self._lock:

@@ -11,6 +11,11 @@
                            page cannot draw
     GET /api/graph.svg?agent=A   A's program as a graph of goals, skills and concepts (`teleo
                            graph PROGRAM`, tools/records/program_graph.py); the header links it
+    POST /api/control      {"op": "pause"|"resume"|"step"[, "cycles": N]} (Content-Type
+                           application/json): the timeline's buttons, asked of the world of the
+                           live launch followed, the way `teleo pause`, `step-run` and
+                           `resume` ask it (tools/runs/control.py); answers {"ok", "text",
+                           "outcome"} with the world's verdict, or {"ok": false, "error"}
 """
 
 from __future__ import annotations
@@ -18,6 +23,7 @@ from __future__ import annotations
 import json
 import logging
 import time
+from collections.abc import Callable
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
@@ -26,6 +32,7 @@ from urllib.parse import parse_qs, urlparse
 
 from tools.records.drawing import to_svg
 from tools.records.program_graph import program_graph
+from tools.runs.control import ControlError, verdict_line
 from tools.view import scene
 from tools.view.model import ViewModel
 
@@ -36,6 +43,8 @@ FILES = {"/": ("index.html", "text/html; charset=utf-8"),
          "/panel.js": ("panel.js", "text/javascript; charset=utf-8"),
          "/world.js": ("world.js", "text/javascript; charset=utf-8"),
          "/view.css": ("view.css", "text/css; charset=utf-8")}
+CONTROL_OPS = ("pause", "resume", "step")
+MAX_BODY = 4096     # [bytes] of a control request
 FRAME_HZ = 10.0     # frames pushed per second at most (the page cannot use more)
 STATUS_S = 1.0      # [s] between status events
 
@@ -45,10 +54,12 @@ class ViewServer(ThreadingHTTPServer):
 
     daemon_threads = True
 
-    def __init__(self, model: ViewModel, port: int = 0) -> None:
+    def __init__(self, model: ViewModel, port: int = 0,
+                 control: Callable[[dict], tuple[dict, str]] | None = None) -> None:
         super().__init__(("127.0.0.1", port), _Handler)
         self.model = model
         self.closing = False
+        self.control = control   # asks the world of a live launch (None: no buttons)
 
     @property
     def url(self) -> str:
@@ -71,7 +82,7 @@ class _Handler(BaseHTTPRequestHandler):
         elif url.path == "/events":
             self._events(model)
         elif url.path == "/api/status":
-            self._json(model.status(time.time_ns()))
+            self._json(self._status(model))
         elif url.path == "/api/map":
             self._json(model.map or {})
         elif url.path == "/api/frame":
@@ -82,6 +93,41 @@ class _Handler(BaseHTTPRequestHandler):
             self._graph(model, query.get("agent"))
         else:
             self._send(HTTPStatus.NOT_FOUND, f"no page {url.path}\n".encode(), "text/plain")
+
+    def do_POST(self) -> None:  # noqa: N802 (the name http.server calls)
+        if urlparse(self.path).path != "/api/control":
+            return self._send(HTTPStatus.NOT_FOUND, f"no page {self.path}\n".encode(),
+                              "text/plain")
+        # application/json only: a page of another site cannot send it without asking first
+        if self.headers.get("Content-Type", "").split(";")[0].strip() != "application/json":
+            return self._refuse(HTTPStatus.UNSUPPORTED_MEDIA_TYPE,
+                                "expected Content-Type: application/json")
+        if self.server.control is None:
+            return self._refuse(HTTPStatus.CONFLICT, "this view follows no live launch: "
+                                "pause, step and resume are for a live lockstep launch")
+        length = int(self.headers.get("Content-Length") or 0)
+        try:
+            event = json.loads(self.rfile.read(min(length, MAX_BODY)) or b"null")
+        except ValueError:
+            event = None
+        op = event.get("op") if isinstance(event, dict) else None
+        if op not in CONTROL_OPS:
+            return self._refuse(HTTPStatus.BAD_REQUEST, f"expected {{\"op\": one of "
+                                f"{list(CONTROL_OPS)}}}, got {event!r:.80}")
+        ask = {"op": op, "cycles": event.get("cycles", 1)} if op == "step" else {"op": op}
+        try:
+            outcome, note = self.server.control(ask)
+        except ControlError as exc:
+            return self._refuse(HTTPStatus.CONFLICT, str(exc))
+        self._json({"ok": True, "text": verdict_line(outcome, note), "outcome": outcome})
+
+    def _status(self, model: ViewModel) -> dict[str, Any]:
+        """The model's status, and whether the timeline's pause, step and resume work."""
+        return {**model.status(time.time_ns()), "control": self.server.control is not None}
+
+    def _refuse(self, status: HTTPStatus, error: str) -> None:
+        self._send(status, json.dumps({"ok": False, "error": error}).encode(),
+                   "application/json")
 
     def _frame(self, model: ViewModel, cycle: str | None) -> None:
         try:
@@ -137,7 +183,7 @@ class _Handler(BaseHTTPRequestHandler):
                         self._event("frame", frame)
                 if now >= next_status:
                     next_status = now + STATUS_S
-                    self._event("status", model.status(time.time_ns()))
+                    self._event("status", self._status(model))
                 time.sleep(1.0 / FRAME_HZ)
         except (BrokenPipeError, ConnectionResetError):
             log.debug("event stream closed by the page")

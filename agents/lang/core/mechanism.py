@@ -20,7 +20,8 @@ nothing, so a mechanism overrides only what it needs:
   to Engine.infer), ``intention`` (its part of what decides the next action, for the loop
   watch, agents/lang/execution/loops.py);
 - the executive process: ``memory`` / ``remember`` (what goes out with the actions and comes
-  back with the world state, docs/bus.md "Agent memory");
+  back with the world state, docs/bus.md "Agent memory"); ``carry`` (its state under a new
+  program, `teleo program load`: agents/lang/swap.py);
 - the run summary: ``summary_key`` (its entry of the summary), ``summary`` (that entry for one
   agent, from what the run left of it: an AgentRecord) and ``summary_lines`` (the entry as the
   summary prints it, in ``summary_rank`` order among the mechanisms).
@@ -37,6 +38,16 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import LangError
+
+
+@dataclass(frozen=True)
+class SkillMap:
+    """How the skills of an old program relate to a new one's (`teleo program load`): each
+    old skill number that is in the new program unchanged (the same clause, wherever it is
+    written) -> its new number, and likewise its name (``at-address#2``)."""
+
+    numbers: Mapping[int, int] = field(default_factory=dict)
+    names: Mapping[str, str] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -125,6 +136,15 @@ class Mechanism:
         """Its slot value from a memory handed back (StateError when it does not fit);
         None when the memory holds nothing of it."""
         return None
+
+    def carry(self, value: Any, skills: SkillMap) -> tuple[Any, tuple[str, ...]]:
+        """Its slot value under a new program whose skills relate to the old ones by
+        ``skills``, and what of it is dropped (each a sentence). Default: kept when empty, else
+        dropped as a whole (its empty state)."""
+        if self.state_type is None or value == self.state_type():
+            return value, ()
+        return self.state_type(), (f"the {self.name} state ({self.slot}): the new program "
+                                   "starts it afresh",)
 
     # -- the run summary -------------------------------------------------------------------
     summary_key: str = ""      # its entry of the run summary ("" for none)

@@ -9,7 +9,8 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ..core.mechanism import Mechanism
+from ..core.mechanism import Mechanism, SkillMap
+from .carry import carried
 from .checks import BodyChecks, known_actions, model_facts
 from .fitting import check_fits, check_model, model_arity
 from .reader import BodyReader
@@ -53,6 +54,11 @@ class Scs(Mechanism):
 
     def facts(self, state: Any) -> tuple:
         return state.scs.model
+
+    def carry(self, value: Any, skills: SkillMap) -> tuple[Any, tuple[str, ...]]:
+        """Threads and do-best records of the skills still in the new program (renumbered);
+        the world model and the tally as they were."""
+        return carried(value, skills.numbers, skills.names)
 
     def model_reader(self, program: Any) -> Callable[[Iterable], tuple]:
         arity = model_arity(program)

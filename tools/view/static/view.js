@@ -1,6 +1,8 @@
 // teleo view: the page. Frames arrive as server-sent events ("frame", "status"); the
 // timeline asks for past cycles at /api/frame?cycle=N. One agent is shown at a time (the
-// tabs); panel.js draws its panel, world.js the world.
+// tabs); panel.js draws its panel, world.js the world. Following a live launch, the timeline's
+// pause, step and resume ask its world at /api/control, as `teleo pause`, `step-run` and
+// `resume` do, and show the world's verdict.
 "use strict";
 
 const $ = (id) => document.getElementById(id);
@@ -178,8 +180,27 @@ function showStatus(st) {
     [k.key, k.count, k.rate || "-", k.bytes || "-"].forEach((v) => tr.append(el("td", "", v)));
     keys.append(tr);
   }
+  $("hold").hidden = !st.control;
   showState();
   drawStrip();
+}
+
+async function control(op) {
+  const held = $("held");
+  held.textContent = "asking the world...";
+  held.className = "";
+  try {
+    const r = await fetch("/api/control", { method: "POST",
+      headers: { "Content-Type": "application/json" }, body: JSON.stringify({ op }) });
+    const said = await r.json();
+    held.textContent = said.ok ? said.text : said.error;
+    held.className = said.ok ? "" : "refused";
+    held.dataset.cycle = said.ok ? said.outcome.cycle : "";
+    held.dataset.paused = said.ok ? said.outcome.paused : "";
+  } catch (e) {
+    held.textContent = `no answer from the view: ${e}`;
+    held.className = "refused";
+  }
 }
 
 async function goTo(cycle) {
@@ -206,6 +227,7 @@ $("live").addEventListener("click", async () => {
   const r = await fetch("/api/frame");
   if (r.ok) await show(await r.json());
 });
+for (const op of ["pause", "step", "resume"]) $(op).addEventListener("click", () => control(op));
 $("strip").addEventListener("click", (e) => {
   const st = view.status, c = $("strip");
   if (!st || st.first === null || e.offsetX < LABEL_W) return;
