@@ -169,21 +169,13 @@ class PerceptTracker:
                 self.sums.pop((t, a), None)
 
 
-def check_frame(frame: Frame, seen: dict) -> None:
-    """Check every value of ``frame`` (raises LangError naming a bad percept); ``seen`` keeps
-    each type's columns from the last call, so that unchanged columns are checked cheaply."""
-    if frame.checked:  # Percept objects: nothing to check, and no columns read
-        seen.clear()
+def check_frame(frame: Frame) -> None:
+    """Check every value of ``frame`` (raises LangError naming a bad percept)."""
+    if frame.checked:  # Percept objects: nothing to check
         return
     for t, rows in frame.groups.items():
-        c = read_cols_of(rows, seen.get(t), frame, t)
-        if c is None:
+        if read_cols_of(rows, None, frame, t) is None:
             frame.check([t])
-            seen.pop(t, None)
-        else:
-            seen[t] = c
-    for t in [t for t in seen if t not in frame.groups]:
-        del seen[t]
     frame.checked = True
 
 
