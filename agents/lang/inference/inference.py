@@ -68,6 +68,7 @@ class Stratum:
     recursive: bool
     rules: tuple  # ((Rule, variants), ...)
     reads: frozenset  # relations read from below (percept relations and lower concepts)
+    elems: tuple = ()  # ((Rule, variants, position, Elem), ...) of every rule, in order
 
 
 def build_strata(program: Program) -> list[Stratum]:
@@ -78,7 +79,8 @@ def build_strata(program: Program) -> list[Stratum]:
                  *(base_rule(p, program.arity[p]) for p in preds)]
         rules = tuple((r, variants(r)) for r in rules)
         reads = frozenset(rel for r, _ in rules for rel in r.reads()) - set(preds)
-        out.append(Stratum(tuple(preds), recursive, rules, reads))
+        elems = tuple((r, vs, i, e) for r, vs in rules for i, e in enumerate(r.elems))
+        out.append(Stratum(tuple(preds), recursive, rules, reads, elems))
     return out
 
 
