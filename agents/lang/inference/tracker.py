@@ -17,7 +17,16 @@ from itertools import compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
-from ..core.columns import EMPTY, ID, Cols, Summary, changed, summarize, summarize_values
+from ..core.columns import (
+    EMPTY,
+    ID,
+    Cols,
+    Summary,
+    changed,
+    plainly_valid,
+    summarize,
+    summarize_values,
+)
 from ..core.intake import Frame
 from ..core.store import Delta, FactStore
 from .shared_rows import check_irregular, read_cols_of
@@ -174,7 +183,7 @@ def check_frame(frame: Frame) -> None:
     if frame.checked:  # Percept objects: nothing to check
         return
     for t, rows in frame.groups.items():
-        if read_cols_of(rows, None, frame, t) is None:
+        if not plainly_valid(rows):
             frame.check([t])
     frame.checked = True
 
