@@ -16,7 +16,6 @@ row, and a row seen in the last message on a key decodes to the same list (bus/r
 
 from __future__ import annotations
 
-import gc
 from collections.abc import Callable
 from dataclasses import MISSING, fields
 from functools import lru_cache
@@ -56,20 +55,8 @@ def encode(msg: Message) -> bytes:
 
 def decode(key: str, data: bytes) -> Message:
     """Parse and validate a payload received on `key`; raises CodecError on any problem.
-
-    The garbage collector is paused meanwhile (decoding makes thousands of objects and no
-    reference cycle: each burst would otherwise start collections walking the process's
-    young objects)."""
-    if not gc.isenabled():
-        return _decode(key, data)
-    gc.disable()
-    try:
-        return _decode(key, data)
-    finally:
-        gc.enable()
-
-
-def _decode(key: str, data: bytes) -> Message:
+    (Decoding makes thousands of objects and no reference cycle; when the collector runs is
+    the process's policy, bus/collector.py, not the codec's.)"""
     try:
         body = msgpack.unpackb(data, raw=False, strict_map_key=True)
     except (ValueError, TypeError, msgpack.UnpackException) as exc:

@@ -10,7 +10,6 @@ from dataclasses import dataclass, replace
 
 from .core.errors import GoalError, LangError
 from .core.explanation import Decision
-from .core.intake import PerceptCache
 from .core.mechanism import slot_kinds
 from .core.outcomes import as_outcomes
 from .core.program import Program
@@ -66,10 +65,11 @@ class Engine:
         self.solver = solvers[solver]() if isinstance(solver, str) else solver
         self.inference = Inference(program)
         self.executive = Executive(program, self.solver)
-        self._checked: dict = {}  # type -> last Cols seen by ``decide`` (cheaper checks)
-        self._percepts = PerceptCache(self._checked)  # and the Percepts made from them
-        self._framer = Framer()  # last cycle's grouping, for SharedRows
-        self._shared = SharedPercepts()  # and the Percepts of its rows
+        # shared rows only (the executive process's input): last cycle's grouping and the
+        # Percepts of its rows; plain lists are read afresh, which at the demo's load and at
+        # 1000 objects costs no more than keeping their columns did (docs/benchmarks.md)
+        self._framer = Framer()
+        self._shared = SharedPercepts()
         self._extended: dict[tuple[str, ...], Executive] = {(): self.executive}
         readers = [r for r in (m.model_reader(program) for m in self.mechanisms) if r]
         self._read_model = readers[0] if readers else None  # what a world model may hold
@@ -185,16 +185,13 @@ class Engine:
         try:
             if frame.patched is not None:  # shared rows: only the new ones need a check
                 check_new_rows(frame)
-                frame.cache = self._shared.bind(frame)
-                return frame.index
-            if not frame.checked:
-                check_frame(frame, self._checked)
-                frame.cache = self._shared.bind(frame) if frame.shared else self._percepts
-            else:
-                self._checked.clear()
+            elif not frame.checked:  # (Percept objects need none)
+                check_frame(frame)
         except LangError:
             self._framer = Framer()  # a refused message is no base for the next one
             raise
+        if frame.shared:
+            frame.cache = self._shared.bind(frame)
         return frame.index
 
     def _decide(self, state: EngineState, index: PerceptIndex, store: FactStore,

@@ -25,6 +25,7 @@ from agents.lang.registry import learned_text, memory_of, read_learned
 from agents.processes.goal_store import GoalStore, GoalStoreError, refused_text
 from agents.processes.goal_sync import GoalSync, validator
 from agents.processes.hints import with_hints
+from bus.collector import Collector
 from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
 from tools.commands.scenario_check import check_learned, load_checked, override_option
@@ -142,7 +143,20 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
     file:line:col if it does not fit an agent's program); `recorder` (a
     tools.records.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
     bar on a terminal (tools/launching/progress.py); `until`: stop after the first cycle at whose
-    end it answers True for the agents' states (a benchmark's run ends when its work is done)."""
+    end it answers True for the agents' states (a benchmark's run ends when its work is done).
+    The garbage collector runs as in a stage process: between cycles (bus/collector.py)."""
+    collector = Collector()
+    try:
+        return _cycles(scenario, cycles, seed, keep_every, learned, recorder, show_progress,
+                       until, collector)
+    finally:
+        collector.close()
+
+
+def _cycles(scenario: Scenario, cycles: int | None, seed: int | None, keep_every: int,
+            learned: Path | None, recorder: Any, show_progress: bool,
+            until: Callable[[dict[str, EngineState]], bool] | None,
+            collector: Collector) -> SimRun:
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     sim = domain.create(scenario.world_table, scenario.run.seed if seed is None else seed, agents)
@@ -202,6 +216,7 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
         sim.step()
         if recorder is not None:
             recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
+        collector.after_cycle()
         if over or (until is not None and until(states)):
             break
     run.final = sim.snapshot_dict()

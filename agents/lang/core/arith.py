@@ -101,7 +101,7 @@ def compile_test(expr: Expr, key: Callable[[Var], object]) -> Callable[[object],
 def evaluate(term: object, bindings: dict) -> object:
     """Value of ``term`` under dict ``bindings``; raises EvalError naming the expression."""
     try:
-        value = compile_expr(term, lambda v: v)(bindings)
+        value = _value(term, bindings)
     except KeyError as exc:
         raise EvalError(f"{term}: variable {exc.args[0]} is unbound") from None
     except _ERRORS as exc:
@@ -109,3 +109,20 @@ def evaluate(term: object, bindings: dict) -> object:
     if isinstance(value, bool):
         raise EvalError(f"{term}: gives a truth value, not a number or symbol")
     return value
+
+
+def _value(term: object, env: dict) -> object:
+    """``term`` under ``env``, as ``compile_expr(term, key)(env)`` computes it with ``key`` the
+    identity (an expression evaluated once is cheaper walked than compiled)."""
+    if isinstance(term, Var):
+        return env[term]
+    if not isinstance(term, Expr):
+        return term
+    op, args = term.op, term.args
+    if op == "and":
+        return all(_value(a, env) for a in args)
+    if op == "or":
+        return any(_value(a, env) for a in args)
+    if op == "not":
+        return not _value(args[0], env)
+    return OPS[op][0](*[_value(a, env) for a in args])

@@ -91,6 +91,23 @@ def read_cols(rows: list, old: Cols | None) -> Cols | None:
     return Cols(n, names_t, vals, types, kinds, same, same_ids)
 
 
+def plainly_valid(rows: list) -> bool:
+    """True when ``rows`` (of one type, each a list or tuple led by the type's name) are all
+    ``[type, id, name, value, ...]`` of one length with names of type str and ids and values
+    of type str, int or float: what ``terms.check_row`` accepts, decided per column in C
+    without reading the rows as columns. False when that is not clear (other lengths, a
+    subclass of int): the caller then checks the rows one by one."""
+    cols = _transpose(rows)
+    if cols is None or len(cols) < 2 or len(cols) % 2:
+        return False
+    return all(map(_STRS.issuperset, map(_types, cols[2::2]))) and \
+        all(map(ATOMS.issuperset, map(_types, cols[1::2])))
+
+
+def _types(col: tuple):
+    return map(type, col)
+
+
 def _transpose(rows: list) -> list[tuple] | None:
     """The columns of ``rows``, or None if their lengths differ."""
     try:

@@ -97,16 +97,10 @@ class PerceptIndex:
         self = cls()
         self._percepts = None
         self._groups = groups
-        by_type = _ByType(groups, cache)
-        if sum(map(len, groups.values())) <= _SMALL:  # plain dicts answer faster
-            self._by_type = {t: by_type[t] for t in groups}
-            self._by_id = by_id = {}
-            for ps in self._by_type.values():
-                for p in ps:
-                    by_id.setdefault((p.type, p.id), []).append(p)
-        else:
-            self._by_type = by_type
-            self._by_id = _ById(groups, by_type)
+        # lazily at every size: a type the executive never asks about (at the demo's load,
+        # most of them) costs no Percepts (docs/benchmarks.md, Engine)
+        self._by_type = by_type = _ByType(groups, cache)
+        self._by_id = _ById(groups, by_type)
         return self
 
     def frame(self) -> Frame:
@@ -160,9 +154,6 @@ class PerceptIndex:
                     ix.setdefault(v, []).append(p)
             self._attr[key] = ix
         return ix
-
-
-_SMALL = 64  # percepts up to which the index is built at once
 
 
 class _ByType(Mapping):

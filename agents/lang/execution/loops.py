@@ -54,15 +54,13 @@ def combined(world_digest: str, intention: str) -> str:
 
 def world(pidx: PerceptIndex, store: FactStore) -> str:
     """A digest of what the agent perceives and believes (the world part of a situation)."""
-    h = hashlib.blake2b(digest_size=16)
-    for row in sorted(repr(tuple(r)) for r in pidx.rows()):
-        h.update(row.encode())
-        h.update(b"\n")
-    h.update(b"|")
-    for pred in sorted(k for k in store.facts if isinstance(k, str)):
-        for t in sorted(repr(t) for t in store.facts[pred]):
-            h.update(f"{pred}{t}\n".encode())
-    return h.hexdigest()
+    # each percept row and each belief a "\n"-terminated line, the two parts split by "|";
+    # hashed in one piece (the same bytes, so the same digest, as hashing line by line)
+    rows = sorted(map(repr, map(tuple, pidx.rows())))
+    facts = [f"{pred}{t}\n" for pred in sorted(k for k in store.facts if isinstance(k, str))
+             for t in sorted(map(repr, store.facts[pred]))]
+    text = "".join([*(r + "\n" for r in rows), "|", *facts])
+    return hashlib.blake2b(text.encode(), digest_size=16).hexdigest()
 
 
 @dataclass(frozen=True, slots=True)
@@ -140,6 +138,8 @@ class Watch:
             caused = all(tuple(x[1:]) in store.get(x[0]) for x in last.expects)
         else:
             caused = bool(last.world) and last.world == world_digest and not last.actor
+        if caused == last.caused:
+            return self
         return replace(self, visits=self.visits[:-1] + (replace(last, caused=caused),))
 
     def seen(self, digest: str, cycle: int, actor: str, pursued: bool,

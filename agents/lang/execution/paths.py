@@ -102,6 +102,7 @@ class PathFinder:
         self.res = program.resources
         self.bodies = bodies
         self.effects = Effects(program)
+        self.kept = [_kept_vars(s) for s in program.skills]  # by skill number
 
     # -- higher goals ------------------------------------------------------------------------
     def undoes(self, walk: Walk, actions) -> str:
@@ -158,11 +159,11 @@ class PathFinder:
         s = self.remembered(prev, text)
         if s is not None:
             b = {Var(k): v for k, v in prev.steps[0].bindings}
-            found = self.keep(walk, s, b, goal, prev, depth, on_path)
+            found = self.keep(walk, s, b, goal, text, prev, depth, on_path)
             if found:
                 return found
         for n, s in enumerate(skills):
-            found = self.enter(walk, s, goal, depth, on_path)
+            found = self.enter(walk, s, goal, text, depth, on_path)
             if found:
                 for later in skills[n + 1:]:
                     walk.passed(depth, text, later.name, {}, "not tried: an earlier skill applies")
@@ -180,13 +181,12 @@ class PathFinder:
         s = self.program.skills[head.skill]
         return s if s.name == head.skill_name else None
 
-    def keep(self, walk: Walk, s: Skill, prev_b: dict, goal: Literal, prev: Remembered, depth,
-             on_path) -> Found | None:
+    def keep(self, walk: Walk, s: Skill, prev_b: dict, goal: Literal, text: str,
+             prev: Remembered, depth, on_path) -> Found | None:
         """Keep the remembered skill: its head and :start bindings stay, percepts are matched
         afresh (their values change every cycle) and :requires must hold; :start is checked
         only when resuming after a suspension."""
-        text = str(goal)
-        keep = _kept_vars(s)
+        keep = self.kept[s.number]  # (s is one of the program's skills: ``remembered``)
         b0 = unify_head(s.head, goal, {v: x for v, x in prev_b.items() if v in keep})
         if b0 is None:
             return None
@@ -203,15 +203,16 @@ class PathFinder:
                         f"{_EVERY if several else ''}")
             return None
         for b in sols:
-            found = self.expand(walk, s, b, goal, prev.rest(), depth, on_path,
+            found = self.expand(walk, s, b, goal, text, prev.rest(), depth, on_path,
                                 "resumed" if resume else "continued")
             if found:
                 return found
         return None
 
-    def enter(self, walk: Walk, s: Skill, goal: Literal, depth: int, on_path) -> Found | None:
-        """Enter skill ``s`` afresh for ``goal``: percepts, :start and :requires must hold."""
-        text = str(goal)
+    def enter(self, walk: Walk, s: Skill, goal: Literal, text: str, depth: int,
+              on_path) -> Found | None:
+        """Enter skill ``s`` afresh for ``goal`` (``text``: the goal as text): percepts, :start
+        and :requires must hold."""
         b0 = unify_head(s.head, goal, {})
         if b0 is None:
             walk.passed(depth, text, s.name, {}, f"head {s.head} does not match")
@@ -230,16 +231,16 @@ class PathFinder:
                 walk.passed(depth, text, s.name, b, "not used again for this goal: it led "
                             "back to an earlier situation (loop)")
                 continue
-            found = self.expand(walk, s, b, goal, NOTHING, depth, on_path, "entered")
+            found = self.expand(walk, s, b, goal, text, NOTHING, depth, on_path, "entered")
             if found:
                 return found
         return None
 
-    def expand(self, walk: Walk, s: Skill, b: dict, goal: Literal, prev_rest: Remembered,
-               depth: int, on_path: frozenset, mode: str) -> Found | None:
+    def expand(self, walk: Walk, s: Skill, b: dict, goal: Literal, text: str,
+               prev_rest: Remembered, depth: int, on_path: frozenset,
+               mode: str) -> Found | None:
         """The path below skill ``s`` (bound by ``b``), through its body kind's runner."""
         key = (s.number, binding_key(b))
-        text = str(goal)
         if key in on_path:
             walk.passed(depth, text, s.name, b, "already on the path with these bindings (loop)")
             return None

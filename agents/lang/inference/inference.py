@@ -17,7 +17,6 @@ are computed from scratch again."""
 
 from __future__ import annotations
 
-import gc
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -69,6 +68,7 @@ class Stratum:
     recursive: bool
     rules: tuple  # ((Rule, variants), ...)
     reads: frozenset  # relations read from below (percept relations and lower concepts)
+    elems: tuple = ()  # ((Rule, variants, position, Elem), ...) of every rule, in order
 
 
 def build_strata(program: Program) -> list[Stratum]:
@@ -79,7 +79,8 @@ def build_strata(program: Program) -> list[Stratum]:
                  *(base_rule(p, program.arity[p]) for p in preds)]
         rules = tuple((r, variants(r)) for r in rules)
         reads = frozenset(rel for r, _ in rules for rel in r.reads()) - set(preds)
-        out.append(Stratum(tuple(preds), recursive, rules, reads))
+        elems = tuple((r, vs, i, e) for r, vs in rules for i, e in enumerate(r.elems))
+        out.append(Stratum(tuple(preds), recursive, rules, reads, elems))
     return out
 
 
@@ -120,21 +121,8 @@ class Inference:
         """Every concept instance that holds for ``percepts`` (neutral lists, Percepts, a
         PerceptIndex or a Frame) and the ``base`` facts ((pred, arg, ...) tuples: the agent's
         world model, asserted by SCS bodies, seed 002; see ``base.py``), as the live FactStore
-        (valid until the next run).
-
-        The garbage collector is paused meanwhile (and left as it was): a run allocates in
-        bursts (a column per attribute, a tuple per changed object), and each burst would start
-        a collection walking every young object, this cycle's percept lists among them; a run
-        makes no reference cycles, so nothing waits for the collector."""
-        if not gc.isenabled():
-            return self._run(percepts, base)
-        gc.disable()
-        try:
-            return self._run(percepts, base)
-        finally:
-            gc.enable()
-
-    def _run(self, percepts: Iterable, base: tuple[tuple, ...]) -> FactStore:
+        (valid until the next run). When the garbage collector runs is the caller's policy
+        (bus/collector.py: between cycles), not the engine's: a run makes no reference cycles."""
         frame = self.frame = self.framer.frame_of(percepts)
         summary = self.base.summary_of(base)
         change = self.tracker.update(frame, self.edb, summary)

@@ -31,10 +31,13 @@ class Maintainer:
 
     def views(self, rule, i: int, changes: dict) -> tuple:
         """Stores for a driver on element ``i``: before it as now, after it as before."""
-        old = (OldView(self.idb, changes), OldView(self.edb, changes))
         new = (self.idb, self.edb)
+        elems = rule.elems
+        if not any(elems[j].rel in changes for j in range(i + 1, len(elems))):
+            return tuple(new[e.percept] for e in elems)  # (no OldView needed)
+        old = (OldView(self.idb, changes), OldView(self.edb, changes))
         return tuple(old[e.percept] if j > i and e.rel in changes else new[e.percept]
-                     for j, e in enumerate(rule.elems))
+                     for j, e in enumerate(elems))
 
     def flips(self, rule, j: int, d: Delta, changes: dict) -> tuple[list, list]:
         """Keys of negated element ``j`` whose negation became true, and became false."""
@@ -56,16 +59,13 @@ class Maintainer:
         """Update a non-recursive stratum; its set-level change (pred -> Delta)."""
         minus: list = []
         plus: list = []
-        for rule, vs in stratum.rules:
-            for i, e in enumerate(rule.elems):
-                d = changes.get(e.rel)
-                if not d:
-                    continue
+        for rule, vs, i, e in stratum.elems:
+            d = changes.get(e.rel)
+            if d:
                 fn = vs[i].get(self.est)
                 S = self.views(rule, i, changes)
                 if e.negated:
-                    true, false = self.flips(rule, i, d, changes)
-                    gained, lost = true, false
+                    gained, lost = self.flips(rule, i, d, changes)
                 else:
                     gained, lost = d.ins, d.dels
                 if lost:

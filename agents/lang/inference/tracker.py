@@ -17,7 +17,16 @@ from itertools import compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
-from ..core.columns import EMPTY, ID, Cols, Summary, changed, summarize, summarize_values
+from ..core.columns import (
+    EMPTY,
+    ID,
+    Cols,
+    Summary,
+    changed,
+    plainly_valid,
+    summarize,
+    summarize_values,
+)
 from ..core.intake import Frame
 from ..core.store import Delta, FactStore
 from .shared_rows import check_irregular, read_cols_of
@@ -169,21 +178,13 @@ class PerceptTracker:
                 self.sums.pop((t, a), None)
 
 
-def check_frame(frame: Frame, seen: dict) -> None:
-    """Check every value of ``frame`` (raises LangError naming a bad percept); ``seen`` keeps
-    each type's columns from the last call, so that unchanged columns are checked cheaply."""
-    if frame.checked:  # Percept objects: nothing to check, and no columns read
-        seen.clear()
+def check_frame(frame: Frame) -> None:
+    """Check every value of ``frame`` (raises LangError naming a bad percept)."""
+    if frame.checked:  # Percept objects: nothing to check
         return
     for t, rows in frame.groups.items():
-        c = read_cols_of(rows, seen.get(t), frame, t)
-        if c is None:
+        if not plainly_valid(rows):
             frame.check([t])
-            seen.pop(t, None)
-        else:
-            seen[t] = c
-    for t in [t for t in seen if t not in frame.groups]:
-        del seen[t]
     frame.checked = True
 
 
