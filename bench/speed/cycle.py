@@ -14,9 +14,9 @@ processes' wake-ups), the resident memory of the agents' processes per agent [Mi
 (/proc, as bench/speed/cycle_cpu.py: its step and its decode, checks, encode and zenoh
 threads), summed by role, with the cores that kept busy: on a machine shared with other work
 the cycle rate follows the load, the CPU a cycle hardly. It checks that every agent acted
-(sent actions in most
-cycles) and delivered its package (its goal achieved, its deliveries counter 1); a count
-that fails the check is reported and the bench exits 1. Delivery takes about 215 cycles.
+(sent actions in most cycles) and delivered its package (its goal achieved, its deliveries
+counter 1); a count that fails the check is reported and the bench exits 1. Delivery takes
+about 215 cycles.
 
 --shared: the launch layouts to compare, as `teleo launch --agents-per-process K` values: 0 a
 process per stage (3 per agent), 1 a process per agent, `all` every agent in one process
