@@ -105,8 +105,13 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         return [out for chain in chains for out in chain.step(cycle, inputs)]
 
+    begun = [0, -1]   # cycles whose perception and inference ran before their goal lists,
+                      # and the last of them
+
     def early(key: str, msg: Message) -> None:
         if key == state_key:
+            if msg.env.cycle > begun[1]:
+                begun[:] = [begun[0] + 1, msg.env.cycle]
             for chain in chains:
                 chain.early(msg.env.cycle, key, msg)
 
@@ -120,7 +125,8 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
         stage.start()
         log.info("announced %s; inputs %s", stages, inputs)
         stage.run(stop)
-        log.info("stopped after %d cycles (%d late)", stage.cycles_done, stage.late)
+        log.info("stopped after %d cycles (%d late, %d begun before their goal lists)",
+                 stage.cycles_done, stage.late, begun[0])
 
 
 @click.command()
