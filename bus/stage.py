@@ -141,12 +141,16 @@ class Stage:
 
     def _early(self, newest: dict[str, Message]) -> None:
         """Hand `early` the newest message of each key just drained whose cycle is still to
-        be handled: only while the stage would otherwise wait for the rest of a cycle."""
+        be handled: only while the stage would otherwise wait for the rest of a cycle, and
+        never ahead of an older cycle that may still complete (the steps see their cycles in
+        order: a stage that has fallen behind, in a realtime run, waits as before)."""
         if self.early is None:
             return
         done = self.joiner.last_done
         for key, msg in newest.items():
-            if key in self.joiner.inputs and (done is None or msg.env.cycle > done):
+            cycle = msg.env.cycle
+            if key in self.joiner.inputs and (done is None or cycle > done) \
+                    and not self.joiner.pending_before(cycle):
                 self.early(key, msg)
 
     def _handle(self, joined: Joined) -> None:

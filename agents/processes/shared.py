@@ -82,7 +82,8 @@ class Chain:
             p_out, b_out, ms = self.ahead[1:]
         else:
             p_out, b_out, ms = self.front(cycle, inputs)
-        self.ahead = None
+        if self.ahead is not None and self.ahead[0] <= cycle:
+            self.ahead = None
         p_key, b_key, g_key = self.keys
         t2 = time.perf_counter()
         e_out = self.decide(cycle, {p_key: p_out[0][1], b_key: b_out[0][1],
