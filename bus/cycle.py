@@ -67,6 +67,10 @@ class Joiner:
         self.stale += len(older)
         return Joined(cycle, slot, repeat=cycle == self.last_done)
 
+    def pending_before(self, cycle: int) -> bool:
+        """Whether an incomplete cycle older than `cycle` is still kept (it may complete)."""
+        return any(c < cycle for c in self._pending)
+
     def done(self, cycle: int) -> None:
         """Mark `cycle` handled: later copies of it are repeats, older cycles are stale."""
         self.last_done = cycle if self.last_done is None else max(self.last_done, cycle)

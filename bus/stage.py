@@ -64,12 +64,18 @@ class Stage:
     stages: the stage processes this Stage runs the steps of, when it runs several (a shared
     process: agents/processes/shared.py); they are announced with the node, and `step_fn`
     returns their ProcessStats itself.
+    early: called with an input message of a cycle still incomplete when the stage would
+    otherwise wait for the rest of it (a shared process starts its agents' perception and
+    inference on the world state while their goal lists are on the way); what it computes
+    is for `step_fn` to use.
     """
 
     def __init__(self, node: Node, process: str, inputs: Sequence[str], step_fn: StepFn,
                  outputs: Sequence[str] = (), ready_timeout: float = 10.0,
-                 stages: Sequence[str] = ()) -> None:
+                 stages: Sequence[str] = (),
+                 early: Callable[[str, Message], None] | None = None) -> None:
         self.node = node
+        self.early = early
         self.process = keys.check_chunk(process, "process")
         self.step_fn = step_fn
         self.outputs = tuple(outputs)
@@ -121,14 +127,31 @@ class Stage:
         if first is None:
             return None
         batch = [self.joiner.add(first.key, first.msg)]
+        newest = {first.key: first.msg}
         while (more := self.inbox.receive(0)) is not None:
             batch.append(self.joiner.add(more.key, more.msg))
+            newest[more.key] = more.msg
         joined, skipped = pick(batch)
         if joined is None:
+            self._early(newest)
             return None
         self.late += skipped
         self._handle(joined)
         return joined.cycle
+
+    def _early(self, newest: dict[str, Message]) -> None:
+        """Hand `early` the newest message of each key just drained whose cycle is still to
+        be handled: only while the stage would otherwise wait for the rest of a cycle, and
+        never ahead of an older cycle that may still complete (the steps see their cycles in
+        order: a stage that has fallen behind, in a realtime run, waits as before)."""
+        if self.early is None:
+            return
+        done = self.joiner.last_done
+        for key, msg in newest.items():
+            cycle = msg.env.cycle
+            if key in self.joiner.inputs and (done is None or cycle > done) \
+                    and not self.joiner.pending_before(cycle):
+                self.early(key, msg)
 
     def _handle(self, joined: Joined) -> None:
         if joined.repeat:

@@ -7,7 +7,10 @@ JSON: a list of {"agent", "program", "state", "learned_out", "learned", "solver"
 process joins the world state with every agent's goal list and runs, per agent, the perception,
 inference and executive steps of the separate processes (the same functions) one after the
 other, handing each step's message to the next in memory: no hop, no decode between an
-agent's stages. It still publishes every message (percepts, beliefs, intention, actions) and
+agent's stages. Perception and inference need only the world state: when it arrives before the
+goal lists (the goal-entry process sends them once it has the state), they run at once, so
+the goal-entry process's work and hop overlap the agents' (bus/stage.py `early`).
+It still publishes every message (percepts, beliefs, intention, actions) and
 each stage's ProcessStats under the stage's own name, and announces each stage, so the clock,
 the recorder and the inspector see the usual processes. Two or more cores then serve fewer
 processes: fewer wake-ups per cycle and one interpreter's memory for several agents.
@@ -26,45 +29,71 @@ from agents.processes import executive, inference, perception
 from agents.processes.common import setup_logging, stop_on_signals
 from bus import keys
 from bus.config import BusConfig, bus_options
+from bus.errors import Refused
 from bus.messages import Envelope, Message, ProcessStats
 from bus.rows import shared_rows
 
 STAGE_NAMES = ("perception", "inference", "executive")
 
 
-def make_chain(run: str, spec: dict, log: logging.Logger):
-    """step(cycle, {world state, goal list}) of one agent: its three steps in turn, their
-    outputs and their ProcessStats (compute time of each step [ms])."""
-    agent = spec["agent"]
-    names = [f"{agent}.{s}" for s in STAGE_NAMES]
-    perceive = perception.make_step(run, agent, names[0])
-    infer = inference.make_step(run, agent, names[1], spec["program"], log,
-                                spec.get("swapped"))
-    decide = executive.make_step(run, agent, names[2], spec["program"], log,
-                                 spec.get("state"), spec.get("learned"),
-                                 spec.get("learned_out"), spec.get("solver", True),
-                                 spec.get("mechanism", "means-ends"), spec.get("swapped"))
-    p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
-                           keys.goal_list(run, agent))
-    stats_keys = [keys.stats(run, n) for n in names]
+class Chain:
+    """One agent's three steps in turn: `front` (perception, inference: the world state is
+    all they need) and `step` (the executive too, once the goal list is there), handing each
+    step's message to the next in memory."""
 
-    def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+    def __init__(self, run: str, spec: dict, log: logging.Logger) -> None:
+        agent = spec["agent"]
+        self.names = [f"{agent}.{s}" for s in STAGE_NAMES]
+        self.run, self.agent = run, agent
+        self.perceive = perception.make_step(run, agent, self.names[0])
+        self.infer = inference.make_step(run, agent, self.names[1], spec["program"], log,
+                                          spec.get("swapped"))
+        self.decide = executive.make_step(run, agent, self.names[2], spec["program"], log,
+                                          spec.get("state"), spec.get("learned"),
+                                          spec.get("learned_out"), spec.get("solver", True),
+                                          spec.get("mechanism", "means-ends"),
+                                          spec.get("swapped"))
+        self.keys = (keys.percepts(run, agent), keys.beliefs(run, agent),
+                     keys.goal_list(run, agent))
+        self.stats_keys = [keys.stats(run, n) for n in self.names]
+        self.ahead: tuple[int, list, list, list[float]] | None = None  # front, done early
+
+    def front(self, cycle: int, inputs: dict[str, Message]) -> tuple[list, list, list[float]]:
+        """Percepts and beliefs of `cycle` and their compute times [ms]."""
         t0 = time.perf_counter()
-        p_out = perceive(cycle, inputs)
+        p_out = self.perceive(cycle, inputs)
         seen = p_out[0][1]  # rows as a receiver on the bus would get them (bus/rows.py)
-        p_out[0] = (p_out[0][0], replace(seen, percepts=shared_rows("Percepts", agent,
+        p_out[0] = (p_out[0][0], replace(seen, percepts=shared_rows("Percepts", self.agent,
                                                                      seen.percepts)))
         t1 = time.perf_counter()
-        b_out = infer(cycle, {p_key: p_out[0][1]})
-        t2 = time.perf_counter()
-        e_out = decide(cycle, {p_key: p_out[0][1], b_key: b_out[0][1], g_key: inputs[g_key]})
-        t3 = time.perf_counter()
-        stats = [(k, ProcessStats(Envelope.now(run, cycle, n), n, (b - a) * 1e3, 0))
-                 for k, n, a, b in zip(stats_keys, names, (t0, t1, t2), (t1, t2, t3),
-                                       strict=True)]
-        return [*stats, *p_out, *b_out, *e_out]
+        b_out = self.infer(cycle, {self.keys[0]: p_out[0][1]})
+        return p_out, b_out, [(t1 - t0) * 1e3, (time.perf_counter() - t1) * 1e3]
 
-    return step
+    def early(self, cycle: int, state_key: str, state: Message) -> None:
+        """`front` of `cycle` now, while the goal lists are on the way (once a cycle)."""
+        if self.ahead is None or self.ahead[0] < cycle:
+            try:
+                self.ahead = (cycle, *self.front(cycle, {state_key: state}))
+            except Refused:   # the step, run again on the complete cycle, refuses it
+                self.ahead = None
+
+    def step(self, cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        """Every output of `cycle`: the three ProcessStats, percepts, beliefs, intention,
+        actions."""
+        if self.ahead is not None and self.ahead[0] == cycle:
+            p_out, b_out, ms = self.ahead[1:]
+        else:
+            p_out, b_out, ms = self.front(cycle, inputs)
+        if self.ahead is not None and self.ahead[0] <= cycle:
+            self.ahead = None
+        p_key, b_key, g_key = self.keys
+        t2 = time.perf_counter()
+        e_out = self.decide(cycle, {p_key: p_out[0][1], b_key: b_out[0][1],
+                                    g_key: inputs[g_key]})
+        ms = [*ms, (time.perf_counter() - t2) * 1e3]
+        stats = [(k, ProcessStats(Envelope.now(self.run, cycle, n), n, m, 0))
+                 for k, n, m in zip(self.stats_keys, self.names, ms, strict=True)]
+        return [*stats, *p_out, *b_out, *e_out]
 
 
 def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
@@ -73,22 +102,34 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     from bus.node import open_node
     from bus.stage import Stage
 
-    chains = [make_chain(run, spec, log) for spec in specs]
+    chains = [Chain(run, spec, log) for spec in specs]
+    state_key = keys.world_state(run)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        return [out for chain in chains for out in chain(cycle, inputs)]
+        return [out for chain in chains for out in chain.step(cycle, inputs)]
+
+    begun = [0, -1]   # cycles whose perception and inference ran before their goal lists,
+                      # and the last of them
+
+    def early(key: str, msg: Message) -> None:
+        if key == state_key:
+            if msg.env.cycle > begun[1]:
+                begun[:] = [begun[0] + 1, msg.env.cycle]
+            for chain in chains:
+                chain.early(msg.env.cycle, key, msg)
 
     agents = [spec["agent"] for spec in specs]
-    inputs = [keys.world_state(run), *(keys.goal_list(run, a) for a in agents)]
+    inputs = [state_key, *(keys.goal_list(run, a) for a in agents)]
     outputs = [keys.actions(run, a) for a in agents]
     stages = [f"{a}.{s}" for a in agents for s in STAGE_NAMES]
     stop = stop_on_signals()
     with open_node(cfg, run, name) as node:
-        stage = Stage(node, name, inputs, step, outputs=outputs, stages=stages)
+        stage = Stage(node, name, inputs, step, outputs=outputs, stages=stages, early=early)
         stage.start()
         log.info("announced %s; inputs %s", stages, inputs)
         stage.run(stop)
-        log.info("stopped after %d cycles (%d late)", stage.cycles_done, stage.late)
+        log.info("stopped after %d cycles (%d late, %d begun before their goal lists)",
+                 stage.cycles_done, stage.late, begun[0])
 
 
 @click.command()

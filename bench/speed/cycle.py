@@ -9,10 +9,14 @@ For each agent count it writes the fleet scenario, runs `teleo launch --cycles N
 the run record unless --record) and reads the summary and the world's timing totals
 (world-final.json): cycles per second, the mean cycle time [ms], each stage's mean compute
 time per cycle [ms] with its share of the cycle (the rest is the bus: zenoh, msgpack, and the
-processes' wake-ups), and the resident memory of the agents' processes per agent [MiB]
-(sampled every 0.2 s; the peak). It checks that every agent acted (sent actions in most
-cycles) and delivered its package (its goal achieved, its deliveries counter 1); a count
-that fails the check is reported and the bench exits 1. Delivery takes about 215 cycles.
+processes' wake-ups), the resident memory of the agents' processes per agent [MiB]
+(sampled every 0.2 s; the peak), and each process's own CPU time a cycle from cycle 50 on
+(/proc, as bench/speed/cycle_cpu.py: its step and its decode, checks, encode and zenoh
+threads), summed by role, with the cores that kept busy: on a machine shared with other work
+the cycle rate follows the load, the CPU a cycle hardly. It checks that every agent acted
+(sent actions in most cycles) and delivered its package (its goal achieved, its deliveries
+counter 1); a count that fails the check is reported and the bench exits 1. Delivery takes
+about 215 cycles.
 
 --shared: the launch layouts to compare, as `teleo launch --agents-per-process K` values: 0 a
 process per stage (3 per agent), 1 a process per agent, `all` every agent in one process
@@ -36,6 +40,7 @@ import click
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "speed"))
 
+from cycle_cpu import _cpu_s, _cycles, _role  # noqa: E402
 from fleet import write_fleet  # noqa: E402
 
 STAGES = ("world", "goals", "perception", "inference", "executive")
@@ -89,11 +94,13 @@ def run_once(scenario: Path, cycles: int, record: bool, per_process: int | str) 
     proc = subprocess.Popen(cmd, cwd=ROOT, env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     peak = [0.0]
+    cpu: list[tuple[int, dict[str, float]]] = []  # (cycles done, CPU [s] by role), sampled
     done = threading.Event()
 
     def sample() -> None:
         while not done.wait(0.2):
             peak[0] = max(peak[0], _agent_rss_kib(proc.pid))
+            cpu.append((_cycles(tmp), _cpu_by_role(proc.pid)))
 
     sampler = threading.Thread(target=sample, daemon=True)
     sampler.start()
@@ -111,7 +118,29 @@ def run_once(scenario: Path, cycles: int, record: bool, per_process: int | str) 
     layout = next((x for x in out.splitlines()
                    if x.startswith("each agent's") or " agents in " in x), "")
     return {**summary, "timing_ms": final["timing_ms"], "rss_kib": peak[0], "acted": acted,
-            "layout": layout}
+            "layout": layout, "cpu_ms": _cpu_per_cycle(cpu)}
+
+
+def _cpu_by_role(pid: int) -> dict[str, float]:
+    """CPU time [s] (user + system) of the launch's processes so far, summed by role (world
+    "process", "goals", "shared" for the agents' processes, "perception", ...)."""
+    out: dict[str, float] = {}
+    for p in _tree(pid):
+        role, c = _role(p), _cpu_s(p)
+        if role is not None and c is not None:
+            out[role] = out.get(role, 0.0) + c
+    return out
+
+
+def _cpu_per_cycle(samples: list[tuple[int, dict[str, float]]]) -> dict[str, float]:
+    """CPU [ms] a cycle of each role, from the first sample at or past cycle 50 (start-up
+    left out: the agents' processes load their programs then) to the last one while the
+    world still ran; empty for a run too short to tell."""
+    steady = [(n, c) for n, c in samples if n >= 50 and "process" in c]
+    if len(steady) < 2 or steady[-1][0] <= steady[0][0]:
+        return {}
+    (n0, c0), (n1, c1) = steady[0], steady[-1]
+    return {role: (c1[role] - c0.get(role, 0.0)) * 1e3 / (n1 - n0) for role in c1}
 
 
 def _cycles_with_actions(trace: Path) -> dict[str, int]:
@@ -165,6 +194,14 @@ def report(agents: int, layout: str, result: dict, base: float) -> None:
     rest = cycle_ms - sum(means.values())
     if rest > 0:
         click.echo(f"  {'bus+waits':<11} {rest:7.3f} ms  {100 * rest / cycle_ms:5.1f} %")
+    cpu = result["cpu_ms"]
+    if cpu:   # each process's own CPU: its step and its decode, checks, encode, zenoh
+        names = {"process": "world", "shared": "agents' processes",
+                 "teleo launch": "launcher"}
+        parts = ", ".join(f"{names.get(r, r)} {ms:.2f}" for r, ms in sorted(
+            cpu.items(), key=lambda x: -x[1]))
+        click.echo(f"  CPU a cycle from cycle 50: {sum(cpu.values()):.2f} ms ({parts}); "
+                   f"{sum(cpu.values()) / cycle_ms:.2f} cores busy")
 
 
 def _counts(text: str, name: str, allow_all: bool) -> list:

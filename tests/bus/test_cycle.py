@@ -81,3 +81,12 @@ def test_culprit_is_the_first_stage_behind_in_pipeline_order():
 def test_report_is_clean_only_without_faults():
     assert CycleReport(1, {"A": ()}).clean
     assert not CycleReport(1, {"A": ()}, late=("A.inference",), noop=("A",)).clean
+
+
+def test_a_joiner_says_whether_an_older_cycle_is_still_to_complete():
+    j = Joiner([P, B])
+    assert not j.pending_before(5)
+    j.add(P, msg(3))
+    assert j.pending_before(5) and not j.pending_before(3)
+    assert j.add(B, msg(3)) is not None   # complete: no longer pending
+    assert not j.pending_before(5)
