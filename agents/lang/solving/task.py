@@ -252,10 +252,10 @@ class Task(WayFilters, BindingChoice):
                     and self.admits(s, b, goal) and not self.undoes_skill(s, b) and \
                     (applicable or not self._circular(goal, ground)):
                 ready = applicable and all(self.holds(c) for c in ground)
-                ranked.append(((not ready, *self.rank(ground)), binding_key(b), b, ground))
+                ranked.append(((not ready,), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b))
-                for _, _, b, ground in self._best(ranked, not applicable)]
+                for _, _, b, ground in self._best(self._ranks(ranked), not applicable)]
 
     def admits(self, s: Skill, b: dict, goal: Literal) -> bool:
         """Whether skill ``s`` under bindings ``b`` may be chained on for ``goal`` at all
@@ -278,9 +278,10 @@ class Task(WayFilters, BindingChoice):
                 if ground is not None and self._chainable(ground) and \
                         self._possible(ground, f"concept {clause.head.pred}#{clause.index} "
                                                f"{show(clause.head, b)}"):
-                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+                    ranked.append(((), binding_key(b), b, ground))
             if ranked:
                 break
+        ranked = self._ranks(ranked)
         name = f"{clause.head.pred}#{clause.index}"
         open_ = len(ranked) > 1 and any(set(r[2]) - set(b0) for r in ranked)
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
@@ -295,9 +296,10 @@ class Task(WayFilters, BindingChoice):
                 ground = _ground(list(conj.conds), b)
                 if ground is not None and self._chainable(ground) and \
                         not self.impossible(ground):   # (most bindings are: not noted)
-                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+                    ranked.append(((), binding_key(b), b, ground))
             if ranked:
                 break
+        ranked = self._ranks(ranked)
         return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
                             "the conjunction")
                 for _, _, b, ground in (cheapest(self, ranked) if len(ranked) > 1 else
@@ -322,6 +324,14 @@ class Task(WayFilters, BindingChoice):
         best = ranked[:self.per_clause]
         return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
 
+    def _ranks(self, rows: list) -> list:
+        """``rows`` (prefix, key, binding, ground conditions) with each prefix extended by
+        the rank of its conditions (``rank``); a single row is left as it is: there is nothing
+        to order it against, and the relaxed estimate is the costliest part of a cycle."""
+        if len(rows) <= 1:
+            return rows
+        return [((*p, *self.rank(g)), k, b, g) for p, k, b, g in rows]
+
     def rank(self, conds: list) -> tuple:
         """Sort key of a way to chain off (smaller first): the most conditions holding,
         counting for a false literal the subconcepts of its definition that hold; ties go to
@@ -342,7 +352,7 @@ class Task(WayFilters, BindingChoice):
         levels of the positive ground literals that do not hold, infinite when one never
         can; None where the program admits no such estimate."""
         if self._relaxed is None:
-            self._relaxed = Relaxed(self)
+            self._relaxed = self._situation_relaxed()
         if not self._relaxed.available:
             return None
         total = 0
@@ -354,6 +364,15 @@ class Task(WayFilters, BindingChoice):
                     return _INF
                 total += k
         return total
+
+    def _situation_relaxed(self) -> Relaxed:
+        """The relaxed levels of this situation: kept across cycles in ``shared`` (a cycle
+        spent deciding leaves the situation as it was), with the program they were for."""
+        key = ("relaxed", self.situation)
+        hit = self.shared.get(key)
+        if hit is None or hit.task.program is not self.program:
+            hit = self.shared[key] = Relaxed(self)
+        return hit
 
     def _sub_bits(self, lit: Literal) -> list[int]:
         best: list[int] = []
