@@ -69,7 +69,7 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     else:
         first = dict(entry.starts).get(achieved[0], ())
         subgoals, start = [*achieved, entry.goal], [*first, *held]
-    start = list(dict.fromkeys(start))
+    start = list(dict.fromkeys([*start, *_static(task, entry, achieved)]))
     skill = generalise(task, literal(entry.goal), [condition(c) for c in start],
                        [literal(c) for c in subgoals])
     key = canonical(skill)
@@ -77,6 +77,28 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     if not duplicate:
         known[key] = f"learned {skill.head.pred}"
     return Learned(skill, f"; {comment}\n{skill_text(skill)}", tuple(start), duplicate)
+
+
+def _static(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
+    """The static conditions (``static``) of the starts of the skills that achieved the
+    subgoals after the first: they held when the new skill began, since nothing changes them,
+    and without them it would apply where a later step cannot (a truck to an airport of
+    another city, when its drive needs (in-city ?from ?city) (in-city ?to ?city))."""
+    starts = dict(entry.starts)
+    named = {x for c in (entry.goal, *achieved, *starts.get(achieved[0], ()))
+             for x in condition(c).args} if achieved else set()
+    return [c for a in achieved[1:] for c in starts.get(a, ())
+            if static(task, c) and named & set(condition(c).args)]
+
+
+def static(task: Task, text: str) -> bool:
+    """True for a positive literal whose predicate no skill achieves and no concept defines
+    by relations: only the world's percepts make it, and no action changes it."""
+    cond = condition(text)
+    if not isinstance(cond, Literal) or cond.negated:
+        return False
+    return not task.program.skills_for(cond.pred) and not any(
+        c.relations or c.tests for c in task.program.concepts.get(cond.pred, ()))
 
 
 def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) -> Skill:
