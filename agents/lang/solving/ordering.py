@@ -106,6 +106,8 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
         return
     ways = task.alternatives(goal, applicable=True)   # an executable skill is a way too,
     ways = sorted(ways, key=lambda w: not all(task.holds(c) for c in w.conditions))  # first
+    path = {str(g) for g in on_path} | {str(goal)}   # not a way back through the plan above
+    ways = [w for w in ways if not path & set(w.conditions)] or ways   # (put F down to clear it)
     if not ways:
         return
     here = str(goal)
