@@ -69,7 +69,8 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     else:
         first = dict(entry.starts).get(achieved[0], ())
         subgoals, start = [*achieved, entry.goal], [*first, *held]
-    start = list(dict.fromkeys(start))
+    start = list(dict.fromkeys([*start, *_static(task, entry, achieved),
+                                *_untouched(entry, achieved)]))
     skill = generalise(task, literal(entry.goal), [condition(c) for c in start],
                        [literal(c) for c in subgoals])
     key = canonical(skill)
@@ -77,6 +78,46 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     if not duplicate:
         known[key] = f"learned {skill.head.pred}"
     return Learned(skill, f"; {comment}\n{skill_text(skill)}", tuple(start), duplicate)
+
+
+def _static(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
+    """The static conditions (``static``) of the starts of the skills that achieved the
+    subgoals after the first: they held when the new skill began, since nothing changes them,
+    and without them it would apply where a later step cannot (a truck to an airport of
+    another city, when its drive needs (in-city ?from ?city) (in-city ?to ?city))."""
+    starts = dict(entry.starts)
+    named = {x for c in (entry.goal, *achieved, *starts.get(achieved[0], ()))
+             for x in condition(c).args} if achieved else set()
+    return [c for a in achieved[1:] for c in starts.get(a, ())
+            if static(task, c) and named & set(condition(c).args)]
+
+
+def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
+    """The start conditions of the skills that achieved the subgoals after the first that
+    name no object the subgoals before them, or their skills' starts, name: nothing the earlier
+    steps did touched them, so they held when the new skill began (seed 000's start, the first
+    step's start alone, would let the skill fly a plane to load a package that no truck can
+    bring to the airport; the package's place and its truck are part of the start)."""
+    starts = dict(entry.starts)
+    out: list[str] = []
+    touched: set = set()
+    for k, a in enumerate(achieved):
+        if k:
+            out += [c for c in starts.get(a, ()) if c not in achieved and
+                    isinstance(cond := condition(c), Literal) and not cond.negated and
+                    not touched & set(cond.args)]
+        touched |= {x for c in (a, *starts.get(a, ())) for x in condition(c).args}
+    return out
+
+
+def static(task: Task, text: str) -> bool:
+    """True for a positive literal whose predicate no skill achieves and no concept defines
+    by relations: only the world's percepts make it, and no action changes it."""
+    cond = condition(text)
+    if not isinstance(cond, Literal) or cond.negated:
+        return False
+    return not task.program.skills_for(cond.pred) and not any(
+        c.relations or c.tests for c in task.program.concepts.get(cond.pred, ()))
 
 
 def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) -> Skill:

@@ -50,6 +50,10 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
         return task.shared[key]
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
     plans = {h: needs(task, h) for h in unsat}
+    if current and current not in conds:   # a part of a conjunct's plan, done first: that
+        # conjunct's plan goes on (issue 31: not another's, which would move again what the
+        # first would have put in its place)
+        current = next((h for h in unsat if literal(current) in plans[h]), current)
     free, promote = [], []
     # achieving a conjunct that another undoes outright is left for after it (the movie is
     # rewound, which resets the counter, before the counter is reset); the one that undoes it
@@ -102,6 +106,8 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
         return
     ways = task.alternatives(goal, applicable=True)   # an executable skill is a way too,
     ways = sorted(ways, key=lambda w: not all(task.holds(c) for c in w.conditions))  # first
+    path = {str(g) for g in on_path} | {str(goal)}   # not a way back through the plan above
+    ways = [w for w in ways if not path & set(w.conditions)] or ways   # (put F down to clear it)
     if not ways:
         return
     here = str(goal)

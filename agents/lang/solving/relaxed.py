@@ -52,11 +52,11 @@ class Relaxed:
         preds = {s.head.pred for s in self.skills} | {
             c.pred for s in self.skills for c in s.start}
         level: dict[Fact, int] = {}
-        reached: dict[str, set[tuple]] = defaultdict(set)
+        reached = _Index()
         for p in preds:
             for args in store.get(p):
                 level[(p, *args)] = 0
-                reached[p].add(tuple(args))
+                reached.add(p, tuple(args))
         domains = {}
         for s in self.skills:
             for pat in s.percepts:
@@ -65,7 +65,10 @@ class Relaxed:
                         b[pat.id] for b in islice(solve([pat], {}, pidx, store), MAX_DOMAIN)
                         if pat.id in b}
         doms = [_domains(s, domains) for s in self.skills]
-        delta = {p: set(v) for p, v in reached.items()}
+        delta = _Index()
+        for p, facts in reached.facts.items():
+            for args in facts:
+                delta.add(p, args)
         for k in range(1, MAX_LEVELS + 1):
             new: dict[Fact, int] = {}
             work = 0
@@ -83,11 +86,11 @@ class Relaxed:
                             new[head] = k
             if not new:
                 break
-            delta = defaultdict(set)
+            delta = _Index()
             for f in new:
                 level[f] = k
-                reached[f[0]].add(f[1:])
-                delta[f[0]].add(f[1:])
+                reached.add(f[0], f[1:])
+                delta.add(f[0], f[1:])
         return level
 
 
@@ -105,6 +108,38 @@ def _eligible(program: Program):
             return None
         out.append(_Skill(s.head, s.percepts, tuple(c for c in conds if not c.negated)))
     return out or None
+
+
+class _Index:
+    """Facts by predicate (``get``), and by predicate, argument position and value, so that
+    a join looks only at the facts that agree with what is bound already (``matching``): the
+    same bindings as a scan of every fact of the predicate, found without the scan."""
+
+    __slots__ = ("facts", "by")
+
+    def __init__(self) -> None:
+        self.facts: dict[str, set[tuple]] = defaultdict(set)
+        self.by: dict[tuple, set[tuple]] = defaultdict(set)
+
+    def add(self, pred: str, args: tuple) -> None:
+        if args in self.facts[pred]:
+            return
+        self.facts[pred].add(args)
+        for i, v in enumerate(args):
+            self.by[(pred, i, v)].add(args)
+
+    def get(self, pred: str, default=None):
+        return self.facts.get(pred, default)
+
+    def matching(self, lit: Literal, b: dict):
+        """The facts of ``lit``'s predicate whose argument at the first position ``lit`` (under
+        ``b``) fixes has that value; all of them when it fixes none."""
+        for i, a in enumerate(lit.args):
+            if not isinstance(a, Var):
+                return self.by.get((lit.pred, i, a), ())
+            if a in b:
+                return self.by.get((lit.pred, i, b[a]), ())
+        return self.facts.get(lit.pred, ())
 
 
 class _Skill:
@@ -149,7 +184,7 @@ def _join(lits: tuple[Literal, ...], sources: list, b: dict, dom: dict):
         yield b
         return
     lit = lits[0]
-    for args in sources[0].get(lit.pred, ()):
+    for args in sources[0].matching(lit, b):
         if len(args) != len(lit.args):
             continue
         nb = dict(b)

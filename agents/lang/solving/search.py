@@ -104,17 +104,19 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
                                                      if task.holds(c)))
         if ready and all(task.holds(c) for c in entry.decision.conditions):
             return entry, None, ""
-        child, why = _push(task, entry, entry.decision, on_stack)
+        child, why = _push(task, entry, entry.decision, on_stack, not ready)
         if child is not None:
             return replace(entry, pushes=entry.pushes + (child.goal,)), child, ""
         entry = entry.give_up(why)
 
 
-def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
-          ) -> tuple[StackEntry | None, str]:
+def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
+          ordered: bool = True) -> tuple[StackEntry | None, str]:
     """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none;
     for a conjunction, or the concept definition of the goal itself (at the bottom of the
-    stack), the first of its agenda (agents/lang/solving/ordering.py)."""
+    stack), the first of its agenda (agents/lang/solving/ordering.py); with ``ordered`` (the
+    solver; not the planner's back-chainer, whose control rules order its goals), also for a
+    skill's start."""
     if way.kind == CONJUNCTION or (way.kind == CONCEPT and len(on_stack) == 1):
         # a conjunct given up after a circle is not pushed again; a user's goal written as a
         # concept is ordered as its relations written as (and ...) would be (issue 31)
@@ -124,6 +126,14 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str]
                                             if not task.holds(c)), None)
     else:
         cond = next((c for c in way.conditions if not task.holds(c)), None)
+        if ordered and way.kind == SKILL and cond is not None and \
+                sum(not task.holds(c) for c in way.conditions) > 1:
+            # a skill's start as a conjunction: achieve first what achieving another of its
+            # conditions would not undo (the package into the truck before the truck to
+            # where it is unloaded), as the agenda orders conjuncts
+            items = [c for c in agenda(task, way.conditions) if c in way.conditions and
+                     c not in on_stack and entry.pushes.count(c) < MAX_PUSHES]
+            cond = items[0] if items else cond
     if cond is None:
         return None, ("its start holds but it is still not executable" if way.kind == SKILL
                       else "every subconcept holds but the goal does not")

@@ -29,11 +29,11 @@ from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, one_step
-from .relaxed import InferredEffects
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry
 from .task import Task, literal
+from .typed import TypedEffects
 
 
 class MeansEndsSolver:
@@ -51,6 +51,7 @@ class MeansEndsSolver:
         """This cycle's Task for goal ``goal_id`` (the goals before it protected)."""
         if self._walk is not walk:
             self._walk, self._tasks = walk, {}
+            self._effects(finder).see(walk.pidx, walk.store)
         task = self._tasks.get(goal_id)
         if task is None or task.program is not finder.program:
             task = Task(finder.program, walk.pidx, walk.store, tuple(walk.protected),
@@ -64,7 +65,7 @@ class MeansEndsSolver:
         program is the same."""
         hit = self._shared.get(("effects", id(finder.program)))
         if hit is None or hit.program is not finder.program:
-            hit = InferredEffects(finder.program, finder.effects)
+            hit = TypedEffects(finder.program, finder.effects)
             self._shared[("effects", id(finder.program))] = hit
         return hit
 

@@ -24,12 +24,12 @@ from ..reading.goals import parse_goal
 from ..reading.parser import Parser, Parts
 from .bindings import BindingChoice, cheapest
 from .filters import WayFilters
+from .ranking import Ranking
 from .relaxed import Relaxed
 from .state import CONCEPT, CONJUNCTION, SKILL, Alternative
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
 MAX_PER_CLAUSE = 3     # alternatives kept per clause (the best-ranked bindings)
-_INF = float("inf")
 
 
 @lru_cache(maxsize=4096)
@@ -92,7 +92,7 @@ def _writable(value: object) -> bool:
         forms[0].value == value
 
 
-class Task(WayFilters, BindingChoice):
+class Task(WayFilters, BindingChoice, Ranking):
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
     percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
     that hold and come before the one solved for, which no way chained off may undo (seed 000,
@@ -252,10 +252,10 @@ class Task(WayFilters, BindingChoice):
                     and self.admits(s, b, goal) and not self.undoes_skill(s, b) and \
                     (applicable or not self._circular(goal, ground)):
                 ready = applicable and all(self.holds(c) for c in ground)
-                ranked.append(((not ready, *self.rank(ground)), binding_key(b), b, ground))
+                ranked.append(((not ready,), binding_key(b), b, ground))
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b))
-                for _, _, b, ground in self._best(ranked, not applicable)]
+                for _, _, b, ground in self._best(self._ranks(ranked), not applicable)]
 
     def admits(self, s: Skill, b: dict, goal: Literal) -> bool:
         """Whether skill ``s`` under bindings ``b`` may be chained on for ``goal`` at all
@@ -278,9 +278,10 @@ class Task(WayFilters, BindingChoice):
                 if ground is not None and self._chainable(ground) and \
                         self._possible(ground, f"concept {clause.head.pred}#{clause.index} "
                                                f"{show(clause.head, b)}"):
-                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+                    ranked.append(((), binding_key(b), b, ground))
             if ranked:
                 break
+        ranked = self._ranks(ranked)
         name = f"{clause.head.pred}#{clause.index}"
         open_ = len(ranked) > 1 and any(set(r[2]) - set(b0) for r in ranked)
         return [Alternative(CONCEPT, clause.index, name, btuple(b), tuple(map(str, ground)),
@@ -295,9 +296,10 @@ class Task(WayFilters, BindingChoice):
                 ground = _ground(list(conj.conds), b)
                 if ground is not None and self._chainable(ground) and \
                         not self.impossible(ground):   # (most bindings are: not noted)
-                    ranked.append((self.rank(ground), binding_key(b), b, ground))
+                    ranked.append(((), binding_key(b), b, ground))
             if ranked:
                 break
+        ranked = self._ranks(ranked)
         return [Alternative(CONJUNCTION, 0, "and", btuple(b), tuple(map(str, ground)),
                             "the conjunction")
                 for _, _, b, ground in (cheapest(self, ranked) if len(ranked) > 1 else
@@ -321,50 +323,6 @@ class Task(WayFilters, BindingChoice):
         ranked.sort(key=lambda r: (r[0], r[1]))
         best = ranked[:self.per_clause]
         return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
-
-    def rank(self, conds: list) -> tuple:
-        """Sort key of a way to chain off (smaller first): the most conditions holding,
-        counting for a false literal the subconcepts of its definition that hold; ties go to
-        the one whose earlier conditions hold (seed 000, Figure 3: (unstack B A), since
-        (on B A) holds, before (unstack C A))."""
-        bits: list[int] = []
-        for c in conds:
-            ok = self.holds(c)
-            bits.append(int(ok))
-            if not ok and isinstance(c, Literal) and not c.negated:
-                bits += self._sub_bits(c)
-        base = (-sum(bits), tuple(-x for x in bits))
-        h = self.estimate(conds)
-        return base if h is None else (h, *base)
-
-    def estimate(self, conds: list) -> float | None:
-        """The relaxed distance of ``conds`` (agents/lang/solving/relaxed.py): the sum of the
-        levels of the positive ground literals that do not hold, infinite when one never
-        can; None where the program admits no such estimate."""
-        if self._relaxed is None:
-            self._relaxed = Relaxed(self)
-        if not self._relaxed.available:
-            return None
-        total = 0
-        for c in conds:
-            if isinstance(c, Literal) and not c.negated and not c.variables() and \
-                    not self.holds(c):
-                k = self._relaxed.level(c)
-                if k is None:
-                    return _INF
-                total += k
-        return total
-
-    def _sub_bits(self, lit: Literal) -> list[int]:
-        best: list[int] = []
-        for clause in self.program.concepts.get(lit.pred, ()):
-            b = unify_head(clause.head, lit, {})
-            if b is None or not clause.relations:
-                continue
-            bits = [int(self.holds(condition(show(r, b)))) for r in clause.relations]
-            if (sum(bits), bits) > (sum(best), best):
-                best = bits
-        return best
 
     def _candidates(self, percepts: list, conds: list, b0: dict, anything: bool = False
                     ) -> list[dict]:
