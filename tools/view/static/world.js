@@ -113,14 +113,20 @@ function drawDriving(canvas, map, frame, focus, named) {
     ctx.fill();
     if (named.has(p.id)) ring(ctx, x, y, r + 4, p.id);
   }
-  for (const c of w.cars || []) {
+  for (const car of w.cars || []) {
+    // a car off the drawn map (a record made before the world kept cars in the city) is
+    // drawn at the map's edge, marked "off map" (issue 31, N18)
+    const cx = Math.min(Math.max(car.x, -m), map.size[0] + m);
+    const cy = Math.min(Math.max(car.y, -m), map.size[1] + m);
+    const off = cx !== car.x || cy !== car.y, c = { ...car, x: cx, y: cy };
     const colour = c.kind !== "agent" ? COLOURS.traffic : c.id === focus ? COLOURS.me : COLOURS.agent;
     box(ctx, v, c.x, c.y, c.heading, 4.6, 2.0, colour, 11);
     if (named.has(c.id) && c.id !== focus) ring(ctx, ...v.p(c.x, c.y), 10, c.id);
     if (c.kind === "agent") {
       ctx.fillStyle = "#111";
       const [x, y] = v.p(c.x, c.y);
-      ctx.fillText(`${c.id} ${c.speed.toFixed(1)} m/s`, x, y - 8);
+      const where = off ? ` (off map at ${car.x.toFixed(0)}, ${car.y.toFixed(0)})` : "";
+      ctx.fillText(`${c.id} ${c.speed.toFixed(1)} m/s${where}`, x, y - 8);
     }
   }
 }
