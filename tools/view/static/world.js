@@ -187,5 +187,20 @@ function drawWorld(canvas, img, map, frame, focus, named = new Set()) {
   canvas.hidden = !draw;
   img.hidden = !!draw;
   if (draw) draw(canvas, map, frame, focus, named);
-  else if (frame) img.src = `/api/render.png?cycle=${frame.cycle}&agent=${encodeURIComponent(focus || "")}`;
+  else if (frame) {
+    img.onload = () => {
+      img.dataset.shown = new URL(img.currentSrc).searchParams.get("cycle");
+      markPicture(img, document.body.dataset.cycle);
+    };
+    img.src = `/api/render.png?cycle=${frame.cycle}&agent=${encodeURIComponent(focus || "")}`;
+  }
+}
+
+function markPicture(img, cycle) {
+  // the domain's own picture is fetched at most once a second and takes a while to draw:
+  // until the one of the cycle shown has loaded, the older one is dimmed and says whose
+  // cycle it is, never passing for the cycle in the header (issue 31, N17)
+  const stale = !img.hidden && img.dataset.shown !== undefined && img.dataset.shown !== String(cycle);
+  img.classList.toggle("stale", stale);
+  img.title = stale ? `picture of cycle ${img.dataset.shown}; cycle ${cycle} is being drawn` : "";
 }
