@@ -102,6 +102,7 @@ FIELDS: dict[str, dict[str, Spec]] = {
     "WorldState": {"snapshot": MAP, "outcomes": All(Plain(16), MapOf(ListOf(OUTCOME))),
                    "events": Plain(16, top=list), "memory": All(Plain(MEMORY_DEPTH + 1),
                                                                  MapOf(MAP))},
+    "WorldStatic": {"domain": NAME, "static": Plain(16)},
     "Percepts": {"agent": NAME, "percepts": Rows(), "outcomes": Tuple(OUTCOMES),
                  "memory": MEMORY},
     "Beliefs": {"agent": NAME, "beliefs": Rows()},

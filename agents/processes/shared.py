@@ -32,12 +32,13 @@ from bus.rows import shared_rows
 STAGE_NAMES = ("perception", "inference", "executive")
 
 
-def make_chain(run: str, spec: dict, log: logging.Logger):
+def make_chain(run: str, spec: dict, log: logging.Logger,
+               static: perception.StaticSource | None = None):
     """step(cycle, {world state, goal list}) of one agent: its three steps in turn, their
     outputs and their ProcessStats (compute time of each step [ms])."""
     agent = spec["agent"]
     names = [f"{agent}.{s}" for s in STAGE_NAMES]
-    perceive = perception.make_step(run, agent, names[0])
+    perceive = perception.make_step(run, agent, names[0], static)
     infer = inference.make_step(run, agent, names[1], spec["program"], log)
     decide = executive.make_step(run, agent, names[2], spec["program"], log,
                                  spec.get("state"), spec.get("learned"),
@@ -72,7 +73,8 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     from bus.node import open_node
     from bus.stage import Stage
 
-    chains = [make_chain(run, spec, log) for spec in specs]
+    static = perception.StaticSource(run, name)   # one ask for every agent here
+    chains = [make_chain(run, spec, log, static) for spec in specs]
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         return [out for chain in chains for out in chain(cycle, inputs)]
@@ -83,6 +85,7 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     stages = [f"{a}.{s}" for a in agents for s in STAGE_NAMES]
     stop = stop_on_signals()
     with open_node(cfg, run, name) as node:
+        static.bind(node)
         stage = Stage(node, name, inputs, step, outputs=outputs, stages=stages)
         stage.start()
         log.info("announced %s; inputs %s", stages, inputs)

@@ -27,9 +27,9 @@ NOTES = "Object.fromEntries([...document.querySelectorAll('#agents tr.goal')]" \
 STATE = "document.getElementById('state').dataset.state"
 LOADED = "typeof view === 'object' && !!(view.frame && view.map && view.status)"
 PICTURE = "(() => { const i = document.getElementById('render'); return {header: " \
-          "document.body.dataset.cycle, shown: i.complete ? new URL(i.currentSrc)" \
-          ".searchParams.get('cycle') : i.dataset.shown, stale: i.classList.contains('stale')," \
-          " title: i.title}; })()"
+          "document.body.dataset.cycle, shown: i.dataset.shown ?? (i.complete ? new URL(" \
+          "i.currentSrc).searchParams.get('cycle') : null), stale: i.classList.contains(" \
+          "'stale'), title: i.title}; })()"
 WIDTH, HEIGHT = 1400, 1000
 
 
