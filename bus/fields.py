@@ -112,6 +112,7 @@ FIELDS: dict[str, dict[str, Spec]] = {
                    "events": Plain(16, top=list), "memory": All(Plain(MEMORY_DEPTH + 1),
                                                                  MapOf(MAP)),
                    "control": Plain(8)},
+    "WorldStatic": {"domain": NAME, "static": Plain(16)},
     "Percepts": {"agent": NAME, "percepts": Rows(), "outcomes": Tuple(OUTCOMES),
                  "memory": MEMORY, "program": All(Plain(4), PROGRAM)},
     "Beliefs": {"agent": NAME, "beliefs": Rows(), "swap": All(Plain(4), SWAP)},

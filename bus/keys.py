@@ -93,6 +93,12 @@ def world_state(run: str) -> str:
     return f"{run_root(run)}/world/state"
 
 
+def world_static(run: str) -> str:
+    """The world's static configuration, published once at its start and served as a query
+    (bus/messages.py WorldStatic; world/static.py)."""
+    return f"{run_root(run)}/world/static"
+
+
 def world_events(run: str) -> str:
     """Events into the world: published (applied at the next cycle), or asked as a query
     (applied at the next cycle and answered with the world's EventReply)."""
@@ -182,6 +188,8 @@ def kind_of_key(key: str) -> frozenset[str]:
     tail = tuple(parts[2:])
     if tail == ("world", "state"):
         return frozenset({"WorldState"})
+    if tail == ("world", "static"):
+        return frozenset({"WorldStatic"})
     if tail in (("world", "events"), ("world", "control")):
         return frozenset({"WorldEvent", "EventReply"})
     if len(tail) == 2 and tail[0] == "stats":

@@ -59,6 +59,20 @@ class WorldState:
 
 
 @dataclass(frozen=True)
+class WorldStatic:
+    """A world's static configuration (the snapshot keys its domain names in static_keys:
+    driving's and the office's config, the blocks table), sent once per run on
+    teleo/<run>/world/static rather than in every world state, and served there as a query
+    (any WorldStatic asks; the reply is the world's): a reader puts it back into each world
+    state (world/static.py). ``static`` is {} when there is none and in a request."""
+
+    KIND: ClassVar[str] = "WorldStatic"
+    env: Envelope
+    domain: str
+    static: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class Percepts:
     """An agent's percepts of a cycle, with the outcomes of its actions of the previous
     cycle as the world reported them (SCS failure semantics and ROGUE's monitoring use them)."""
@@ -173,12 +187,12 @@ class EventReply:
 
 
 Message = (
-    WorldState | Percepts | Beliefs | Actions | Intention | GoalRequest | GoalReply | GoalList
-    | ProcessStats | WorldEvent | EventReply
+    WorldState | WorldStatic | Percepts | Beliefs | Actions | Intention | GoalRequest
+    | GoalReply | GoalList | ProcessStats | WorldEvent | EventReply
 )
 
 MESSAGE_TYPES: dict[str, type] = {
     cls.KIND: cls
-    for cls in (WorldState, Percepts, Beliefs, Actions, Intention, GoalRequest, GoalReply,
-                GoalList, ProcessStats, WorldEvent, EventReply)
+    for cls in (WorldState, WorldStatic, Percepts, Beliefs, Actions, Intention, GoalRequest,
+                GoalReply, GoalList, ProcessStats, WorldEvent, EventReply)
 }

@@ -126,8 +126,9 @@ def grants(run: str, user: str) -> dict[str, list[str]]:
     own = {"put": [keys.stats(run, user)], "sub": [], "serve": [], "ask": [],
            "token": [keys.proc(run, user)]}
     if user == "world":
-        own["put"] += [keys.world_state(run)]
+        own["put"] += [keys.world_state(run), keys.world_static(run)]
         own["sub"] += [keys.all_actions(run), keys.all_stats(run), keys.world_events(run)]
+        own["serve"] += [keys.world_static(run)]   # its static part, asked (issue 35)
         own["serve"] += [keys.world_events(run)]   # `teleo event` asks for a verdict
         own["serve"] += [keys.world_control(run)]  # `teleo pause`, `step-run`, `resume`
     elif user == "goals":
@@ -138,7 +139,7 @@ def grants(run: str, user: str) -> dict[str, list[str]]:
         own["put"] = [keys.world_events(run), keys.stats(run, keys.RECORDER)]
         own["sub"] += [keys.run_all(run)]
         own["ask"] += [f"{root}/agent/*/goals", keys.world_events(run)]
-        own["ask"] += [keys.world_control(run)]
+        own["ask"] += [keys.world_control(run), keys.world_static(run)]
         own["token"] = [keys.proc(run, "record"), keys.proc(run, keys.RECORDER)]
     elif user == LAUNCH:
         own["put"] = []
@@ -146,6 +147,8 @@ def grants(run: str, user: str) -> dict[str, list[str]]:
         agent, _, stage = user.rpartition(".")
         own["put"] += _stage_outputs(run, agent, stage)
         own["sub"] += _stage_inputs(run, agent, stage)
+        if stage == "perception":   # the world's static part (issue 35)
+            own["ask"] += [keys.world_static(run)]
     return own
 
 

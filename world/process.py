@@ -32,6 +32,7 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from dataclasses import replace
 from functools import partial
 from itertools import count
 from pathlib import Path
@@ -45,7 +46,7 @@ from bus.collector import Collector
 from bus.config import BusConfig, bus_options
 from bus.cycle import CycleMode
 from bus.errors import BusError, NotReady, PaceLost
-from bus.messages import EventReply, WorldEvent, WorldState
+from bus.messages import EventReply, WorldEvent, WorldState, WorldStatic
 from bus.node import Inbox, open_node
 from bus.pause import Gate
 from bus.pending import PendingQueries, serve_later
@@ -56,6 +57,7 @@ from world.errors import CannotRecord
 from world.recorder import CHECKPOINT_EVERY, Recorder
 from world.resume import CannotResume, Resumed, can_checkpoint, resume
 from world.run_scenario import Scenario, ScenarioError, load_scenario
+from world.static import split
 
 log = logging.getLogger("teleo.world")
 READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
@@ -172,6 +174,9 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         changes = Changes(scenario)  # `teleo program load`, `teleo set` (world/changes.py)
         gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event, changes.check)
+        static = WorldStatic(node.envelope(), domain.name, split(sim.snapshot_dict())[0])
+        node.serve(keys.world_static(run),   # sent once a run, and asked (issue 35)
+                   lambda _asked: replace(static, env=node.envelope()))
         node.announce()
         outcomes, memory = begun.outcomes, begun.memory
         pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
@@ -180,6 +185,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe}
                              | ({keys.RECORDER} if recorded else set()), ready_timeout)
+            node.publish(keys.world_static(run), static)   # for the record and the view
             rec.event("ready", cycle=first)
             log.info("all stages ready; running cycles %d to %s, %s", first,
                      cycles - 1 if cycles else "unlimited", mode)
@@ -201,8 +207,8 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                 snap = sim.snapshot_dict()
                 over = episode_over(sim)  # this state is the episode's last: the last cycle
                 world_ms = (time.perf_counter() - w0) * 1e3
-                state = WorldState(node.envelope(t), snap, outcomes, injected, dict(memory),
-                                   control)
+                state = WorldState(node.envelope(t), split(snap)[1], outcomes, injected,
+                                   dict(memory), control)
                 report = clock.run_cycle(t, state, meanwhile=partial(_off_the_path, rec,
                                                                       collector, t, snap))
                 changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}

@@ -33,14 +33,18 @@ def stop_on_signals() -> threading.Event:
 
 
 def run_stage(cfg: Any, run: str, process: str, inputs: list[str], outputs: list[str],
-              step: Any, log: logging.Logger) -> None:
+              step: Any, log: logging.Logger, bind: Callable[[Any], None] | None = None
+              ) -> None:
     """Open the node, run a bus Stage (join inputs by cycle, call `step`, publish outputs and
-    stats, re-emit on a repeated cycle) until SIGINT/SIGTERM, then close the node."""
+    stats, re-emit on a repeated cycle) until SIGINT/SIGTERM, then close the node. ``bind``
+    is given the node first (for what the step asks of other processes)."""
     from bus.node import open_node
     from bus.stage import Stage
 
     stop = stop_on_signals()
     with open_node(cfg, run, process) as node:
+        if bind is not None:
+            bind(node)
         stage = Stage(node, process, inputs, step, outputs=outputs)
         stage.start()
         log.info("announced; inputs %s", inputs)

@@ -11,28 +11,66 @@ agents/processes/swapping.py).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
 from bus.config import BusConfig
-from bus.errors import Refused
+from bus.errors import BusError, Refused
 from bus.fields import MEMORY, PROGRAM
-from bus.messages import Envelope, Message, Percepts
+from bus.messages import Envelope, Message, Percepts, WorldStatic
 from bus.schema import FieldError, brief
 
+STATIC_ASK_S = 5.0   # [s] the wait for the world's answer about its static configuration
 
-def make_step(run: str, agent: str, process: str):
+
+class StaticSource:
+    """The run's static world configuration (world/static.py), asked of the world once, at
+    the first world state that lacks it, and kept (it is the same for the whole run)."""
+
+    def __init__(self, run: str, process: str) -> None:
+        self.run, self.process = run, process
+        self.node: Any = None
+        self.static: dict[str, Any] | None = None
+
+    def bind(self, node: Any) -> None:
+        """The node to ask through (run_stage calls it once the node is open)."""
+        self.node = node
+
+    def __call__(self, domain: str) -> dict[str, Any]:
+        if self.static is None and self.node is not None:
+            key = keys.world_static(self.run)
+            try:
+                reply = self.node.query(key, WorldStatic(self.node.envelope(), domain),
+                                        STATIC_ASK_S)
+            except BusError as exc:
+                raise Refused(f"{key}: the world did not give its static part: {exc}") \
+                    from None
+            if isinstance(reply, WorldStatic):
+                self.static = dict(reply.static)
+        return self.static or {}
+
+
+def make_step(run: str, agent: str, process: str,
+              static: Callable[[str], dict[str, Any]] | None = None):
     """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]. A snapshot that is
     not its world's (checked against the world's snapshot schema) is refused (bus Refused:
-    the cycle waits for a good copy), naming the field."""
+    the cycle waits for a good copy), naming the field. A snapshot without its static part
+    gets it from ``static`` (a StaticSource; issue 35) before the world perceives it."""
     from world.domain import domain_of
     from world.errors import WorldError
+    from world.static import has_static, whole
 
     state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         state = inputs[state_key]
         try:
-            seen = domain_of(state.snapshot).perceive(state.snapshot, agent)
+            snap = state.snapshot
+            if static is not None and not has_static(snap):
+                snap = whole(static(str(snap.get("domain", ""))), snap)
+            seen = domain_of(snap).perceive(snap, agent)
         except WorldError as exc:
             raise Refused(f"{state_key}: the world state of cycle {cycle} from "
                           f"{brief(state.env.sender)}: {exc}") from None
@@ -61,8 +99,9 @@ def main(run: str, agent: str, bus_config: BusConfig) -> None:
     """Perception of one agent."""
     process = f"{agent}.perception"
     log = setup_logging(process)
+    static = StaticSource(run, process)
     run_stage(bus_config, run, process, [keys.world_state(run)], [keys.percepts(run, agent)],
-              make_step(run, agent, process), log)
+              make_step(run, agent, process, static), log, bind=static.bind)
 
 
 if __name__ == "__main__":

@@ -41,11 +41,12 @@ class Chain:
     all they need) and `step` (the executive too, once the goal list is there), handing each
     step's message to the next in memory."""
 
-    def __init__(self, run: str, spec: dict, log: logging.Logger) -> None:
+    def __init__(self, run: str, spec: dict, log: logging.Logger,
+                 static: perception.StaticSource | None = None) -> None:
         agent = spec["agent"]
         self.names = [f"{agent}.{s}" for s in STAGE_NAMES]
         self.run, self.agent = run, agent
-        self.perceive = perception.make_step(run, agent, self.names[0])
+        self.perceive = perception.make_step(run, agent, self.names[0], static)
         self.infer = inference.make_step(run, agent, self.names[1], spec["program"], log,
                                           spec.get("swapped"))
         self.decide = executive.make_step(run, agent, self.names[2], spec["program"], log,
@@ -102,7 +103,8 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     from bus.node import open_node
     from bus.stage import Stage
 
-    chains = [Chain(run, spec, log) for spec in specs]
+    static = perception.StaticSource(run, name)   # one ask for every agent here
+    chains = [Chain(run, spec, log, static) for spec in specs]
     state_key = keys.world_state(run)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
@@ -124,6 +126,7 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     stages = [f"{a}.{s}" for a in agents for s in STAGE_NAMES]
     stop = stop_on_signals()
     with open_node(cfg, run, name) as node:
+        static.bind(node)
         stage = Stage(node, name, inputs, step, outputs=outputs, stages=stages, early=early)
         stage.start()
         log.info("announced %s; inputs %s", stages, inputs)

@@ -23,6 +23,7 @@ from bus.messages import (
     ProcessStats,
     WorldEvent,
     WorldState,
+    WorldStatic,
 )
 
 text = st.text(max_size=12)
@@ -47,6 +48,8 @@ MESSAGES = {
     "world_state": (lambda: keys.world_state("r"), st.builds(
         WorldState, envs, maps, st.dictionaries(text, outcomes, max_size=3),
         st.lists(maps, max_size=3))),
+    "world_static": (lambda: keys.world_static("r"), st.builds(  # issue 35
+        WorldStatic, envs, st.sampled_from(["driving", "blocks", "office"]), maps)),
     "percepts": (lambda: keys.percepts("r", "ME"), st.builds(Percepts, envs, text, rows)),
     "beliefs": (lambda: keys.beliefs("r", "ME"), st.builds(Beliefs, envs, text, rows)),
     "actions": (lambda: keys.actions("r", "ME"), st.builds(Actions, envs, text, rows)),

@@ -36,7 +36,9 @@ def test_goals_that_ended_before_the_view_opened_are_in_its_table(cfg, run_id, t
             decision = {"cycle": 60, "goals": [], "goal_id": "", "path": [], "resources": [],
                         "actions": [], "parallel": [], "why": []}
             end = time.monotonic() + 60
-            while time.monotonic() < end and "ME" not in model.goals.changes:
+            # until both goals are told (not merely "ME" in the changes: the feed thread
+            # makes that entry, then fills it)
+            while time.monotonic() < end and len(model.goals.changes.get("ME", {})) < 2:
                 node.publish(keys.world_state(run_id),
                              WorldState(node.envelope(60), snap, {}, [], {}))
                 node.publish(keys.intention(run_id, "ME"),

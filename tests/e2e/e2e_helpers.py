@@ -14,6 +14,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = Path(__file__).resolve().parent / "fixtures"
 HOLD_SPEED = FIXTURES / "hold_speed.toml"
+PARKED = FIXTURES / "parked.toml"   # a standing car whose one law always holds
 TELEO = (str(Path(sys.executable).parent / "teleo"),)
 
 

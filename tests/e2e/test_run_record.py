@@ -88,7 +88,10 @@ def test_the_mcap_holds_every_key_of_every_cycle_from_cycle_0(demo):
                 keys.actions(run, "ME"), keys.intention(run, "ME"), keys.goal_list(run, "ME"),
                 keys.stats(run, "goals"), keys.stats(run, "world")} | {
         keys.stats(run, f"ME.{s}") for s in ("perception", "inference", "executive")}
-    assert set(counts) == expected
+    assert set(counts) == expected | {keys.world_static(run)}
+    # the world's static part outside the cycles (issue 35): as put, and as the recorder
+    # asked for it
+    assert set(cycles.pop(keys.world_static(run))) == {-1}
     # every key of every cycle from cycle 0; a cycle twice only where the world re-sent its
     # state after waiting a second (a stall, in the summary: a loaded machine's cold start)
     resent = {stall["cycle"] for stall in summary["stalls"]}
@@ -107,6 +110,9 @@ def test_log_time_is_the_world_time_of_the_cycle(demo):
             record = json.loads(message.data)
             if record["kind"] == "WorldState":
                 times[record["env"]["cycle"]] = round(record["snapshot"]["time"] * 1e9)
+            if record["env"]["cycle"] < 0:   # the world's static part: the time it came at
+                assert message.log_time in {0, *times.values()}, channel.topic
+                continue
             assert message.log_time == times[record["env"]["cycle"]], channel.topic
 
 
@@ -202,7 +208,8 @@ def test_a_replayed_record_shows_in_the_view(demo, tmp_path):
             played = teleo("replay", str(path), "--connect", router.endpoint, "--speed", "0",
                            "--wait", "30", timeout=300)
             assert played.returncode == 0, played.stderr
-            sent = len(RunRecord(path).records())   # 11 a cycle, and any re-sent (a stall)
+            sent = sum(r["kind"] != "WorldStatic"   # 11 a cycle, and any re-sent (a stall);
+                       for _, r in RunRecord(path).records())   # the static part is asked
             assert sent >= CYCLES * 11
             assert f"replayed {sent} messages ({CYCLES} cycles) of run {summary['run']} to " \
                    f"router {router.endpoint}" in played.stderr

@@ -100,9 +100,13 @@ def test_simulate_records_figure_3_with_the_launch_channels(tmp_path, monkeypatc
         counts[key] = counts.get(key, 0) + 1
     stages = [keys.stats(run, p) for p in ("world", "ME.perception", "ME.inference",
                                            "ME.executive")]
-    assert counts == {k: out["cycles"] for k in (
+    assert counts == {keys.world_static(run): 1, **{k: out["cycles"] for k in (
         keys.world_state(run), keys.percepts(run, "ME"), keys.beliefs(run, "ME"),
-        keys.intention(run, "ME"), keys.actions(run, "ME"), keys.goal_list(run, "ME"), *stages)}
+        keys.intention(run, "ME"), keys.actions(run, "ME"), keys.goal_list(run, "ME"), *stages)}}
+    # issue 35: the table is held once; each world state read back has it again
+    raw = [r for _, r in RunRecord(rec.path, raw=True).kinds("state")]
+    assert raw and not any("table" in r["snapshot"] for r in raw)
+    assert all("table" in r["snapshot"] for _, r in rec.kinds("state"))
     # Figure 3: unstack C from B, put C down, unstack B from A (cycles that act)
     actions = [r["actions"] for _, r in sorted(rec.by_cycle("actions", "ME").items())]
     assert [a for a in actions if a] == [[["*unstack", "C", "B"]], [["*putdown", "C", "T"]],

@@ -35,8 +35,8 @@ def test_gas_accelerates_along_the_lane() -> None:
 
 
 def test_drag_settles_the_speed_under_constant_throttle() -> None:
-    sim = quiet_world(EAST)
-    drive(sim, 45.0, ME=[["*gas", 30]])      # leaves the city eastward: physics goes on
+    sim = quiet_world(EAST, ns_streets=tuple("ABCDEFGHI"))   # 800 m east: it stays inside
+    drive(sim, 45.0, ME=[["*gas", 30]])
     v1 = sim.snapshot().car("ME").speed
     drive(sim, 5.0)
     v2 = sim.snapshot().car("ME").speed
@@ -204,3 +204,30 @@ def test_a_malformed_snapshot_dict_is_an_error_naming_the_problem() -> None:
         WorldSnapshot.from_dict(d)
     with pytest.raises(WorldError, match="cycle"):
         WorldSnapshot.from_dict({"time": 0.0})
+
+
+def test_a_car_that_drives_off_the_map_stops_at_the_citys_edge() -> None:
+    """Issue 31 (N18): a car driven west past street A went on to x = -98.7, off the view's
+    map, its percepts still placing it on the street it left. It stops CITY_EDGE past the
+    outer streets, where the view still draws it, with one `city_edge` event; its percepts
+    say where it is; it can drive back into the city."""
+    from world.driving.simulation import CITY_EDGE
+
+    sim = quiet_world(CarStart("ME", "FIRST", "B", "A", along=80.0))   # heading west
+    edges = []
+    sim.apply_actions("ME", [["*gas", 100]])
+    for _ in range(round(30.0 / sim.config.dt)):
+        sim.step()
+        edges += [e for e in sim.snapshot().events if e["kind"] == "city_edge"]
+    me = sim.snapshot().car("ME")
+    assert (me.x, me.speed) == (-CITY_EDGE, 0.0)
+    assert abs(me.y - 2.0) < 1e-6                                     # in its lane's line
+    assert [(e["agent"], e["x"]) for e in edges] == [("ME", -CITY_EDGE)]   # once, not per cycle
+    (self_percept,) = [p for p in perceive(sim.snapshot(), "ME") if p[0] == "self"]
+    fields = dict(zip(self_percept[2::2], self_percept[3::2], strict=True))
+    assert self_percept[1] == "ME" and (fields["x"], fields["street"]) == (-CITY_EDGE, "A")
+    drive(sim, 5.0)
+    assert sim.snapshot().car("ME").x == -CITY_EDGE                    # it stays there
+    drive(sim, 20.0, ME=[["*steer", 40], ["*gas", 100]])     # turns, slowly, and drives away
+    me = sim.snapshot().car("ME")
+    assert me.x > -CITY_EDGE and me.speed > 5.0

@@ -36,6 +36,7 @@ from tools.records.run_record import GoalHistory
 from world.domain import episode_over, get_domain
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
+from world.static import split, whole
 from world.trace import trace_line
 
 log = logging.getLogger(__name__)
@@ -169,6 +170,7 @@ def _cycles(scenario: Scenario, cycles: int | None, seed: int | None, keep_every
     goals = _Goals(scenario, engines)
     outcomes: dict[str, list[dict[str, Any]]] = {}
     memory: dict[str, dict[str, Any]] = {}   # each agent's last memory, as the world keeps it
+    static: dict[str, Any] | None = None     # the world's static part, told once
     total = scenario.run.cycles if cycles is None else cycles
     start = time.monotonic()
     for cycle in progress_cycles(total, show_progress):
@@ -182,13 +184,19 @@ def _cycles(scenario: Scenario, cycles: int | None, seed: int | None, keep_every
         over = episode_over(sim)   # this state is the episode's last: the run's last cycle
         if keep_every and cycle % keep_every == 0:
             run.snapshots.append(snap)
+        told, moving = split(snap)   # as a launch's world: the static part once (issue 35)
+        if static is None:
+            static = told
+            if recorder is not None:
+                recorder.static(domain.name, static)
         if recorder is not None:
-            recorder.world(cycle, snap, {a: outcomes.get(a, []) for a in agents}, injected,
+            recorder.world(cycle, moving, {a: outcomes.get(a, []) for a in agents}, injected,
                            memory)
+        seen_snap = whole(static, moving)   # what a perception process puts together
         world_ms = (time.perf_counter() - w0) * 1e3
         record: dict[str, Any] = {"cycle": cycle}
         for a in agents:
-            seen, states[a] = _agent_cycle(engines[a], states[a], domain, snap, a,
+            seen, states[a] = _agent_cycle(engines[a], states[a], domain, seen_snap, a,
                                            outcomes.get(a, []))
             actions = [act.to_list() for act in seen.decision.actions]
             w0 = time.perf_counter()

@@ -27,6 +27,7 @@ from bus.messages import (
     Percepts,
     ProcessStats,
     WorldState,
+    WorldStatic,
 )
 from bus.node import FifoInbox, open_node
 from bus.record import message_record, to_record
@@ -40,6 +41,7 @@ FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken 
 FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
 PROGRESS_S = 0.05  # [s] a launch's recorder says the cycle it has reached at most this often
 AGAIN_S = 0.5      # [s] and says it again this often when it has not moved
+STATIC_ASK_S = 2.0  # [s] the wait for the world's answer about its static part (issue 35)
 
 
 class BusRecorder:
@@ -172,12 +174,27 @@ class BusRecorder:
                 if self._announce or self._node is not None:
                     node.announce()
                 self._ready.set()
+                self._ask_static(node)
                 self._pump(inbox)
                 self.cpu_s = time.thread_time()  # this thread's CPU time [s]
         except Exception as exc:  # reported by start()/the launcher, never a silent stop
             self.error = exc
             self._ready.set()
             log.error("recorder of run %s stopped: %s", self.run, exc)
+
+    def _ask_static(self, node: Any) -> None:
+        """The world's static part (issue 35), asked once: a recorder that starts after the
+        world published it (`teleo record` of a running launch) still holds it; a launch's
+        recorder, there before the world, records what the world publishes."""
+        key = keys.world_static(self.run)
+        try:
+            told = node.query(key, WorldStatic(node.envelope(), "driving"), STATIC_ASK_S)
+        except BusError as exc:
+            log.info("recorder: no answer on %s yet (%s): the world will publish it", key, exc)
+            return
+        if isinstance(told, WorldStatic):
+            self.writer.add(key, message_record(key, told))
+            self.received += 1   # an answer is a message received too
 
     def _pump(self, inbox: FifoInbox, most: int = 4096) -> None:
         """Take what waits every LOOK_S and write it (one wake-up for a batch, not one per
@@ -318,6 +335,11 @@ class SimRecorder:
 
     def _env(self, cycle: int, sender: str) -> Envelope:
         return Envelope.now(self.run, cycle, sender)
+
+    def static(self, domain: str, static: dict[str, Any]) -> None:
+        """The world's static part, once (a launch's world publishes it at its start)."""
+        self._add(keys.world_static(self.run),
+                  WorldStatic(self._env(-1, "world"), domain, dict(static)))
 
     def world(self, cycle: int, snap: dict[str, Any], outcomes: dict[str, list],
               injected: list[dict[str, Any]], memory: dict[str, dict] | None = None) -> None:

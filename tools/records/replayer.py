@@ -16,8 +16,10 @@ import os
 
 import click
 
+from bus.codec import decode
 from bus.config import LOOPBACK_ANY, BusConfig
 from bus.errors import BusError
+from bus.keys import world_static
 from bus.lifeline import ENV_PARENT
 from bus.node import open_node
 from bus.record import from_record
@@ -42,8 +44,10 @@ def replay_record(file: str, rate: float, start: int | None, loop: bool, paused:
         raise click.UsageError("--paused needs a terminal on stdin (its keys resume the "
                                "play: space); without one, leave --paused out")
     try:
-        rec = RunRecord(locate(file))
+        rec = RunRecord(locate(file), raw=True)   # the world states as they were sent
         items = [(key, from_record(key, r), r["env"]["cycle"]) for key, r in rec.records()]
+        static = next(((k, p) for k, p, _ in items if k == world_static(rec.run)), None)
+        items = [item for item in items if item[0] != world_static(rec.run)]   # not a cycle
         groups = cycles_of(items, _log_times(rec))
     except (RecordError, BusError) as exc:
         raise click.ClickException(str(exc)) from exc
@@ -60,7 +64,7 @@ def replay_record(file: str, rate: float, start: int | None, loop: bool, paused:
     try:
         _play(rec.run, groups, target, router, Player(
             groups, lambda k, p: None, rate, stop, keys or NoKeys(stop), _say, paused, loop),
-              keys, wait_s)
+              keys, wait_s, static)
     finally:
         if router is not None:
             router.stop()
@@ -82,8 +86,10 @@ def _bus(bus_config: BusConfig, onto: str | None) -> tuple[Target, RouterProcess
 
 
 def _play(run: str, groups: list, target: Target, router: RouterProcess | None,
-          player: Player, keys, wait_s: float) -> None:
-    """Say where, wait for subscribers, play, say how many were sent."""
+          player: Player, keys, wait_s: float, static: tuple[str, bytes] | None = None
+          ) -> None:
+    """Say where, wait for subscribers, play, say how many were sent; answer queries for the
+    world's static part as the world did (`static`: its key and payload; issue 35)."""
     if target.run == run:
         raise click.ClickException(
             f"run {run} is the running launch itself: its own record would be played into "
@@ -98,14 +104,19 @@ def _play(run: str, groups: list, target: Target, router: RouterProcess | None,
                         f"--connect {hub} --run {run}`")
     if keys is not None and not player.paused:
         _say("keys: space pauses and plays, s or the right arrow plays one cycle when paused")
-    key_names = {key for g in groups for key, _ in g.items}
+    key_names = {key for g in groups for key, _ in g.items} | ({static[0]} if static else set())
     try:
         with open_node(target.cfg, run, f"replay-{os.getpid()}") as node:
             node.declare(key_names)
+            if static is not None:   # and asked of it as of the world (no cycle to play)
+                told = decode(*static)
+                node.serve(static[0], lambda _asked: told)
             if node.wait_matching(key_names, wait_s):
                 _say(f"nobody subscribed to some keys of run {run} within {wait_s:g} s; "
                      "replaying anyway")
             player.send = node.put_raw
+            if static is not None:   # as the world: put once, before the first cycle
+                node.put_raw(*static)
             with keys if keys is not None else contextlib.nullcontext():
                 sent = player.play()
             if router is not None and not player.stop.is_set():

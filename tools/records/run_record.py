@@ -33,6 +33,7 @@ from bus import keys
 from bus.record import json_schema
 from tools.records.goal_history import GoalHistory
 from tools.runs import runfile
+from world.static import has_static
 
 log = logging.getLogger(__name__)
 RECORD_FILE = "record.mcap"
@@ -103,7 +104,7 @@ class RecordWriter:
                 del self._times[min(self._times)]
         elif cycle in self._times:
             self._write(key, record, self._times[cycle], sent)
-        elif cycle < 0:
+        elif cycle < 0:   # outside the cycle (the world's static part: world/static)
             self._write(key, record, self._latest(), sent)
         else:
             self._pending[cycle].append((key, record, sent))
@@ -185,10 +186,13 @@ def locate(run: str | Path) -> Path:
 
 
 class RunRecord:
-    """A run record opened for reading (the whole file is read once, lazily)."""
+    """A run record opened for reading (the whole file is read once, lazily). Its world
+    states are whole: the world's static part, held once (world/static), is put back into
+    each (issue 35); ``raw``: as they were sent (a replay sends them so again)."""
 
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: Path, raw: bool = False) -> None:
         self.path = Path(path)
+        self.raw = raw
         self._records: list[tuple[str, dict[str, Any]]] | None = None
         self.meta: dict[str, dict[str, str]] = {}
         self.truncated = False  # never closed (its writer was killed): read as far as it goes
@@ -225,6 +229,8 @@ class RunRecord:
                     raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
             except OSError as exc:
                 raise RecordError(f"{self.path}: cannot read its messages ({exc})") from exc
+            if not self.raw:
+                _put_static_back(self._records)
         return self._records
 
     def kinds(self, kind: str) -> Iterator[tuple[str, dict[str, Any]]]:
@@ -273,6 +279,19 @@ class RunRecord:
         for _, rec in self.kinds_of(("intention", "goal-list")):
             history.feed(rec, states.__contains__)
         return dict(history.changes)
+
+
+def _put_static_back(records: list[tuple[str, dict[str, Any]]]) -> None:
+    """Each world state of a record with the world's static part it holds once (the first
+    WorldStatic; world/static.py); a state that has it (an older record) is left as it is."""
+    told = next((rec.get("static") for _, rec in records if rec.get("kind") == "WorldStatic"),
+                None)
+    if not isinstance(told, dict) or not told:
+        return
+    for _, rec in records:
+        snap = rec.get("snapshot") if rec.get("kind") == "WorldState" else None
+        if isinstance(snap, dict) and not has_static(snap):
+            rec["snapshot"] = {**told, **snap}
 
 
 def _stats_kind(key: str) -> str:

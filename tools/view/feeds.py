@@ -11,10 +11,10 @@ from pathlib import Path
 
 from bus import keys
 from bus.errors import BusError, CodecError
-from bus.messages import GoalRequest
+from bus.messages import GoalRequest, WorldStatic
 from bus.node import open_node
 from bus.presence import Presence
-from bus.record import to_record
+from bus.record import message_record, to_record
 from tools.records.run_record import RUN_META, RunRecord
 from tools.runs import runfile
 from tools.runs.target import Target
@@ -79,6 +79,7 @@ class BusFeed:
                 presence = Presence(node.session, run) if run else None
                 while not self.stop.is_set():
                     self._pump(inbox, 0.2)
+                    self._static(node)
                     self._past_goals(node)
                     if presence is None and self.model.run:
                         presence = Presence(node.session, self.model.run)
@@ -88,6 +89,21 @@ class BusFeed:
             self.error = str(exc)
             self.ready.set()
             log.error("view feed stopped: %s", exc)
+
+    def _static(self, node) -> None:
+        """Ask the world for its static part when a world state came without it (the view
+        opened after the world published it: issue 35); a replay answers as the world."""
+        run = self.model.run
+        if run is None or not self.model.wants_static:
+            return
+        try:
+            told = node.query(keys.world_static(run), WorldStatic(node.envelope(), "driving"),
+                              ASK_TIMEOUT_S)
+        except BusError as exc:
+            log.info("view: the world did not give its static part: %s", exc)
+            return
+        if isinstance(told, WorldStatic):
+            self.model.add(keys.world_static(run), message_record(keys.world_static(run), told))
 
     def _past_goals(self, node) -> None:
         """Ask the goal-entry process once for each agent's goals (retried a few times: a

@@ -31,6 +31,7 @@ from tools.records.tree import Node, decision_tree, to_json
 from tools.view import scene
 from tools.view.beliefs import listing, why
 from tools.view.programs import Programs
+from world.static import has_static
 
 log = logging.getLogger(__name__)
 MALFORMED = (LangError, TypeError, ValueError, KeyError, IndexError, AttributeError)
@@ -79,6 +80,8 @@ class ViewModel:
         self.cycles: OrderedDict[int, _Cycle] = OrderedDict()
         self.map: dict[str, Any] | None = None
         self._static: dict[str, Any] = {}
+        self.told: dict[str, Any] | None = None   # the world's static part (world/static)
+        self.wants_static = False   # a world state came without it: the feed asks for it
         self.trails: dict[str, list[tuple[int, float, float]]] = {}
         self.goals = GoalHistory()
         self.keys: dict[str, _Key] = {}
@@ -110,6 +113,8 @@ class ViewModel:
         kind, cycle = record["kind"], record["env"]["cycle"]
         if kind == "WorldState":
             self._world(cycle, record["snapshot"])
+        elif kind == "WorldStatic":
+            self.told, self.wants_static = dict(record.get("static") or {}), False
         elif kind == "ProcessStats":
             self.stats[record["process"]] = {"compute_ms": record["compute_ms"],
                                              "late": record["late"], "cycle": cycle}
@@ -135,6 +140,11 @@ class ViewModel:
                 slot["percepts"] = orjson.dumps([record.get("percepts", []), model])
 
     def _world(self, cycle: int, snapshot: dict[str, Any]) -> None:
+        if not has_static(snapshot):   # sent once a run (issue 35): until known, not shown
+            if self.told is None:
+                self.wants_static = True
+                return
+            snapshot = {**self.told, **snapshot}
         static, moving = scene.split(snapshot)
         if static != self._static or self.map is None:
             self._static, self.map = static, scene.map_of(snapshot)

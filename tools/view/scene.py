@@ -28,11 +28,10 @@ def _domain(snapshot: dict[str, Any]) -> Any:
 
 def split(snapshot: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
     """(static part, moving part) of a snapshot dict: the static part is the keys its Domain
-    names in ``static_keys`` (the same for a whole run)."""
-    spec = _domain(snapshot)
-    keys = spec.static_keys if spec is not None else ()
-    return ({k: snapshot[k] for k in keys if k in snapshot},
-            {k: v for k, v in snapshot.items() if k not in keys})
+    names in ``static_keys`` (the same for a whole run; world/static.py)."""
+    from world.static import split as split_static
+
+    return split_static(snapshot)
 
 
 def map_of(snapshot: dict[str, Any]) -> dict[str, Any]:

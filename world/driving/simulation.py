@@ -48,6 +48,7 @@ AGENT_BIT, TRAFFIC_BIT, PED_BIT = 1, 2, 4
 CT_AGENT, CT_TRAFFIC, CT_PED = 1, 2, 3
 PED_RADIUS = 0.35   # [m]
 HIT_SPEED = 0.3    # [m/s] a car slower than this does not hit a walker who bumps into it
+CITY_EDGE = 20.0   # [m] beyond the outer streets: an agent's car stops there (issue 31, N18)
 
 
 @dataclass
@@ -58,6 +59,7 @@ class AgentCar:
     controls: Controls = field(default_factory=Controls)
     law: LawState = field(default_factory=LawState)
     counters: dict[str, int] = field(default_factory=lambda: dict.fromkeys(COUNTERS, 0))
+    at_edge: bool = False     # held at the city's edge (Simulation._keep_in_city)
 
 
 def _body(space: pymunk.Space, shape_of: Any, ctype: int, category: int, mask: int,
@@ -212,6 +214,7 @@ class Simulation(BaseWorld):
         self.cycle += 1
         self._handle_contacts()
         for car in self.cars.values():
+            self._keep_in_city(car)
             self._check_laws(car)
         self._events, self._incoming = self._incoming, []
 
@@ -241,6 +244,24 @@ class Simulation(BaseWorld):
                 for t in self.traffic:
                     if t.id in other:
                         t.speed = 0.0
+
+    def _keep_in_city(self, car: AgentCar) -> None:
+        """Stop a car that drives more than CITY_EDGE [m] past the outer streets at that
+        distance, with a `city_edge` event once per stay: off the map, the view lost it and
+        its percepts placed it on a street 100 m away (issue 31, N18). It may turn there and
+        drive back into the city."""
+        width, height = self.city.size
+        x, y = car.body.position
+        kept = (min(max(x, -CITY_EDGE), width + CITY_EDGE),
+                min(max(y, -CITY_EDGE), height + CITY_EDGE))
+        was, car.at_edge = car.at_edge, kept != (x, y)
+        if not car.at_edge:
+            return
+        car.body.position, car.body.velocity, car.speed = kept, (0.0, 0.0), 0.0
+        self.space.reindex_shapes_for_body(car.body)
+        if not was:
+            self._incoming.append({"kind": "city_edge", "agent": car.id, "cycle": self.cycle,
+                                   "x": float(kept[0]), "y": float(kept[1])})
 
     def _count(self, agent: str, counter: str, kind: str, **extra: Any) -> None:
         car = self.cars[agent]

@@ -32,6 +32,7 @@ async function show(frame) {
   if (!names.includes(view.agent)) view.agent = names[0] || null;
   drawTabs(names);
   drawMap();
+  markPicture($("render"), frame.cycle);
   const a = view.agent && frame.agents[view.agent];
   $("panel").replaceChildren(a ? agentPanel(view.agent, a) : el("p", "hint", "no agent yet"));
   if (!view.live) $("slider").value = frame.cycle;

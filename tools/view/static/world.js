@@ -113,14 +113,20 @@ function drawDriving(canvas, map, frame, focus, named) {
     ctx.fill();
     if (named.has(p.id)) ring(ctx, x, y, r + 4, p.id);
   }
-  for (const c of w.cars || []) {
+  for (const car of w.cars || []) {
+    // a car off the drawn map (a record made before the world kept cars in the city) is
+    // drawn at the map's edge, marked "off map" (issue 31, N18)
+    const cx = Math.min(Math.max(car.x, -m), map.size[0] + m);
+    const cy = Math.min(Math.max(car.y, -m), map.size[1] + m);
+    const off = cx !== car.x || cy !== car.y, c = { ...car, x: cx, y: cy };
     const colour = c.kind !== "agent" ? COLOURS.traffic : c.id === focus ? COLOURS.me : COLOURS.agent;
     box(ctx, v, c.x, c.y, c.heading, 4.6, 2.0, colour, 11);
     if (named.has(c.id) && c.id !== focus) ring(ctx, ...v.p(c.x, c.y), 10, c.id);
     if (c.kind === "agent") {
       ctx.fillStyle = "#111";
       const [x, y] = v.p(c.x, c.y);
-      ctx.fillText(`${c.id} ${c.speed.toFixed(1)} m/s`, x, y - 8);
+      const where = off ? ` (off map at ${car.x.toFixed(0)}, ${car.y.toFixed(0)})` : "";
+      ctx.fillText(`${c.id} ${c.speed.toFixed(1)} m/s${where}`, x, y - 8);
     }
   }
 }
@@ -181,5 +187,20 @@ function drawWorld(canvas, img, map, frame, focus, named = new Set()) {
   canvas.hidden = !draw;
   img.hidden = !!draw;
   if (draw) draw(canvas, map, frame, focus, named);
-  else if (frame) img.src = `/api/render.png?cycle=${frame.cycle}&agent=${encodeURIComponent(focus || "")}`;
+  else if (frame) {
+    img.onload = () => {
+      img.dataset.shown = new URL(img.currentSrc).searchParams.get("cycle");
+      markPicture(img, document.body.dataset.cycle);
+    };
+    img.src = `/api/render.png?cycle=${frame.cycle}&agent=${encodeURIComponent(focus || "")}`;
+  }
+}
+
+function markPicture(img, cycle) {
+  // the domain's own picture is fetched at most once a second and takes a while to draw:
+  // until the one of the cycle shown has loaded, the older one is dimmed and says whose
+  // cycle it is, never passing for the cycle in the header (issue 31, N17)
+  const stale = !img.hidden && img.dataset.shown !== undefined && img.dataset.shown !== String(cycle);
+  img.classList.toggle("stale", stale);
+  img.title = stale ? `picture of cycle ${img.dataset.shown}; cycle ${cycle} is being drawn` : "";
 }
