@@ -185,7 +185,8 @@ def test_a_run_that_has_ended_is_drawn_from_its_records_senders(tmp_path, monkey
     published = {(e["from"], e["to"]) for e in g["edges"] if e["label"] == "publishes"}
     assert published == {(f"proc:{p}", f"key:teleo/{run}/{k}") for p, k in (
         ("world", "world/state"), ("world", "world/static"),
-        ("ME.perception", "agent/ME/percepts"), ("ME.inference", "agent/ME/beliefs"), ("ME.executive", "agent/ME/actions"),
+        ("ME.perception", "agent/ME/percepts"), ("ME.inference", "agent/ME/beliefs"),
+        ("ME.executive", "agent/ME/actions"),
         ("ME.executive", "agent/ME/intention"), ("goals", "agent/ME/goal-list"))}
     assert (f"key:teleo/{run}/agent/ME/actions", "proc:world") in _edges(g)
     nothing = CliRunner().invoke(cli, ["graph", "--run", "no-such-run", "--json"])

@@ -101,13 +101,18 @@ class Effects:
                 continue
             for made in (s.head, *(x for x in s.effects if not x.negated)):
                 b = _bind(Literal(made.pred, made.args), e)
-                if b is None:
+                if b is None or not self._admits(s, b):
                     continue
                 found = {_canonical(_pattern(x, b)) for x in (s.head, *s.effects)
                          if x.negated == negated}
                 common = sorted(found, key=str) if common is None else \
                     [x for x in common if x in found]
         return common or []
+
+    def _admits(self, s, b: dict) -> bool:
+        """Whether skill ``s`` can take the objects ``b`` binds (every skill here; the
+        solver's typed model narrows it, agents/lang/solving/typed.py)."""
+        return True
 
     def _clauses(self, pred: str) -> tuple[ConceptClause, ...]:
         return self.program.concepts.get(pred, ())

@@ -17,12 +17,12 @@ from itertools import islice
 from ..core.matcher import solve
 from ..core.program import Program
 from ..core.terms import Literal, PerceptPattern, Var
-from ..execution.effects import Effects, _bind, _canonical, _pattern
+from ..execution.effects import Effects
 from .relaxed import MAX_DOMAIN, InferredEffects
 
 
 class TypedEffects(InferredEffects):
-    """InferredEffects whose ``_stated_with`` leaves out the skills whose typed :percepts do
+    """InferredEffects whose ``_admits`` leaves out the skills whose typed :percepts do
     not admit the objects of the literal; ``see`` gives it the situation's objects."""
 
     def __init__(self, program: Program, base: Effects) -> None:
@@ -56,7 +56,7 @@ class TypedEffects(InferredEffects):
                 self._inferred[e] = hit
         return hit
 
-    def _typed(self, s, b: dict) -> bool:
+    def _admits(self, s, b: dict) -> bool:
         """Whether skill ``s``'s typed :percepts admit the objects ``b`` binds."""
         for p in s.percepts:
             ids = self.admits.get((p.type, p.attrs))
@@ -64,18 +64,3 @@ class TypedEffects(InferredEffects):
                     b[p.id] not in ids:
                 return False
         return True
-
-    def _stated_with(self, e: Literal, negated: bool) -> list[Literal]:
-        common: list[Literal] | None = None
-        for s in self.program.skills:
-            if s.kind != "primitive" or not s.effects:
-                continue
-            for made in (s.head, *(x for x in s.effects if not x.negated)):
-                b = _bind(Literal(made.pred, made.args), e)
-                if b is None or not self._typed(s, b):
-                    continue
-                found = {_canonical(_pattern(x, b)) for x in (s.head, *s.effects)
-                         if x.negated == negated}
-                common = sorted(found, key=str) if common is None else \
-                    [x for x in common if x in found]
-        return common or []
