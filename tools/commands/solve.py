@@ -84,6 +84,9 @@ class _Watch:
     def goal_list(self, *args: Any) -> None:
         pass
 
+    def static(self, *args: Any) -> None:
+        pass
+
     def world(self, *args: Any) -> None:
         pass
 

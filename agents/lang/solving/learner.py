@@ -87,9 +87,9 @@ def _static(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
     another city, when its drive needs (in-city ?from ?city) (in-city ?to ?city))."""
     starts = dict(entry.starts)
     named = {x for c in (entry.goal, *achieved, *starts.get(achieved[0], ()))
-             for x in condition(c).args} if achieved else set()
+             for x in _objects(c)} if achieved else set()
     return [c for a in achieved[1:] for c in starts.get(a, ())
-            if static(task, c) and named & set(condition(c).args)]
+            if static(task, c) and named & _objects(c)]
 
 
 def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
@@ -106,8 +106,15 @@ def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
             out += [c for c in starts.get(a, ()) if c not in achieved and
                     isinstance(cond := condition(c), Literal) and not cond.negated and
                     not touched & set(cond.args)]
-        touched |= {x for c in (a, *starts.get(a, ())) for x in condition(c).args}
+        touched |= {x for c in (a, *starts.get(a, ())) for x in _objects(c)}
     return out
+
+
+def _objects(text: str) -> set:
+    """The objects a start condition's literal names; none for a test such as ``(not (= ?a
+    ?b))``, which reads objects but changes and ties none."""
+    cond = condition(text)
+    return set(cond.args) if isinstance(cond, Literal) else set()
 
 
 def static(task: Task, text: str) -> bool:
