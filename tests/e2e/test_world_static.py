@@ -60,7 +60,7 @@ def test_the_static_part_is_sent_once_and_every_reader_has_it(teleo, tmp_path):
         stopped = interrupt(launcher)
     assert stopped == 0, teleo.launch_output()
     # a view following a replay of that record asks the replay, which answers as the world
-    replay = subprocess.Popen([*TELEO, "replay", str(path), "--rate", "5"], cwd=ROOT,
+    replay = subprocess.Popen([*TELEO, "replay", str(path), "--rate", "5", "--loop"], cwd=ROOT,
                               env=teleo.env, stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, text=True)
     try:

@@ -44,7 +44,8 @@ def test_record_info_counts_each_channel_and_says_the_goals_end(figure3):
               for c in s["channels"]}
     assert counts["world/state"] == (["WorldState"], 8)
     assert counts["agent/ME/actions"] == (["Actions"], 8)
-    assert s["messages"] == sum(n for _, n in counts.values()) == 80
+    assert counts["world/static"] == (["WorldStatic"], 1)   # the static part, once a run
+    assert s["messages"] == sum(n for _, n in counts.values()) == 81
     assert s["world_s"] == 3.5   # 7 steps of the blocks world's 0.5 s
     (goal,) = s["goals"]["ME"]
     assert (goal["id"], goal["goal"], goal["status"], goal["cycle"]) == \
@@ -52,7 +53,7 @@ def test_record_info_counts_each_channel_and_says_the_goals_end(figure3):
     text = _teleo(run_dir, "record", "info", run)   # by run id, as a person reads it
     assert text.returncode == 0, text.stderr
     assert "cycles:   0-7 (world states held: 0-7)" in text.stdout
-    assert "messages: 80 on 10 channels" in text.stdout
+    assert "messages: 81 on 11 channels" in text.stdout
     assert f"  8  WorldState     teleo/{run}/world/state" in text.stdout
     assert "  ME g1 (clear A): satisfied at cycle 4" in text.stdout
 
@@ -64,7 +65,7 @@ def test_a_record_cut_short_is_read_as_far_as_it_goes(figure3, tmp_path):
     done = _teleo(run_dir, "record", "info", str(cut), "--json")
     assert done.returncode == 0, done.stderr
     s = json.loads(done.stdout)
-    assert s["truncated"] and 0 < s["messages"] <= 80
+    assert s["truncated"] and 0 < s["messages"] <= 81
 
 
 def test_bad_input_is_one_line(figure3, tmp_path):

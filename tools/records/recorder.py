@@ -41,7 +41,9 @@ FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken 
 FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
 PROGRESS_S = 0.05  # [s] a launch's recorder says the cycle it has reached at most this often
 AGAIN_S = 0.5      # [s] and says it again this often when it has not moved
-STATIC_ASK_S = 2.0  # [s] the wait for the world's answer about its static part (issue 35)
+STATIC_ASK_S = 0.5  # [s] the wait for the world's answer about its static part (issue 35):
+                    # a live world answers in milliseconds; where none serves it (a launch's
+                    # recorder starts before its world) the record is not held back long
 
 
 class BusRecorder:
@@ -250,7 +252,7 @@ class BusRecorder:
             try:
                 record = to_record(key, payload)
             except (CodecError, AttributeError, KeyError, TypeError, ValueError,
-                    RecursionError) as exc:
+                    RecursionError, ArithmeticError) as exc:
                 # a hostile payload never ends the recorder (the run's record with it)
                 self.received += 1
                 self.dropped += 1
@@ -268,7 +270,7 @@ class BusRecorder:
             try:
                 self.writer.add(key, record)
             except (CodecError, AttributeError, KeyError, TypeError, ValueError,
-                    RecursionError) as exc:
+                    RecursionError, ArithmeticError) as exc:
                 self.dropped += 1
                 log.warning("not recorded: %s", exc)
                 continue
