@@ -110,7 +110,8 @@ def _count(img: Image.Image, rgb: tuple) -> int:
 def test_labels_never_overlap_and_stay_in_the_picture() -> None:
     from PIL import ImageDraw
 
-    from world.driving.render import _font, _Labels
+    from world.driving.placing import Labels as _Labels
+    from world.driving.placing import font_of as _font
 
     img = Image.new("RGB", (300, 200))
     labels = _Labels(ImageDraw.Draw(img), 300, 200)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from PIL import Image, ImageDraw, ImageFont
+from PIL import Image, ImageDraw
 
 from world.driving.city import (
     BUILDING_FAR,
@@ -27,6 +27,7 @@ from world.driving.city import (
     Segment,
     build_city,
 )
+from world.driving.placing import Bounds, Labels, View, font_of
 from world.driving.snapshot import CarState, WorldSnapshot
 from world.driving.vehicle import CAR_LENGTH, CAR_WIDTH
 from world.errors import WorldError
@@ -44,63 +45,6 @@ COLORS = {"grass": (196, 222, 180), "walk": (214, 214, 208), "road": (78, 80, 86
 ARROW_EVERY = 40.0              # [m] of path between direction arrows
 
 
-Bounds = tuple[float, float, float, float]   # x0, y0, x1, y1 [m]
-
-
-class _View:
-    """World [m] to pixel transform (y up in the world, down in the image)."""
-
-    def __init__(self, bounds: Bounds, px_per_m: float) -> None:
-        self.s = px_per_m
-        x0, y0, x1, y1 = bounds
-        self.x0, self.y1 = x0, y1
-        self.size = (int((x1 - x0) * px_per_m), int((y1 - y0) * px_per_m))
-
-    def __call__(self, x: float, y: float) -> tuple[float, float]:
-        return (x - self.x0) * self.s, (self.y1 - y) * self.s
-
-
-class _Labels:
-    """Places text so that no two labels overlap: each label tries spots around its anchor
-    (below, above, right, left and the diagonals, on rings further and further out) and takes
-    the first free one inside the picture; one with no free spot at all (a crowd) is drawn at
-    its first choice."""
-
-    def __init__(self, draw: ImageDraw.ImageDraw, width: int, height: int) -> None:
-        self.draw, self.width, self.height = draw, width, height
-        self.taken: list[tuple[float, float, float, float]] = []
-
-    def reserve(self, box: tuple[float, float, float, float]) -> None:
-        self.taken.append(box)
-
-    def _free(self, box: tuple[float, float, float, float]) -> bool:
-        x0, y0, x1, y1 = box
-        if x0 < 0 or y0 < 0 or x1 > self.width or y1 > self.height:
-            return False
-        return all(x1 <= a or x0 >= c or y1 <= b or y0 >= d for a, b, c, d in self.taken)
-
-    def place(self, x: float, y: float, text: str, gap: float, **style) -> None:
-        """Draw ``text`` near pixel (x, y), ``gap`` [px] away, where it overlaps nothing."""
-        boxes = []
-        for dx, dy, anchor in _SPOTS:
-            at = (x + dx * gap, y + dy * gap)
-            box = self.draw.textbbox(at, text, anchor=anchor, font=style["font"],
-                                     stroke_width=style.get("stroke_width", 0))
-            boxes.append((at, anchor, box))
-            if self._free(box):
-                break
-        else:
-            at, anchor, box = boxes[0]
-        self.reserve(box)
-        self.draw.text(at, text, anchor=anchor, **style)
-
-
-_DIRECTIONS = ((0, 1, "mt"), (0, -1, "mb"), (1, 0, "lm"), (-1, 0, "rm"),
-               (1, 1, "lt"), (-1, 1, "rt"), (1, -1, "lb"), (-1, -1, "rb"))
-_SPOTS = tuple((dx * r, dy * r, anchor) for r in (1.0, 2.5, 4.5, 7.0, 10.0)
-               for dx, dy, anchor in _DIRECTIONS)
-
-
 def scene_bounds(snaps: list[WorldSnapshot]) -> Bounds:
     """The area to draw [m]: the city with a margin, grown to hold every agent car that has
     left it (so a car that drives off the map stays in the picture)."""
@@ -114,17 +58,13 @@ def scene_bounds(snaps: list[WorldSnapshot]) -> Bounds:
     return x0, y0, x1, y1
 
 
-def _font(size: int) -> ImageFont.ImageFont:
-    return ImageFont.load_default(size=size)
-
-
-def _strip(draw: ImageDraw.ImageDraw, v: _View, seg: Segment, a0: float, a1: float,
+def _strip(draw: ImageDraw.ImageDraw, v: View, seg: Segment, a0: float, a1: float,
            l0: float, l1: float, fill: tuple) -> None:
     pts = [seg.point(a0, l0), seg.point(a1, l0), seg.point(a1, l1), seg.point(a0, l1)]
     draw.polygon([v(*p) for p in pts], fill=fill)
 
 
-def _line(draw: ImageDraw.ImageDraw, v: _View, seg: Segment, lat: float, fill: tuple,
+def _line(draw: ImageDraw.ImageDraw, v: View, seg: Segment, lat: float, fill: tuple,
           width: int, dash: float = 0.0) -> None:
     a, end = ROAD_HALF, seg.length - ROAD_HALF
     step = dash or end - a
@@ -134,7 +74,7 @@ def _line(draw: ImageDraw.ImageDraw, v: _View, seg: Segment, lat: float, fill: t
         a = b + (step if dash else 0.0)
 
 
-def _streets(draw: ImageDraw.ImageDraw, v: _View, city: City, labels: _Labels) -> None:
+def _streets(draw: ImageDraw.ImageDraw, v: View, city: City, labels: Labels) -> None:
     for seg in city.segments:
         _strip(draw, v, seg, -SIDEWALK_OUTER, seg.length + SIDEWALK_OUTER, -SIDEWALK_OUTER,
                SIDEWALK_OUTER, COLORS["walk"])
@@ -148,8 +88,8 @@ def _streets(draw: ImageDraw.ImageDraw, v: _View, city: City, labels: _Labels) -
             _line(draw, v, seg, lat, COLORS["white"], max(1, w // 2), dash=3.0)
         for lat in (ROAD_HALF, -ROAD_HALF):
             _line(draw, v, seg, lat, COLORS["curb"], w)
-    font = _font(max(9, round(3.2 * v.s)))
-    label = _font(max(9, round(2.8 * v.s)))
+    font = font_of(max(9, round(3.2 * v.s)))
+    label = font_of(max(9, round(2.8 * v.s)))
     for seg in city.segments:
         x, y = v(*seg.point(seg.length / 2, 0.0))
         text = f"{seg.street} {seg.id}"
@@ -162,8 +102,8 @@ def _streets(draw: ImageDraw.ImageDraw, v: _View, city: City, labels: _Labels) -
         draw.text((x, y), n.id, fill=(160, 160, 160), font=font, anchor="mm")
 
 
-def _buildings(draw: ImageDraw.ImageDraw, v: _View, city: City) -> None:
-    font = _font(max(9, round(4.0 * v.s)))
+def _buildings(draw: ImageDraw.ImageDraw, v: View, city: City) -> None:
+    font = font_of(max(9, round(4.0 * v.s)))
     for b in city.buildings:
         pts = [v(*c) for c in b.corners]
         draw.polygon(pts, fill=COLORS["building"], outline=COLORS["outline"])
@@ -179,8 +119,8 @@ def _box(x: float, y: float, heading: float, length: float, width: float) -> lis
                            (-length / 2, -width / 2), (-length / 2, width / 2))]
 
 
-def _car(draw: ImageDraw.ImageDraw, v: _View, car: CarState, fill: tuple,
-         labels: _Labels | None) -> None:
+def _car(draw: ImageDraw.ImageDraw, v: View, car: CarState, fill: tuple,
+         labels: Labels | None) -> None:
     draw.polygon([v(*p) for p in _box(car.x, car.y, car.heading, CAR_LENGTH, CAR_WIDTH)],
                  fill=fill, outline=(20, 20, 20))
     h = math.radians(car.heading)
@@ -188,19 +128,19 @@ def _car(draw: ImageDraw.ImageDraw, v: _View, car: CarState, fill: tuple,
     draw.line([v(car.x, car.y), v(*nose)], fill=(20, 20, 20), width=max(1, round(0.3 * v.s)))
     if labels is not None:
         x, y = v(car.x, car.y)
-        labels.place(x, y, car.id, 3.5 * v.s, fill=fill, font=_font(max(10, round(4 * v.s))),
+        labels.place(x, y, car.id, 3.5 * v.s, fill=fill, font=font_of(max(10, round(4 * v.s))),
                      stroke_width=2, stroke_fill=(255, 255, 255))
 
 
-def _dynamic(draw: ImageDraw.ImageDraw, v: _View, city: City, snap: WorldSnapshot,
-             agent: str | None, labels: _Labels) -> None:
+def _dynamic(draw: ImageDraw.ImageDraw, v: View, city: City, snap: WorldSnapshot,
+             agent: str | None, labels: Labels) -> None:
     for seg_id in snap.blocked:
         seg = city.segment(seg_id)
         a, b = v(*seg.point(seg.length * 0.4, 5.0)), v(*seg.point(seg.length * 0.6, -5.0))
         c, d = v(*seg.point(seg.length * 0.4, -5.0)), v(*seg.point(seg.length * 0.6, 5.0))
         draw.line([a, b], fill=COLORS["closed"], width=max(2, round(v.s)))
         draw.line([c, d], fill=COLORS["closed"], width=max(2, round(v.s)))
-    small = _font(max(9, round(3 * v.s)))
+    small = font_of(max(9, round(3 * v.s)))
     for p in snap.packages:
         x, y = v(*city.building(p.street, p.address).curb)
         r = 1.8 * v.s
@@ -231,7 +171,7 @@ def _dynamic(draw: ImageDraw.ImageDraw, v: _View, city: City, snap: WorldSnapsho
         draw.ellipse([x - rr, y - rr, x + rr, y + rr], outline=COLORS["range"], width=2)
 
 
-def _trail(draw: ImageDraw.ImageDraw, v: _View, trail: list[tuple[float, float]]) -> None:
+def _trail(draw: ImageDraw.ImageDraw, v: View, trail: list[tuple[float, float]]) -> None:
     """The path: a line, a ring where it starts, and an arrowhead every ARROW_EVERY metres
     pointing the way the car went."""
     color, width = COLORS["trail"], max(2, round(v.s / 2))
@@ -239,7 +179,7 @@ def _trail(draw: ImageDraw.ImageDraw, v: _View, trail: list[tuple[float, float]]
     sx, sy = v(*trail[0])
     r = max(5.0, 2.2 * v.s)
     draw.ellipse([sx - r, sy - r, sx + r, sy + r], outline=color, width=width, fill=(255, 255, 255))
-    draw.text((sx, sy), "S", fill=color, font=_font(max(9, round(1.6 * r))), anchor="mm")
+    draw.text((sx, sy), "S", fill=color, font=font_of(max(9, round(1.6 * r))), anchor="mm")
     run, size = 0.0, max(5.0, 2.5 * v.s)
     for (x0, y0), (x1, y1) in zip(trail, trail[1:], strict=False):
         step = math.hypot(x1 - x0, y1 - y0)
@@ -259,7 +199,7 @@ def _legend(img: Image.Image, snap: WorldSnapshot, agent: str | None) -> None:
     draw = ImageDraw.Draw(img)
     x0 = img.width - LEGEND_W
     draw.rectangle([x0, 0, img.width, img.height], fill=COLORS["legend"])
-    big, font = _font(16), _font(13)
+    big, font = font_of(16), font_of(13)
     lines = [(f"cycle {snap.cycle}   t = {snap.time:.1f} s", big),
              (f"limit {snap.config.speed_limit:g} m/s   dt {snap.config.dt:g} s", font)]
     if agent is not None:
@@ -308,10 +248,10 @@ def render_image(snap: WorldSnapshot, agent: str | None = None, px_per_m: float 
     if agent is not None and agent not in agents:
         raise WorldError(f"render: no agent car {agent!r} in cycle {snap.cycle}; cars: {agents}")
     city = build_city(snap.config)
-    v = _View(bounds or scene_bounds([snap]), px_per_m)
+    v = View(bounds or scene_bounds([snap]), px_per_m)
     img = Image.new("RGB", (v.size[0] + LEGEND_W, max(v.size[1], 600)), COLORS["grass"])
     draw = ImageDraw.Draw(img)
-    labels = _Labels(draw, v.size[0], img.height)
+    labels = Labels(draw, v.size[0], img.height)
     _streets(draw, v, city, labels)
     _buildings(draw, v, city)
     if trail and len(trail) > 1:
