@@ -16,6 +16,7 @@ from enum import StrEnum
 from typing import Any
 
 from agents.lang.core.limits import MAX_GOAL_CHARS, shorten
+from agents.processes.goal_texts import refused_text  # noqa: F401  (simulate imports it here)
 from bus.schema import FieldError, ListOf, Record, Str
 
 STORE_VERSION = 1
@@ -267,29 +268,6 @@ class GoalStore:
             raise GoalStoreError("scripted_done must list integers, incidents and refused "
                                  "strings")
         return cls(records, next_id, frozenset(done), tuple(incidents), tuple(refused))
-
-
-def refused_text(op: str, goal_id: str, goal: str, cycle: int, reason: object) -> str:
-    """How a run's summary tells a scripted request that was refused: `scripted cancel of
-    g1 at cycle 300 refused: ...` (issue 31, N13: it was one line in a log)."""
-    what = f"{op} of {goal_id}" if goal_id else f"{op} of {shorten(goal)}"
-    return f"scripted {what} at cycle {cycle} refused: {reason}"
-
-
-def rank_problem(standing: tuple[str, ...], priority: int) -> str:
-    """Why a user goal of ``priority`` would rank above some of the program's standing goals
-    (``standing``: their texts in file order; they have priorities 1..n, ids p1..pn), or ""
-    when it ranks after all of them. A goal ranks after every goal of priority <= its own
-    (docs/scenarios.md, "Priorities"), so any priority below n puts it before p(P+1)..pn,
-    which in the driving program are laws: the car would break them for the errand."""
-    above = [(k + 1, goal) for k, goal in enumerate(standing) if k + 1 > priority]
-    if not above:
-        return ""
-    shown = ", ".join(f"p{k} {goal}" for k, goal in above[:3])
-    more = f" and {len(above) - 3} more" if len(above) > 3 else ""
-    return (f"priority {priority} ranks the goal above the program's standing goal"
-            f"{'s' if len(above) > 1 else ''} {shown}{more}: the agent would pursue it before "
-            f"them, at their expense; give priority {len(standing)} or more, or force it")
 
 
 def _check_priority(what: str, priority: int) -> None:

@@ -35,9 +35,8 @@ from agents.processes.goal_store import (
     MAX_ID_CHARS,
     GoalStore,
     GoalStoreError,
-    rank_problem,
-    refused_text,
 )
+from agents.processes.goal_texts import rank_problem, refused_text
 from agents.processes.goal_warnings import Warner, engine_warner
 from agents.processes.request_limits import RequestLimiter
 from agents.processes.swapping import ProgramWatch
@@ -58,7 +57,7 @@ def engine_validator(scenario: Scenario):
 
 def standing_goals(scenario: Scenario) -> dict[str, tuple[str, ...]]:
     """Each agent's program goals (p1..pn) as text, in order: what a user goal may not rank
-    above unless forced (goal_store.rank_problem)."""
+    above unless forced (goal_texts.rank_problem)."""
     return ProgramWatch(scenario).standing
 
 

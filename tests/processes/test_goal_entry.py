@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from agents.processes.goal_store import GoalState, rank_problem
+from agents.processes.goal_store import GoalState
+from agents.processes.goal_texts import rank_problem
 from agents.processes.goals import GoalEntry, engine_validator, standing_goals
 from agents.processes.hints import absent, with_hints
 from bus.messages import Envelope, GoalRequest

@@ -22,7 +22,8 @@ from agents.lang.core.outcomes import as_outcomes
 from agents.lang.core.terms import sort_key
 from agents.lang.loader import read_text
 from agents.lang.reading.extend import extend_program
-from agents.processes.goal_store import MAX_PRIORITY, rank_problem
+from agents.processes.goal_store import MAX_PRIORITY
+from agents.processes.goal_texts import rank_problem
 from tools.paths import OutputPath
 
 include_option = click.option("-I", "--include", "includes", multiple=True, type=click.Path(),

@@ -19,7 +19,8 @@ from agents.lang.core.conjunction import goal_literals
 from agents.lang.core.program import Program
 from agents.lang.engine import SOLVERS
 from agents.lang.reading.goals import parse_goal
-from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY, rank_problem
+from agents.processes.goal_store import MAX_ID_CHARS, MAX_PRIORITY
+from agents.processes.goal_texts import rank_problem
 from world.domain import get_domain
 from world.errors import WorldError
 from world.overrides import Override
@@ -137,7 +138,7 @@ def _unknown_action(program: Program, domain: str, known: tuple[str, ...]) -> st
 
 def _goal_problem(goal: ScriptedGoal, program: Program) -> str:
     """What is wrong with one scripted request ("" if nothing): the goal against the
-    agent's program, the priority range and the priority rule (goal_store.rank_problem),
+    agent's program, the priority range and the priority rule (goal_texts.rank_problem),
     the goal id's length."""
     if goal.op != "cancel" and not 1 <= goal.priority <= MAX_PRIORITY:
         return f"priority: expected an integer in 1..{MAX_PRIORITY}, got {goal.priority}"
