@@ -35,14 +35,12 @@ from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
 from tools.commands.scenario_check import check_learned, load_checked, override_option
 from tools.launching import stop_signals
-from tools.launching.cpus import usable_cores
+from tools.launching.placement import PerProcess, layout_line, placement_of
 from tools.launching.run_plan import (
     Plan,
     PlanError,
-    agent_processes,
     check_secrets,
     claim_run_dir,
-    per_core,
     select,
     start_timeout,
     uses_clients,
@@ -58,21 +56,6 @@ from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
 REMOTE_READY_TIMEOUT = 600.0  # [s] the world waits for stages started on other hosts
-
-
-class PerProcess(click.ParamType):
-    """``--agents-per-process``: a count K >= 0, or ``auto`` (run_plan.per_core)."""
-
-    name = "K|auto"
-
-    def convert(self, value: object, param: click.Parameter | None,
-                ctx: click.Context | None) -> int | str:
-        if value == "auto" or (isinstance(value, int) and value >= 0):
-            return value
-        text = str(value).strip()
-        if text.isdigit():
-            return int(text)
-        self.fail(f"{value!r} is not a count of agents (0, 1, 2, ...) or auto", param, ctx)
 
 
 @click.command()
@@ -139,7 +122,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             check_learned(scenario, learned)
         plan = _plan(scenario, cycles, seed, mode, secure or scenario.run.secure, listen,
                      hosts, only, join, run_id, secrets_dir)
-        per_process, cpus = _per_process(agents_per_process, len(scenario.agents))
+        per_process, cpus = placement_of(agents_per_process, len(scenario.agents))
         plan = replace(plan, learned=learned, record=not no_record,
                        agents_per_process=per_process)
         if per_process and (plan.client or only):
@@ -162,7 +145,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
             "status_policy": scenario.run.status}
     with redirect_stdout(sys.stderr) if as_json else nullcontext():
         if per_process:
-            click.echo(_layout(len(scenario.agents), per_process, cpus))
+            click.echo(layout_line(len(scenario.agents), per_process, cpus))
         outcome = supervise(plan)
         if not plan.runs_world:
             _echo_joined(plan, outcome)
@@ -176,29 +159,6 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         click.echo(json.dumps(result, indent=1))
     code = summary.exit_code(result)
     raise SystemExit(code if code or not unwritten else 1)
-
-
-def _per_process(asked: int | str, agents: int) -> tuple[int, int]:
-    """(K, CPUs) for ``--agents-per-process``: K as given (CPUs 0), or for ``auto`` K that
-    spreads the agents over the CPUs this launch may use, and how many those are."""
-    if asked != "auto":
-        return int(asked), 0
-    cpus = usable_cores()
-    return (per_core(agents, cpus) if agents else 0), cpus
-
-
-def _layout(agents: int, per_process: int, cpus: int) -> str:
-    """The line saying how the agents' stages share processes (``cpus``: how many
-    ``--agents-per-process auto`` spread them over, 0 when K was given)."""
-    why = f" (--agents-per-process auto: {cpus} CPUs)" if cpus else ""
-    if per_process == 1 or agents == 1:
-        return f"each agent's three stages in one process: {_count(agents, 'process')}{why}"
-    processes = _count(agent_processes(agents, per_process), "process")
-    return f"{_count(agents, 'agent')} in {processes} of up to {per_process} agents each{why}"
-
-
-def _count(n: int, noun: str) -> str:
-    return f"{n} {noun}" if n == 1 else f"{n} {noun}{'es' if noun.endswith('s') else 's'}"
 
 
 def _finish(result: dict, scenario: Scenario, run_dir: Path, summary_file: str | None,
