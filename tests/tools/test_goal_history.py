@@ -13,13 +13,12 @@ from hypothesis import strategies as st
 from bus import keys
 from bus.messages import Envelope, Intention, WorldState
 from bus.record import message_record
+from tools.records.goal_reports import history_text, reconcile
 from tools.records.run_record import (
     RECORD_FILE,
     GoalHistory,
     RecordWriter,
     RunRecord,
-    history_text,
-    reconcile,
 )
 
 STATUSES = ("pending", "active", "suspended", "satisfied")

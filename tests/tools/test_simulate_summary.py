@@ -111,7 +111,7 @@ def test_the_summary_is_the_same_with_or_without_a_record(tmp_path, monkeypatch)
     cycles: the histories told in the loop are those the record gives."""
     import random
 
-    from tools.records import run_record as records
+    from tools.records import goal_reports
 
     monkeypatch.setenv("TELEO_RUN_DIR", str(tmp_path / "runs"))
     rng = random.Random(11)
@@ -147,7 +147,7 @@ at_cycle = {cancel}
         (with_record, text), (without, bare) = runs[""], runs["--no-record"]
         assert without["goals"] == with_record["goals"]
         assert all(g["history"] for g in without["goals"])
-        assert records.with_history(without["goals"], Path(with_record["record"]).parent) \
+        assert goal_reports.with_history(without["goals"], Path(with_record["record"]).parent) \
             == with_record["goals"]                              # as the record tells them
         assert [line for line in bare.splitlines() if line.startswith("    g")] == \
             [line for line in text.splitlines() if line.startswith("    g")]

@@ -35,7 +35,7 @@ import click
 
 from bus import keys
 from bus.messages import GoalList, Intention
-from tools.records.run_record import USER_STATUS
+from tools.records.goal_reports import USER_STATUS
 from tools.runs import runfile
 
 EXIT_FAILED, EXIT_ENDED, EXIT_TIMEOUT = 1, 3, 124

@@ -3,7 +3,7 @@
 recorded launch's show "(active 0, achieved 66, ...)"): the launcher takes the agents'
 intentions and goal lists off the bus into a GoalHistory, as the recorder would, and writes
 the histories to the run folder (`GOAL_HISTORY`) at the stop, where the summary finds them
-(tools/records/run_record.py with_history)."""
+(tools/records/goal_reports.py with_history)."""
 
 from __future__ import annotations
 

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.lang.registry import AgentRecord, summary_sections
-from tools.records import run_record as records
+from tools.records import goal_reports
 from tools.records.summary import episode_ended, finish_status, refused_events
 from tools.records.summary_agents import natural_sections
 from world.domain import get_domain
@@ -23,7 +23,7 @@ def build(run: Any, scenario: Any, seed: int, cycles: int, trace: Path | None = 
     """The summary dict of ``run`` (a tools.commands.simulate.SimRun) of ``scenario``."""
     spec = get_domain(scenario.domain)
     counters: dict[str, dict[str, int]] = run.final.get("counters", {})
-    goals = records.goals_with_history([g.to_dict() for g in run.goals.goals],
+    goals = goal_reports.goals_with_history([g.to_dict() for g in run.goals.goals],
                                        dict(run.history.changes))
     done = len(run.records)
     learned_files = learned_files or {}
