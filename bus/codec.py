@@ -5,10 +5,11 @@ Wire form: one msgpack map with string keys only,
 `env.v` is the protocol's major version (bus/messages.py SCHEMA_VERSION), carried by every
 message. A reader ignores fields it does not know (a minor change may only add fields, and
 keeps `v`) and refuses any other major version with an error naming both. Every field is
-checked against its kind's schema (bus/fields.py) before the message is made. Every
-failure raises CodecError naming the key, the field and what is wrong
-(`teleo/r/agent/ME/goal-list: GoalList.goals[0].id: expected a string, got []`);
-receivers log it and drop the payload.
+checked against its kind's schema (declared with it, bus/messages.py), by the kind's compiled
+check (bus/compiled.py), before the message is made. Every failure raises CodecError naming
+the key, the field and what is wrong
+(`teleo/r/agent/ME/goal-list: GoalList.goals[0].id: expected a string, got []`); receivers
+log it and drop the payload.
 
 Packed rows: the rows of `Percepts.percepts` and `Beliefs.beliefs` travel one msgpack bin a
 row, and a row seen in the last message on a key decodes to the same list (bus/rows.py).
@@ -16,25 +17,26 @@ row, and a row seen in the last message on a key decodes to the same list (bus/r
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import MISSING, fields
+from dataclasses import MISSING
 from functools import lru_cache
 from typing import Any
 
 import msgpack
 
 from bus import keys
+from bus.compiled import Compiled, compile_kind
 from bus.errors import CodecError
-from bus.fields import ENVELOPE, FIELDS
-from bus.messages import MESSAGE_TYPES, SCHEMA_VERSION, Envelope, Message
-from bus.rows import PACKED, pack_rows, packer, unpack_rows
+from bus.fields import ENVELOPE
+from bus.kinds import MESSAGE_TYPES, Fresh
+from bus.messages import SCHEMA_VERSION, Envelope, Message
+from bus.rows import pack_rows, packer, unpack_rows
 from bus.schema import FieldError, brief
 
 
 def encode(msg: Message) -> bytes:
     """Serialise a message to msgpack bytes (raises CodecError if a field is not msgpack-able)."""
-    spec = _SPECS.get(type(msg))  # exact classes only: a subclass is not a bus message
-    if spec is None:
+    kind = _compiled(type(msg))  # exact classes only: a subclass is not a bus message
+    if kind is None:
         raise CodecError(f"<encode {type(msg).__name__}>", "not a bus message")
     env = msg.env
     body: dict[str, Any] = {
@@ -42,11 +44,11 @@ def encode(msg: Message) -> bytes:
         "env": {"v": env.v, "run": env.run, "cycle": env.cycle, "sender": env.sender,
                 "sent_ns": env.sent_ns},
     }
-    for name, _check, _default in spec:
+    for name in kind.names:
         body[name] = getattr(msg, name)
-    packed = PACKED.get(msg.KIND)
+    packed = kind.packed
     try:
-        if packed is not None:
+        if packed:
             body[packed] = pack_rows(body[packed], (msg.KIND, getattr(msg, "agent", "")))
         return packer().pack(body)
     except (TypeError, ValueError, OverflowError) as exc:
@@ -68,40 +70,64 @@ def decode(key: str, data: bytes) -> Message:
     cls = MESSAGE_TYPES.get(kind) if isinstance(kind, str) else None
     if cls is None:
         raise CodecError(key, f"unknown message kind {brief(kind)}")
-    allowed = _kinds_of_key(key)
+    allowed = _kinds_of_key(key, len(MESSAGE_TYPES))
     if allowed and kind not in allowed:
         raise CodecError(key, f"wrong message kind {kind!r} for this key "
                               f"(expected {' or '.join(sorted(allowed))})")
-    values = _fields(key, kind, _SPECS[cls], body)
+    values = check_fields(key, cls, body)
     values["env"] = env
     return cls(**values)
 
 
-def _fields(key: str, kind: str, spec: _Spec, body: dict) -> dict[str, Any]:
-    """The checked field values of a `kind` message (defaults for absent optional fields)."""
+def check_fields(key: str, cls: type, body: dict) -> dict[str, Any]:
+    """The checked field values of a ``cls`` message's wire map received on ``key``: the
+    kind's compiled check (bus/compiled.py) when every field is there (as every writer sends
+    them), else the field-by-field walk that fills in defaults; raises CodecError."""
+    kind = _compiled(cls)
+    if kind is None:
+        raise CodecError(key, f"not a bus message kind: {cls.__name__}")
+    values = kind.check(key, body, unpack_rows)
+    return walk_fields(key, kind, body) if values is None else values
+
+
+def walk_fields(key: str, kind: Compiled, body: dict) -> dict[str, Any]:
+    """The checked field values of a ``kind`` message, one field's spec after another, with
+    defaults for absent optional fields (what the compiled check does for a whole message)."""
     values: dict[str, Any] = {}
-    packed = PACKED.get(kind)
-    for name, check, default in spec:
+    name_of = kind.cls.KIND
+    for name, spec, default in kind.fields:
         if name in body:
             try:
-                values[name] = unpack_rows(key, body[name]) if name == packed else \
-                    check(body[name])
+                values[name] = unpack_rows(key, body[name]) if name == kind.packed else \
+                    spec.check(body[name])
             except FieldError as exc:
-                raise CodecError(key, f"{kind}.{exc.within(name)}") from None
+                raise CodecError(key, f"{name_of}.{exc.within(name)}") from None
             except TypeError as exc:   # a packed row (bus/rows.py)
-                raise CodecError(key, f"{kind}.{name}: {exc}") from None
-        elif isinstance(default, _Fresh):
+                raise CodecError(key, f"{name_of}.{name}: {exc}") from None
+        elif isinstance(default, Fresh):
             values[name] = default.make()   # a new empty map for each message
         elif default is not MISSING:
             values[name] = default
         else:
-            raise CodecError(key, f"{kind} lacks field {name!r}")
+            raise CodecError(key, f"{name_of} lacks field {name!r}")
     return values
 
 
+def _compiled(cls: type) -> Compiled | None:
+    """The compiled form of a declared kind's class (made on first use), else None."""
+    kind = _KINDS.get(cls)
+    if kind is None and MESSAGE_TYPES.get(getattr(cls, "KIND", None)) is cls:
+        kind = _KINDS[cls] = compile_kind(cls)
+    return kind
+
+
+_KINDS: dict[type, Compiled] = {}
+
+
 @lru_cache(maxsize=4096)
-def _kinds_of_key(key: str) -> frozenset[str]:
-    """keys.kind_of_key, memoised: a process sees the same few keys every cycle."""
+def _kinds_of_key(key: str, declared: int) -> frozenset[str]:
+    """keys.kind_of_key, memoised per number of declared kinds: a process sees the same few
+    keys every cycle."""
     return keys.kind_of_key(key)
 
 
@@ -121,22 +147,3 @@ def _envelope(key: str, env: Any) -> Envelope:
     except FieldError as exc:
         raise CodecError(key, f"malformed envelope: {exc.within('env')}") from None
     return Envelope(v, env["run"], env["cycle"], env["sender"], env["sent_ns"])
-
-
-class _Fresh:
-    """The default of a field declared with a default_factory (made anew per message)."""
-
-    def __init__(self, make: Callable[[], Any]) -> None:
-        self.make = make
-
-
-_Spec = tuple[tuple[str, Callable[[Any], Any], Any], ...]
-
-_SPECS: dict[type, _Spec] = {
-    cls: tuple((f.name, FIELDS[cls.KIND][f.name].check,
-                _Fresh(f.default_factory) if f.default_factory is not MISSING else f.default)
-               for f in fields(cls) if f.name != "env")
-    for cls in MESSAGE_TYPES.values()
-}
-"""Per message class: (field name, its spec's check (bus/fields.py), default or MISSING) for
-every field but env."""

@@ -1,5 +1,6 @@
-"""The schema of every bus message kind: each field's spec (bus/schema/), checked by
-`bus.codec.decode` before any process sees the message (docs/bus.md, "What a reader checks").
+"""The specs the bus message kinds are declared with (bus/messages.py: each field's spec in
+its metadata, bus/kinds.py), checked by `bus.codec.decode` before any process sees the message
+(docs/bus.md, "What a reader checks").
 
 A field whose inside is another package's (a snapshot is its world's, a memory's SCS state
 the engine's, an intention the engine's Decision) is checked here as plain data only (no
@@ -16,7 +17,6 @@ from __future__ import annotations
 import sys
 from typing import Any
 
-from bus.messages import GOAL_OPS
 from bus.rows import check_rows
 from bus.schema import (
     INT64,
@@ -25,8 +25,6 @@ from bus.schema import (
     FieldError,
     Int,
     ListOf,
-    MapOf,
-    Num,
     OneOf,
     Plain,
     Record,
@@ -106,30 +104,3 @@ TEXT = Str(max_len=UNBOUNDED, what="a string")
 
 ENVELOPE = Record({"v": Int(), "run": TEXT, "cycle": Int(-1, INT64[1], what="a cycle"),
                    "sender": TEXT, "sent_ns": Int()}, open=True, what="an envelope")
-
-FIELDS: dict[str, dict[str, Spec]] = {
-    "WorldState": {"snapshot": MAP, "outcomes": All(Plain(16), MapOf(ListOf(OUTCOME))),
-                   "events": Plain(16, top=list), "memory": All(Plain(MEMORY_DEPTH + 1),
-                                                                 MapOf(MAP)),
-                   "control": Plain(8)},
-    "WorldStatic": {"domain": NAME, "static": Plain(16)},
-    "Percepts": {"agent": NAME, "percepts": Rows(), "outcomes": Tuple(OUTCOMES),
-                 "memory": MEMORY, "program": All(Plain(4), PROGRAM)},
-    "Beliefs": {"agent": NAME, "beliefs": Rows(), "swap": All(Plain(4), SWAP)},
-    "Actions": {"agent": NAME, "actions": Rows(), "memory": MEMORY},
-    "Intention": {"agent": NAME, "decision": Plain(MEMORY_DEPTH),
-                  "swap": All(Plain(4), SWAP)},
-    "GoalRequest": {"op": OneOf(GOAL_OPS, what="a goal operation"), "agent": TEXT, "goal": TEXT,
-                    "priority": Int(), "goal_id": TEXT, "force": Bool(),
-                    "once": Bool(), "deadline": Int(0)},
-    "GoalReply": {"ok": Bool(), "reason": TEXT, "goals": Tuple(ListOf(Plain(8)))},
-    "GoalList": {"agent": NAME, "goals": Tuple(ListOf(GOAL_ENTRY))},
-    "ProcessStats": {"process": NAME, "compute_ms": Num(0.0, as_float=True), "late": Int(0)},
-    "WorldEvent": {"event": Plain(16)},
-    "EventReply": {"ok": Bool(), "reason": TEXT, "outcome": Plain(16)},
-}
-"""Per message kind: field name -> spec (every field but env; bus/messages.py gives the
-defaults of the optional ones). A world state's snapshot is its world's to check (the
-domain's SNAPSHOT, in perception: the only process that reads it), and each agent's memory
-in it is checked as a memory by that agent's perception, which forwards it
-(agents/processes/perception.py)."""

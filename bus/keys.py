@@ -19,6 +19,7 @@ publishers and matching status keep working across cycles):
 from __future__ import annotations
 
 from bus.errors import KeyFormatError
+from bus.messages import MESSAGE_TYPES
 
 ROOT = "teleo"
 _FORBIDDEN = set("/*$?#@ ")
@@ -178,25 +179,35 @@ def process_of_token(run: str, key: str) -> str | None:
 
 
 def kind_of_key(key: str) -> frozenset[str]:
-    """The message kinds allowed on `key` (empty if the key is not a teleo data key).
+    """The message kinds allowed on `key` (empty if the key is not a teleo data key): those
+    whose declared KEYS (bus/kinds.py) match the key below ``teleo/<run>/``.
 
     The codec uses it to reject a message of the wrong kind on a key.
     """
     parts = key.split("/")
     if len(parts) < 4 or parts[0] != ROOT:
         return frozenset()
-    tail = tuple(parts[2:])
-    if tail == ("world", "state"):
-        return frozenset({"WorldState"})
-    if tail == ("world", "static"):
-        return frozenset({"WorldStatic"})
-    if tail in (("world", "events"), ("world", "control")):
-        return frozenset({"WorldEvent", "EventReply"})
-    if len(tail) == 2 and tail[0] == "stats":
-        return frozenset({"ProcessStats"})
-    if len(tail) == 3 and tail[0] == "agent":
-        return _AGENT_LEAVES.get(tail[2], frozenset())
-    return frozenset()
+    tail = parts[2:]
+    return frozenset(kind for kind, patterns in _key_patterns().items()
+                     if any(_matches(p, tail) for p in patterns))
+
+
+def _key_patterns() -> dict[str, tuple[tuple[str, ...], ...]]:
+    """Per declared kind, its KEYS split into chunks (rebuilt when a kind is declared)."""
+    global _PATTERNS
+    if _PATTERNS[0] != len(MESSAGE_TYPES):
+        _PATTERNS = (len(MESSAGE_TYPES), {
+            kind: tuple(tuple(p.split("/")) for p in cls.KEYS)
+            for kind, cls in MESSAGE_TYPES.items()})
+    return _PATTERNS[1]
+
+
+_PATTERNS: tuple[int, dict[str, tuple[tuple[str, ...], ...]]] = (-1, {})
+
+
+def _matches(pattern: tuple[str, ...], tail: list[str]) -> bool:
+    return len(pattern) == len(tail) and all(p in ("*", t) for p, t in zip(pattern, tail,
+                                                                           strict=True))
 
 
 def agent_of_key(key: str) -> str | None:
@@ -205,13 +216,3 @@ def agent_of_key(key: str) -> str | None:
     if len(parts) >= 5 and parts[0] == ROOT and parts[2] == "agent":
         return parts[3]
     return None
-
-
-_AGENT_LEAVES = {
-    "percepts": frozenset({"Percepts"}),
-    "beliefs": frozenset({"Beliefs"}),
-    "actions": frozenset({"Actions"}),
-    "intention": frozenset({"Intention"}),
-    "goals": frozenset({"GoalRequest", "GoalReply"}),
-    "goal-list": frozenset({"GoalList"}),
-}

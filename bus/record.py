@@ -19,11 +19,18 @@ import msgpack
 
 from bus.codec import decode, encode
 from bus.errors import CodecError
-from bus.messages import MESSAGE_TYPES, Message
-from bus.rows import PACKED, unpacked_rows
+from bus.fields import All, Rows, Tuple
+from bus.kinds import MESSAGE_TYPES, field_specs
+from bus.messages import Message
+from bus.rows import unpacked_rows
+from bus.schema import Bool, Int, ListOf, MapOf, Num, OneOf, Plain, Record, Spec, Str
 
-DERIVED: dict[str, tuple[str, ...]] = {"Percepts": ("self",)}
-"""Per kind, the fields a record adds to the wire form (left out again by `from_record`)."""
+
+def derived(kind: str) -> tuple[str, ...]:
+    """The fields a record of ``kind`` adds to the wire form (its class's DERIVED, left out
+    again by `from_record`)."""
+    cls = MESSAGE_TYPES.get(kind)
+    return tuple(cls.DERIVED) if cls is not None else ()
 
 
 def to_record(key: str, payload: bytes) -> dict[str, Any]:
@@ -36,14 +43,15 @@ def to_record(key: str, payload: bytes) -> dict[str, Any]:
     if not isinstance(body, dict) or not isinstance(body.get("env"), dict) \
             or body.get("kind") not in MESSAGE_TYPES:
         raise CodecError(key, f"not a bus message: {body!r:.80}")
-    field = PACKED.get(body["kind"])
-    if field in body:
+    cls = MESSAGE_TYPES[body["kind"]]
+    field = cls.PACKED
+    if field and field in body:
         try:
             body[field] = unpacked_rows(body[field])
         except TypeError as exc:
             raise CodecError(key, f"{body['kind']}.{field}: {exc}") from exc
-    if body["kind"] == "Percepts":
-        body["self"] = _self_attrs(body.get("agent"), body.get("percepts"))
+    for name, how in cls.DERIVED.items():
+        body[name] = how.make(body)
     return body
 
 
@@ -56,7 +64,7 @@ def from_record(key: str, record: dict[str, Any]) -> bytes:
     """The bus payload of a record, checked as a receiver would; raises CodecError."""
     if not isinstance(record, dict):
         raise CodecError(key, f"expected a record map, got {type(record).__name__}")
-    drop = DERIVED.get(str(record.get("kind")), ())
+    drop = derived(str(record.get("kind")))
     body = {k: v for k, v in record.items() if k not in drop}
     try:
         payload = msgpack.packb(body, use_bin_type=True)
@@ -66,28 +74,8 @@ def from_record(key: str, record: dict[str, Any]) -> bytes:
     return payload
 
 
-def _self_attrs(agent: Any, percepts: Any) -> dict[str, Any]:
-    """Attributes of the `(self AGENT ...)` percept as an object; {} when there is none."""
-    for p in percepts if isinstance(percepts, list) else ():
-        if isinstance(p, list) and len(p) >= 2 and p[0] == "self" and p[1] == agent:
-            return {str(p[i]): p[i + 1] for i in range(2, len(p) - 1, 2)}
-    return {}
-
-
 _ATOM = {"type": ["string", "number"]}
 _ROWS = {"type": "array", "items": {"type": "array", "items": _ATOM}}
-_MAPS = {"type": "array", "items": {"type": "object"}}
-_FIELDS: dict[str, dict[str, Any]] = {
-    "snapshot": {"type": "object", "description": "the world's snapshot dict of this cycle"},
-    "outcomes": {"type": "object"}, "events": _MAPS, "agent": {"type": "string"},
-    "percepts": _ROWS, "beliefs": _ROWS, "actions": _ROWS,
-    "decision": {"type": "object", "description": "goals, path, actions, why (Decision)"},
-    "op": {"type": "string"}, "goal": {"type": "string"}, "priority": {"type": "integer"},
-    "goal_id": {"type": "string"}, "ok": {"type": "boolean"}, "reason": {"type": "string"},
-    "goals": _MAPS, "process": {"type": "string"}, "compute_ms": {"type": "number"},
-    "late": {"type": "integer"}, "event": {"type": "object"},
-    "self": {"type": "object", "description": "derived: the agent's own self percept"},
-}
 _ENVELOPE = {"type": "object", "properties": {
     "v": {"type": "integer"}, "run": {"type": "string"}, "cycle": {"type": "integer"},
     "sender": {"type": "string"}, "sent_ns": {"type": "integer"}}}
@@ -99,8 +87,30 @@ def json_schema(kind: str) -> dict[str, Any]:
     if cls is None:
         raise CodecError(f"<schema {kind}>",
                          f"unknown message kind; known: {sorted(MESSAGE_TYPES)}")
-    names = [n for n in cls.__dataclass_fields__ if n != "env"] + list(DERIVED.get(kind, ()))
-    props = {"kind": {"type": "string", "const": kind}, "env": _ENVELOPE}
-    props.update({n: _FIELDS.get(n, {}) for n in names})
+    props: dict[str, Any] = {"kind": {"type": "string", "const": kind}, "env": _ENVELOPE}
+    props.update({name: _json(spec) for name, spec, _ in field_specs(cls)})
+    props.update({name: how.schema for name, how in cls.DERIVED.items()})
     return {"$schema": "http://json-schema.org/draft-07/schema#", "title": f"teleo.{kind}",
             "type": "object", "properties": props, "required": ["kind", "env"]}
+
+
+def _json(spec: Spec) -> dict[str, Any]:
+    """The JSON Schema of a field's records, from its spec (what a viewer offers)."""
+    kind = type(spec)
+    if kind is All:
+        return _json(spec.specs[-1])
+    if kind is Tuple:
+        return _json(spec.spec)
+    simple = {Str: "string", Int: "integer", Num: "number", Bool: "boolean", Record: "object",
+              MapOf: "object"}.get(kind)
+    if simple:
+        return {"type": simple}
+    if kind is OneOf:
+        return {"enum": list(spec.choices)}
+    if kind is Rows:
+        return _ROWS
+    if kind is ListOf:
+        return {"type": "array", "items": _json(spec.item)}
+    if kind is Plain and spec.top is not None:
+        return {"type": "object" if spec.top is dict else "array"}
+    return {}

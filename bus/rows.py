@@ -73,10 +73,6 @@ def check_rows(v: Any) -> tuple:
     raise TypeError("expected arrays of str, int or float")  # not reached: some row failed
 
 
-PACKED = {"Percepts": "percepts", "Beliefs": "beliefs"}
-"""The field whose rows travel packed, per kind (see the module's docstring)."""
-
-
 def pack_rows(rows: Any, slot: tuple) -> list[bytes]:
     """Each row as its own msgpack bytes; a row sent last time in ``slot`` as the same object
     keeps its bytes (rows are never mutated once sent)."""
