@@ -99,7 +99,7 @@ def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalSto
 @dataclass(frozen=True)
 class AgentCycle:
     """What one agent saw and did in one cycle, for a recorder
-    (tools/records/sim_recorder.SimRecorder); ms: compute time per stage [ms]."""
+    (tools/records/run_recorders.SimRecorder); ms: compute time per stage [ms]."""
 
     percepts: list
     outcomes: list

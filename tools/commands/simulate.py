@@ -46,8 +46,8 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
              until: Callable[[dict[str, EngineState]], bool] | None = None) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
-    file:line:col if it does not fit an agent's program); `recorder` (a
-    tools.records.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
+    file:line:col if it does not fit an agent's program); `recorder` (a SimRecorder,
+    tools/records/run_recorders.py) gets every cycle's messages; `show_progress`: a progress
     bar on a terminal (tools/launching/progress.py); `until`: stop after the first cycle at whose
     end it answers True for the agents' states (a benchmark's run ends when its work is done).
     The garbage collector runs as in a stage process: between cycles (bus/collector.py)."""
@@ -154,7 +154,7 @@ def simulate_command(scenario: str, cycles: int | None, seed: int | None, trace:
     The same cycle as a lockstep launch, with the same goal ids (g1, g2, ...), trace lines
     and summary, with or without its record; a progress bar on a terminal. `--set
     KEY=VALUE` changes a field of the scenario for this run, as `teleo launch --set`."""
-    from tools.records.sim_recorder import SimRecorder
+    from tools.records.run_recorders import SimRecorder
 
     recorder = None
     try:

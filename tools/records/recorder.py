@@ -1,11 +1,10 @@
 """Who writes run records off the bus: `BusRecorder` takes every message of a run (the launcher
 starts one before any process, so cycle 0 is in; `teleo record` runs one in the foreground).
-`teleo simulate` writes the same channels from its own loop (tools/records/sim_recorder.py).
+The launch's recorder and `teleo simulate`'s are made in tools/records/run_recorders.py.
 """
 
 from __future__ import annotations
 
-import json
 import logging
 import threading
 import time
@@ -22,7 +21,7 @@ from bus.messages import (
 )
 from bus.node import FifoInbox, open_node
 from bus.record import message_record, to_record
-from tools.records.run_record import RECORD_FILE, RecordWriter
+from tools.records.run_record import RecordWriter
 
 log = logging.getLogger(__name__)
 RECORDER_META = "teleo.recorder"
@@ -275,9 +274,9 @@ class BusRecorder:
         cycle = _env(record).get("cycle")
         if isinstance(cycle, int) and cycle >= 0:
             self._cycles.add(cycle)
-            self.first_cycle = cycle if self.first_cycle is None else min(self.first_cycle,
-                                                                           cycle)
-            self.last_cycle = cycle if self.last_cycle is None else max(self.last_cycle, cycle)
+            self.first_cycle = min(cycle, self.first_cycle if self.first_cycle is not None
+                                   else cycle)
+            self.last_cycle = max(cycle, self.last_cycle if self.last_cycle is not None else -1)
 
 
 def _env(record: dict[str, Any]) -> dict[str, Any]:
@@ -291,16 +290,3 @@ def _sent_ns(record: dict[str, Any]) -> int:
     """When a record's message was sent [ns] (0 when its envelope does not say: kept)."""
     sent = _env(record).get("sent_ns")
     return sent if isinstance(sent, int) else 0
-
-
-def run_recorder(cfg: BusConfig, run: str, run_dir: Path, scenario: Any) -> BusRecorder:
-    """The launcher's recorder of `run` (not started), writing run_dir/record.mcap. It joins
-    the bus as the run's processes do (`cfg`: theirs, with the operator's credentials on a
-    secured run): a peer among peers keeps its own links to each of them, so a router that
-    dies costs it nothing, as it costs them nothing (a client of the router lost every
-    message sent while it was reconnecting: drill N1, docs/faults.md); a client among
-    clients waits for the router with them, and the lockstep world re-sends the cycle it
-    waits on, which every stage answers again."""
-    meta = {"source": "launch", "scenario": str(scenario.path), "domain": scenario.domain,
-            "overrides": json.dumps(list(scenario.overrides))}  # the --set applied
-    return BusRecorder(cfg, run, run_dir / RECORD_FILE, meta, process=keys.RECORDER)

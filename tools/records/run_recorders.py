@@ -1,15 +1,18 @@
-"""`SimRecorder`: the channels of a launch's record, written from `teleo simulate`'s in-process
-cycle (tools/commands/simulate.py), so `explain`, `view`, `plot` and `replay` read a simulated
-run as a launched one.
+"""The recorders of a run: a launch's (`run_recorder`, a BusRecorder taking the run off the bus)
+and `teleo simulate`'s (`SimRecorder`, the same channels written from its in-process cycle,
+tools/commands/simulate.py, so `explain`, `view`, `plot` and `replay` read a simulated run as a
+launched one), each with the record's metadata (`record_meta`).
 """
 
 from __future__ import annotations
 
 import json
 import secrets
+from pathlib import Path
 from typing import Any
 
 from bus import keys
+from bus.config import BusConfig
 from bus.messages import (
     Actions,
     Beliefs,
@@ -23,8 +26,28 @@ from bus.messages import (
     WorldStatic,
 )
 from bus.record import message_record
+from tools.records.recorder import BusRecorder
 from tools.records.run_record import RECORD_FILE, RecordWriter
 from tools.runs import runfile
+
+
+def run_recorder(cfg: BusConfig, run: str, run_dir: Path, scenario: Any) -> BusRecorder:
+    """The launcher's recorder of `run` (not started), writing run_dir/record.mcap. It joins
+    the bus as the run's processes do (`cfg`: theirs, with the operator's credentials on a
+    secured run): a peer among peers keeps its own links to each of them, so a router that
+    dies costs it nothing, as it costs them nothing (a client of the router lost every
+    message sent while it was reconnecting: drill N1, docs/faults.md); a client among
+    clients waits for the router with them, and the lockstep world re-sends the cycle it
+    waits on, which every stage answers again."""
+    return BusRecorder(cfg, run, run_dir / RECORD_FILE, record_meta("launch", scenario),
+                       process=keys.RECORDER)
+
+
+def record_meta(source: str, scenario: Any) -> dict[str, str]:
+    """A record's metadata: who wrote it (launch, simulate), of which scenario and domain,
+    with which `--set` applied."""
+    return {"source": source, "scenario": str(scenario.path), "domain": scenario.domain,
+            "overrides": json.dumps(list(scenario.overrides))}
 
 
 class SimRecorder:
@@ -39,9 +62,7 @@ class SimRecorder:
         """A recorder writing runs/<name>-sim-<hex>/record.mcap under the runs folder."""
         run = f"{scenario.run.name}-sim-{secrets.token_hex(3)}"
         path = runfile.base_dir() / "runs" / run / RECORD_FILE
-        meta = {"source": "simulate", "scenario": str(scenario.path), "domain": scenario.domain,
-                "overrides": json.dumps(list(scenario.overrides))}  # the --set applied
-        return cls(RecordWriter(path, run, meta), run)
+        return cls(RecordWriter(path, run, record_meta("simulate", scenario)), run)
 
     def _add(self, key: str, msg: Message) -> None:
         self.writer.add(key, message_record(key, msg))
