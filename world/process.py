@@ -128,8 +128,6 @@ class BusAgents:
 
     def act(self, cycle: CycleState, snap: dict[str, Any]) -> CycleReport:
         t = cycle.t
-        state = WorldState(self.clock.node.envelope(t), cycle.snapshot, cycle.outcomes,
-                           cycle.events, cycle.memory, cycle.control)
         if self.pace and self.published:
             first_out = self.published == 1   # the recorder must have the first state
             held = self.clock.keep_pace(keys.RECORDER, -1 if first_out else t - 1 - self.pace,
@@ -137,6 +135,8 @@ class BusAgents:
                                         required_s=RECORD_LOST_S if self.recorded else None)
             if held > HOLD_REPORT_S:
                 self.rec.event("record-wait", cycle=t, seconds=round(held, 3))
+        state = WorldState(self.clock.node.envelope(t), cycle.snapshot, cycle.outcomes,
+                           cycle.events, cycle.memory, cycle.control)   # stamped as it goes
         self.last, self.published = state, self.published + 1
         return self.clock.run_cycle(t, state, meanwhile=partial(self._off_the_path, t, snap))
 
