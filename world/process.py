@@ -3,21 +3,15 @@
     python -m world.process --run RUN --scenario FILE --cycles N --seed S
                             --run-mode lockstep|realtime --out DIR [--resume] [bus flags]
 
-For cycle t: inject the events due (scripted at t, or received on world/events, where a
-query, as `teleo event` sends, is answered with the world's verdict), publish the world state
-of t with each agent's action outcomes of t-1, collect every agent's actions of t through
-bus.clock.Clock, apply them (the world's safe action for an agent whose actions did not
-arrive) and step the physics by dt. The files it keeps in DIR are described in
-world/recorder.py. `--resume` (the launcher restarting a world that died) first brings the
-simulation back to the cycle the run had reached (world/resume.py), then goes on from there.
-In lockstep the world also keeps pace with the launch's recorder: it does not begin a cycle
-more than `record_window` cycles ahead of the last one the recorder has written whole (its
-ProcessStats say which), so that on a loaded machine the run slows down rather than lose the
-end of its record (bus/clock.py Clock.keep_pace; no wait when there is no recorder).
-Each agent's memory (what its executive sends with its actions: world-model facts, SCS
-threads and discount factors) is kept and handed back in the next world state, so a restarted
-agent process loses none of it (docs/bus.md, "Agent memory"); the trace records each change
-of it, so a restarted world hands back the same.
+Each cycle is world/cycle.py's CycleRunner (inject, state, agents, apply, step, trace: the
+same cycle `teleo simulate` runs in one process) with `BusAgents` as its transport: the events
+received on world/events are injected after the scripted ones (a query, as `teleo event`
+sends, is answered with the world's verdict), the world state goes out and every agent's
+actions come back through bus.clock.Clock, and in lockstep the world keeps pace with the
+launch's recorder (BusAgents). The files it keeps in DIR are described in world/recorder.py.
+`--resume` (the launcher restarting a world that died) first brings the simulation back to
+the cycle the run had reached (world/resume.py), then goes on from there. The agents' memory
+the runner keeps goes in the trace at each change, so a restarted world hands back the same.
 
 Exit status: 0 when the cycles are done or a signal stopped it; EXIT_CANNOT_RESUME when a
 restart cannot get back to the run's state, EXIT_NOT_READY when the stages did not all
@@ -44,7 +38,7 @@ from bus import keys
 from bus.clock import Clock, CycleInterrupted
 from bus.collector import Collector
 from bus.config import BusConfig, bus_options
-from bus.cycle import CycleMode
+from bus.cycle import CycleMode, CycleReport
 from bus.errors import BusError, NotReady, PaceLost
 from bus.messages import EventReply, WorldEvent, WorldState, WorldStatic
 from bus.node import Inbox, open_node
@@ -52,12 +46,12 @@ from bus.pause import Gate
 from bus.pending import PendingQueries, serve_later
 from bus.stage import stop_on_signals
 from world.changes import Changes
-from world.domain import Domain, World, episode_over, get_domain
+from world.cycle import CycleRunner, CycleState
+from world.domain import Domain, World, get_domain
 from world.errors import CannotRecord
 from world.recorder import CHECKPOINT_EVERY, Recorder
 from world.resume import CannotResume, Resumed, can_checkpoint, resume
 from world.run_scenario import Scenario, ScenarioError, load_scenario
-from world.static import split
 
 log = logging.getLogger("teleo.world")
 READY_TIMEOUT = 60.0      # [s] for every stage to announce itself
@@ -79,31 +73,30 @@ def pipelines(agents: list[str]) -> dict[str, list[str]]:
     return {a: ["goals", f"{a}.perception", f"{a}.inference", f"{a}.executive"] for a in agents}
 
 
-def _drain(inbox: Inbox) -> list[dict[str, Any]]:
-    events = []
-    while (msg := inbox.get(0)) is not None:
-        if isinstance(msg, WorldEvent):
-            events.append(dict(msg.event))
-    return events
+def _arrived(events_in: Inbox, asked: PendingQueries, node, t: int):
+    """The events the bus brought for cycle `t`, applied after the scripted ones: published on
+    world/events, then asked there as queries (`teleo event`), each of which is answered with
+    the world's verdict now, before the state of `t` goes out. Every outcome goes in the state
+    and the trace (so a run with events stays deterministic and its trace says what
+    happened)."""
 
+    def inject(sim: World) -> list[dict[str, Any]]:
+        injected = []
+        while (msg := events_in.get(0)) is not None:
+            if isinstance(msg, WorldEvent):
+                injected.append(sim.inject(dict(msg.event)))
+        for pending in asked.take():
+            event = pending.request.event if isinstance(pending.request, WorldEvent) else None
+            if event is None:
+                pending.fail(f"expected a WorldEvent, got a {pending.request.KIND}")
+                continue
+            outcome = sim.inject(dict(event))
+            injected.append(outcome)
+            pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
+                                      str(outcome.get("reason", "")), outcome))
+        return injected
 
-def _inject(sim: World, due: list[dict[str, Any]], events_in: Inbox, asked: PendingQueries,
-            node, t: int) -> list[dict[str, Any]]:
-    """Apply the events of cycle `t` in order: scripted, published on world/events, then
-    asked there as queries (`teleo event`), each of which is answered with the world's
-    verdict now, before the state of `t` goes out. Returns every outcome, for the state and
-    the trace (so a run with events stays deterministic and its trace says what happened)."""
-    injected = [sim.inject(e) for e in due + _drain(events_in)]
-    for pending in asked.take():
-        event = pending.request.event if isinstance(pending.request, WorldEvent) else None
-        if event is None:
-            pending.fail(f"expected a WorldEvent, got a {pending.request.KIND}")
-            continue
-        outcome = sim.inject(dict(event))
-        injected.append(outcome)
-        pending.answer(EventReply(node.envelope(t), outcome.get("status") == "done",
-                                  str(outcome.get("reason", "")), outcome))
-    return injected
+    return inject
 
 
 def record_window(agents: int) -> int:
@@ -116,12 +109,40 @@ def record_window(agents: int) -> int:
     return max(20, RECORD_BACKLOG // (8 * agents + 3))
 
 
-def _actions_of(sim: World, agent: str, actions: tuple, noop: tuple[str, ...]) -> list[list[Any]]:
-    """The agent's actions of this cycle, or the world's safe action when they did not arrive
-    (a dead or late stage): an uncontrolled agent is stopped, never left on its last controls."""
-    if agent in noop:
-        return sim.safe_actions(agent)
-    return [list(x) for x in actions]
+class BusAgents:
+    """The agents over the bus (world/cycle.py's transport): each state is published and the
+    actions collected by bus.clock.Clock; the record's digest and snapshot line of a state,
+    and the cycle's young garbage, are done while the agents work on it. In lockstep a state
+    does not go out more than `record_window` cycles ahead of what the launch's recorder has
+    written whole (its ProcessStats say which), nor the second before the recorder has the
+    first (it is sent again while the recorder is awaited): on a loaded machine the run slows
+    down rather than lose the end of its record (Clock.keep_pace; no wait when there is no
+    recorder, and `recorded`: the run stops rather than outrun it)."""
+
+    def __init__(self, clock: Clock, rec: Recorder, collector: Collector, agents: int,
+                 recorded: bool) -> None:
+        self.clock, self.rec, self.collector, self.recorded = clock, rec, collector, recorded
+        self.pace = record_window(agents) if clock.mode is CycleMode.LOCKSTEP else 0
+        self.last: WorldState | None = None   # the last state published
+        self.published = 0                    # how many were
+
+    def act(self, cycle: CycleState, snap: dict[str, Any]) -> CycleReport:
+        t = cycle.t
+        if self.pace and self.published:
+            first_out = self.published == 1   # the recorder must have the first state
+            held = self.clock.keep_pace(keys.RECORDER, -1 if first_out else t - 1 - self.pace,
+                                        resend=self.last if first_out else None,
+                                        required_s=RECORD_LOST_S if self.recorded else None)
+            if held > HOLD_REPORT_S:
+                self.rec.event("record-wait", cycle=t, seconds=round(held, 3))
+        state = WorldState(self.clock.node.envelope(t), cycle.snapshot, cycle.outcomes,
+                           cycle.events, cycle.memory, cycle.control)   # stamped as it goes
+        self.last, self.published = state, self.published + 1
+        return self.clock.run_cycle(t, state, meanwhile=partial(self._off_the_path, t, snap))
+
+    def _off_the_path(self, t: int, snap: dict[str, Any]) -> None:
+        self.rec.prepare(t, snap)
+        self.collector.after_cycle()
 
 
 def _begin(domain: Domain, scenario: Scenario, seed: int, out: Path, again: bool) -> Resumed:
@@ -131,13 +152,6 @@ def _begin(domain: Domain, scenario: Scenario, seed: int, out: Path, again: bool
         return resume(domain, scenario.world_table, seed, agents, out)
     return Resumed(domain.create(scenario.world_table, seed, agents), 0,
                    {a: [] for a in agents}, -1, 0, {a: {} for a in agents})
-
-
-def _off_the_path(rec: Recorder, collector: Collector, t: int, snap: dict[str, Any]) -> None:
-    """While the agents work on state t: its record's digest and snapshot line, and the
-    young garbage of the cycle (bus/collector.py)."""
-    rec.prepare(t, snap)
-    collector.after_cycle()
 
 
 def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: int,
@@ -154,9 +168,6 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     begun = _begin(domain, scenario, seed, out, again)
     sim, first = begun.world, begun.cycle
     saving = can_checkpoint(sim, domain)
-    scripted: dict[int, list[dict[str, Any]]] = {}
-    for e in scenario.events:
-        scripted.setdefault(e.at_cycle, []).append(e.event)
     rec = Recorder(out, scenario.run.render_every, resumed_at=first)
     rec.event("start", cycle=first, resumed=again, checkpoint=begun.checkpoint,
               replayed=begun.replayed, mode=mode)
@@ -174,14 +185,13 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                       restart_timeout_s=RESTART_TIMEOUT, stall_s=STALL_REPORT_S, stop=stop)
         changes = Changes(scenario)  # `teleo program load`, `teleo set` (world/changes.py)
         gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event, changes.check)
-        static = WorldStatic(node.envelope(), domain.name, split(sim.snapshot_dict())[0])
+        runner = CycleRunner(sim, agents, scenario.events, begun.outcomes, begun.memory)
+        static = WorldStatic(node.envelope(), domain.name, runner.static)
         node.serve(keys.world_static(run),   # sent once a run, and asked (issue 35)
                    lambda _asked: replace(static, env=node.envelope()))
         node.announce()
-        outcomes, memory = begun.outcomes, begun.memory
-        pace = record_window(len(agents)) if clock.mode is CycleMode.LOCKSTEP else 0
-        state: WorldState | None = None  # the last one published
         collector = Collector()
+        transport = BusAgents(clock, rec, collector, len(agents), recorded)
         try:
             clock.wait_ready({p for pipe in pipelines(agents).values() for p in pipe}
                              | ({keys.RECORDER} if recorded else set()), ready_timeout)
@@ -194,36 +204,14 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
                     reason = "stopped by a signal"
                     break
                 gate.hold(t)  # `teleo pause` / `step-run` hold the run here, between cycles
-                if pace and t > first:  # never more than `pace` cycles ahead of the record,
-                    held = clock.keep_pace(  # and its first cycle in it before the next
-                        keys.RECORDER, t - 1 - pace if t > first + 1 else -1,
-                        resend=state if t == first + 1 else None,
-                        required_s=RECORD_LOST_S if recorded else None)
-                    if held > HOLD_REPORT_S:
-                        rec.event("record-wait", cycle=t, seconds=round(held, 3))
-                w0 = time.perf_counter()
                 control = changes.at_cycle(gate.due(t), clock, rec, t)
-                injected = _inject(sim, scripted.get(t, []), events_in, asked, node, t)
-                snap = sim.snapshot_dict()
-                over = episode_over(sim)  # this state is the episode's last: the last cycle
-                world_ms = (time.perf_counter() - w0) * 1e3
-                state = WorldState(node.envelope(t), split(snap)[1], outcomes, injected,
-                                   dict(memory), control)
-                report = clock.run_cycle(t, state, meanwhile=partial(_off_the_path, rec,
-                                                                      collector, t, snap))
-                changed = {a: m for a, m in report.memory.items() if memory.get(a) != m}
-                memory.update(changed)  # an agent given the no-op keeps its last memory
-                w0 = time.perf_counter()
-                applied = {a: _actions_of(sim, a, acts, report.noop)
-                           for a, acts in report.actions.items()}
-                outcomes = {a: sim.apply_actions(a, acts) for a, acts in applied.items()}
-                sim.step()
-                world_ms += (time.perf_counter() - w0) * 1e3
-                rec.cycle(t, snap, applied, injected, report, world_ms, changed, control)
-                node.publish_stats(t, world_ms)   # after the report: not a stage of the cycle
+                done = runner.cycle(t, transport, _arrived(events_in, asked, node, t), control)
+                rec.cycle(t, done.snap, done.applied, done.injected, done.report, done.world_ms,
+                          done.changed, control)
+                node.publish_stats(t, done.world_ms)  # after the report: not a stage of the cycle
                 if saving and (t + 1) % CHECKPOINT_EVERY == 0:
-                    rec.checkpoint(t + 1, sim.checkpoint(), outcomes)
-                if over:
+                    rec.checkpoint(t + 1, sim.checkpoint(), runner.outcomes)
+                if done.over:
                     reason = ended = "the episode is over"
                     break
         except CycleInterrupted as exc:
@@ -242,7 +230,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         # a forever run (or an episode that ended) ends by a stop; one whose recorder
         # was lost did not complete
         completed = (rec.cycles >= cycles if cycles and not ended else True) and not lost
-        rec.finish(completed, time.monotonic() - start, reason, memory)
+        rec.finish(completed, time.monotonic() - start, reason, runner.memory)
     log.info("stopped after %d cycles (%s): %s", rec.cycles,
              "complete" if completed else "early", reason)
     if unwritable is not None:

@@ -16,7 +16,6 @@ from enum import StrEnum
 from typing import Any
 
 from agents.lang.core.limits import MAX_GOAL_CHARS, shorten
-from agents.processes.goal_texts import refused_text  # noqa: F401  (simulate imports it here)
 from bus.schema import FieldError, ListOf, Record, Str
 
 STORE_VERSION = 1

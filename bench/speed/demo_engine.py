@@ -71,24 +71,26 @@ def current_cycles(clock: str, program: Path | None = None) -> list[tuple[float,
     running ``program`` if given (the release's programs/driving.tlp: same world)."""
     sys.path.insert(0, str(ROOT))
     import tools.commands.simulate as sim
+    from tools.commands.sim_agents import AgentCycle, InProcessAgents
     from world.run_scenario import load_scenario
 
     tick, out = getattr(time, CLOCKS[clock]), []
 
-    def agent_cycle(engine, state, domain, snap, agent, outcomes):  # tools/simulate.py's
-        percepts = domain.perceive(snap, agent)
+    def agent_cycle(team, agent, snap, outcomes, memory):  # tools/commands/sim_agents.py's
+        engine, state = team.engines[agent], team.states[agent]
+        percepts = team.domain.perceive(snap, agent)
         t0 = tick()
-        beliefs = engine.infer(percepts, state.scs.model)
-        decision, state = engine.decide(state, percepts, beliefs, outcomes)
+        beliefs = engine.infer(percepts, memory.get("model") or ())
+        decision, team.states[agent] = engine.decide(state, percepts, beliefs, outcomes)
         out.append(((tick() - t0) * 1e3, len(percepts)))
-        return sim.AgentCycle(percepts, list(outcomes), beliefs, decision, {}), state
+        return AgentCycle(percepts, list(outcomes), beliefs, decision, {})
 
-    inner, sim._agent_cycle = sim._agent_cycle, agent_cycle
+    inner, InProcessAgents._agent_cycle = InProcessAgents._agent_cycle, agent_cycle
     try:
         sim.simulate(load_scenario(ROOT / SCENARIO, [f"agents.ME.program={program}"]
                                    if program else ()))
     finally:
-        sim._agent_cycle = inner
+        InProcessAgents._agent_cycle = inner
     return out
 
 

@@ -14,8 +14,8 @@ import pytest
 from tools.commands.goal_wait import Follower, doing
 from tools.commands.scenario_check import load_checked
 from tools.commands.simulate import simulate
-from tools.records.recorder import SimRecorder
 from tools.records.run_record import RecordWriter, RunRecord
+from tools.records.run_recorders import SimRecorder
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "tests" / "e2e" / "fixtures"

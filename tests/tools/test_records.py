@@ -162,7 +162,7 @@ def test_simulate_times_the_stages_apart_yet_decides_as_engine_cycle(tmp_path) -
     from agents.lang import Engine, load_program
     from tools.commands.scenario_check import load_checked
     from tools.commands.simulate import simulate
-    from tools.records.recorder import SimRecorder
+    from tools.records.run_recorders import SimRecorder
     from world.domain import get_domain
 
     scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
@@ -271,8 +271,8 @@ def test_a_simulate_record_carries_the_agent_memory_as_a_launch_does(tmp_path) -
     back, as in a launch (docs/bus.md, "Agent memory")."""
     from tools.commands.scenario_check import load_checked
     from tools.commands.simulate import simulate
-    from tools.records.recorder import SimRecorder
     from tools.records.run_record import RecordWriter, RunRecord
+    from tools.records.run_recorders import SimRecorder
 
     scenario, _ = load_checked(ROOT / "scenarios" / "errands_demo.toml")
     path = tmp_path / "errands.mcap"

@@ -17,8 +17,8 @@ from bus import keys
 from tools.commands.scenario_check import load_checked
 from tools.commands.simulate import simulate
 from tools.records.program_graph import program_graph
-from tools.records.recorder import SimRecorder
 from tools.records.run_record import RecordWriter, RunRecord
+from tools.records.run_recorders import SimRecorder
 from tools.records.tree import decision_tree, to_json
 from tools.view import scene
 from tools.view.feeds import load_file

@@ -1,10 +1,10 @@
 """`teleo simulate SCENARIO`: the whole cognitive cycle in one process, without the bus.
 
-The same pure pieces the processes run (world.Simulation, world.driving.perception.perceive, the
-language engine), called in the order of one cycle (DESIGN.md, "One cognitive cycle"). It is
-what a program author iterates with, and what the driving program's tests run: a lockstep run
-over the bus gives the same actions cycle for cycle, since each stage is a pure function of
-its inputs.
+The cycle of a launch's world (world/cycle.py's CycleRunner) with the agents in this process
+(tools/commands/sim_agents.py): the same pure pieces the processes run (the world, its
+perception, the language engine), with the memory round trip of the bus. It is what a program
+author iterates with, and what the driving program's tests run: a lockstep run over the bus
+gives the same trace cycle for cycle, since each stage is a pure function of its inputs.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import json
 import logging
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -21,118 +21,23 @@ import click
 
 from agents.lang import Engine, EngineState, LangError, load_program
 from agents.lang.loader import read_text
-from agents.lang.registry import learned_text, memory_of, read_learned
-from agents.processes.goal_store import GoalStore, GoalStoreError, refused_text
-from agents.processes.goal_sync import GoalSync, validator
-from agents.processes.hints import with_hints
+from agents.lang.registry import learned_text, read_learned
 from bus.collector import Collector
+from bus.cycle import CycleReport
 from tools.commands.examples import ScenarioArg
 from tools.commands.plot import plot_check
 from tools.commands.scenario_check import check_learned, load_checked, override_option
+from tools.commands.sim_agents import AgentCycle, InProcessAgents, SimRun
 from tools.launching.progress import progress_cycles
 from tools.paths import OutputPath, picture_check
 from tools.records import sim_summary, summary
-from tools.records.run_record import GoalHistory
-from world.domain import episode_over, get_domain
+from world.cycle import CycleRunner, CycleState
+from world.domain import get_domain
 from world.errors import WorldError
-from world.run_scenario import Scenario, ScenarioError, ScriptedGoal
-from world.static import split, whole
-from world.trace import trace_line
+from world.run_scenario import Scenario, ScenarioError
 
 log = logging.getLogger(__name__)
-
-
-@dataclass
-class SimRun:
-    """The outcome of an in-process run: per-cycle records, the kept snapshots and the final
-    one (snapshot dicts of the scenario's domain, world/domain.py), each agent's learned
-    skills at the end (EngineState.learned: the ones it started from, then the new ones) and
-    its engine state at the end (``states``: the planner's head-plan, for one)."""
-
-    records: list[dict[str, Any]] = field(default_factory=list)
-    snapshots: list[dict[str, Any]] = field(default_factory=list)
-    final: dict[str, Any] = field(default_factory=dict)
-    learned: dict[str, tuple[str, ...]] = field(default_factory=dict)
-    states: dict[str, EngineState] = field(default_factory=dict)
-    trace: list[str] = field(default_factory=list)   # trace.jsonl lines (world/trace.py)
-    goals: GoalStore = field(default_factory=GoalStore)  # user goals, as a launch keeps them
-    memory: dict[str, dict[str, Any]] = field(default_factory=dict)  # each agent's, at the end
-    history: GoalHistory = field(default_factory=GoalHistory)  # each goal's changes
-    elapsed_s: float = 0.0
-
-
-class _Goals:
-    """The user goals of a simulated run, kept as the goal-entry process keeps them: the
-    scenario's requests applied to a GoalStore at their cycle (ids g1, g2, ... in order),
-    statuses mirrored from each decision, and each engine's goals synced from the store's goal
-    list (agents/processes/goal_sync.py), so ids, statuses and the goals the engine is given
-    are those of `teleo launch`."""
-
-    def __init__(self, scenario: Scenario, engines: dict[str, Engine]) -> None:
-        self.scenario = scenario
-        self.engines = engines
-        self.store = GoalStore()
-        self.validate = validator(engines)
-        self.sync = {a: GoalSync() for a in engines}
-
-    def before(self, cycle: int, states: dict[str, EngineState],
-               history: GoalHistory) -> None:
-        """Apply the requests due at ``cycle``, then give each engine its goal list (told to
-        ``history`` as the record is told the goal-entry process's GoalList)."""
-        for g in self.scenario.goals:
-            if g.at_cycle == cycle:
-                self.store = _request(self.store, g, cycle, self.validate)
-        for a, engine in self.engines.items():
-            listed = self.store.goal_list(a)
-            history.feed({"kind": "GoalList", "agent": a, "env": {"cycle": cycle},
-                          "goals": list(listed)})
-            states[a] = self.sync[a].apply(engine, states[a], listed, log)
-
-    def after(self, agent: str, decision: dict[str, Any], cycle: int) -> None:
-        """Mirror the statuses the agent's decision of ``cycle`` reports."""
-        self.store = self.store.update_from_intention(agent, decision, cycle)
-
-
-def _request(store: GoalStore, g: ScriptedGoal, cycle: int, validate) -> GoalStore:
-    """One scripted request applied to ``store`` (a refused one is logged, as the goal-entry
-    process logs it)."""
-    try:
-        if g.op == "post":
-            return store.post(g.agent, g.goal, g.priority, cycle, validate, g.once,
-                              g.deadline)[0]
-        if g.op == "cancel":
-            return store.cancel(g.goal_id, cycle, g.force)
-        return store.set_priority(g.goal_id, g.priority, cycle)
-    except GoalStoreError as exc:
-        log.info("scripted request refused: %s", exc)   # the summary says it
-        return store.refusing(refused_text(g.op, g.goal_id, g.goal, cycle, exc))
-
-
-@dataclass(frozen=True)
-class AgentCycle:
-    """What one agent saw and did in one cycle, for a recorder (tools/recorder.SimRecorder);
-    ms: compute time per stage [ms]."""
-
-    percepts: list
-    outcomes: list
-    beliefs: Any
-    decision: Any
-    ms: dict[str, float]
-
-
-def _agent_cycle(engine: Engine, state: EngineState, domain: Any, snap: dict[str, Any],
-                 agent: str, outcomes: list) -> tuple[AgentCycle, EngineState]:
-    """Perception, inference and the executive step of one agent, each timed."""
-    t0 = time.perf_counter()
-    percepts = domain.perceive(snap, agent)
-    t1 = time.perf_counter()
-    beliefs = engine.infer(percepts, engine.facts(state))  # as Engine.cycle does
-    t2 = time.perf_counter()
-    decision, state = engine.decide(state, percepts, beliefs, outcomes)
-    t3 = time.perf_counter()
-    ms = {"perception": (t1 - t0) * 1e3, "inference": (t2 - t1) * 1e3,
-          "executive": (t3 - t2) * 1e3}
-    return AgentCycle(percepts, list(outcomes), beliefs, decision, ms), state
+__all__ = ["AgentCycle", "SimRun", "simulate", "simulate_command", "write_learned"]
 
 
 def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = None,
@@ -141,8 +46,8 @@ def simulate(scenario: Scenario, cycles: int | None = None, seed: int | None = N
              until: Callable[[dict[str, EngineState]], bool] | None = None) -> SimRun:
     """Run `cycles` cycles of `scenario` in this process; keep every `keep_every`-th snapshot;
     every agent starts from the skills in the learned file `learned` (raises LangError with
-    file:line:col if it does not fit an agent's program); `recorder` (a
-    tools.records.recorder.SimRecorder) gets every cycle's messages; `show_progress`: a progress
+    file:line:col if it does not fit an agent's program); `recorder` (a SimRecorder,
+    tools/records/run_recorders.py) gets every cycle's messages; `show_progress`: a progress
     bar on a terminal (tools/launching/progress.py); `until`: stop after the first cycle at whose
     end it answers True for the agents' states (a benchmark's run ends when its work is done).
     The garbage collector runs as in a stage process: between cycles (bus/collector.py)."""
@@ -167,77 +72,41 @@ def _cycles(scenario: Scenario, cycles: int | None, seed: int | None, keep_every
     states = {a: engines[a].initial_state(learned=read_learned(programs[a], text, str(learned))
                                           if learned else ()) for a in agents}
     run = SimRun()
-    goals = _Goals(scenario, engines)
-    outcomes: dict[str, list[dict[str, Any]]] = {}
-    memory: dict[str, dict[str, Any]] = {}   # each agent's last memory, as the world keeps it
-    static: dict[str, Any] | None = None     # the world's static part, told once
+    runner = CycleRunner(sim, agents, scenario.events)
+    team = InProcessAgents(scenario, engines, states, domain, run, runner.static, recorder)
+    if recorder is not None:
+        recorder.static(domain.name, runner.static)   # as a launch's world: once (issue 35)
     total = scenario.run.cycles if cycles is None else cycles
     start = time.monotonic()
     for cycle in progress_cycles(total, show_progress):
-        w0 = time.perf_counter()
-        injected = [sim.inject(ev.event) for ev in scenario.events if ev.at_cycle == cycle]
-        goals.before(cycle, states, run.history)
-        if recorder is not None:
-            for a in agents:
-                recorder.goal_list(cycle, a, goals.store.goal_list(a))
-        snap = sim.snapshot_dict()
-        over = episode_over(sim)   # this state is the episode's last: the run's last cycle
+        done = runner.cycle(cycle, _Told(team, recorder))
         if keep_every and cycle % keep_every == 0:
-            run.snapshots.append(snap)
-        told, moving = split(snap)   # as a launch's world: the static part once (issue 35)
-        if static is None:
-            static = told
-            if recorder is not None:
-                recorder.static(domain.name, static)
+            run.snapshots.append(done.snap)
+        run.trace.append(done.trace())
         if recorder is not None:
-            recorder.world(cycle, moving, {a: outcomes.get(a, []) for a in agents}, injected,
-                           memory)
-        seen_snap = whole(static, moving)   # what a perception process puts together
-        world_ms = (time.perf_counter() - w0) * 1e3
-        record: dict[str, Any] = {"cycle": cycle}
-        for a in agents:
-            seen, states[a] = _agent_cycle(engines[a], states[a], domain, seen_snap, a,
-                                           outcomes.get(a, []))
-            actions = [act.to_list() for act in seen.decision.actions]
-            w0 = time.perf_counter()
-            outcomes[a] = sim.apply_actions(a, actions)
-            world_ms += (time.perf_counter() - w0) * 1e3
-            decided = seen.decision.to_dict()
-            run.history.feed({"kind": "Intention", "agent": a, "env": {"cycle": cycle},
-                              "decision": decided})
-            goals.after(a, with_hints(decided, seen.percepts, programs[a]), cycle)
-            record[a] = {"actions": actions,
-                         "goals": [(g.id, g.status.value) for g in seen.decision.goals]}
-            for name in ("solver", "planner"):
-                section = seen.decision.section(name)
-                if section is not None:
-                    record[a][name] = section.to_dict()
-            if recorder is not None:   # the memory a launch's messages carry
-                recorder.agent(cycle, a, seen, memory.get(a, {}), _memory(states[a]))
-        run.records.append(record)
-        now = {a: _memory(states[a]) for a in agents}
-        changed = {a: m for a, m in now.items() if memory.get(a, {}) != m}
-        memory.update(changed)
-        run.trace.append(trace_line(cycle, snap, {a: record[a]["actions"] for a in agents},
-                                    injected, changed))
-        w0 = time.perf_counter()
-        sim.step()
-        if recorder is not None:
-            recorder.world_stats(cycle, world_ms + (time.perf_counter() - w0) * 1e3)
+            recorder.world_stats(cycle, done.world_ms)
         collector.after_cycle()
-        if over or (until is not None and until(states)):
+        if done.over or (until is not None and until(states)):
             break
     run.final = sim.snapshot_dict()
     run.learned = {a: states[a].learned for a in agents}
     run.states = states
-    run.goals, run.elapsed_s = goals.store, time.monotonic() - start
-    run.memory = {a: memory.get(a, {}) for a in agents}
+    run.goals, run.elapsed_s = team.goals.store, time.monotonic() - start
+    run.memory = {a: runner.memory.get(a, {}) for a in agents}
     return run
 
 
-def _memory(state: EngineState) -> dict[str, Any]:
-    """The agent memory an executive process would send last (docs/bus.md, "Agent memory")."""
-    return memory_of(state)
+class _Told:
+    """The in-process agents, with each world state told to the record first."""
+
+    def __init__(self, team: InProcessAgents, recorder: Any) -> None:
+        self.team, self.recorder = team, recorder
+
+    def act(self, state: CycleState, snap: dict[str, Any]) -> CycleReport:
+        if self.recorder is not None:
+            self.recorder.world(state.t, state.snapshot, state.outcomes, state.events,
+                                state.memory)
+        return self.team.act(state, snap)
 
 
 def write_learned(run: SimRun, scenario: Scenario, out: Path) -> list[Path]:
@@ -285,7 +154,7 @@ def simulate_command(scenario: str, cycles: int | None, seed: int | None, trace:
     The same cycle as a lockstep launch, with the same goal ids (g1, g2, ...), trace lines
     and summary, with or without its record; a progress bar on a terminal. `--set
     KEY=VALUE` changes a field of the scenario for this run, as `teleo launch --set`."""
-    from tools.records.recorder import SimRecorder
+    from tools.records.run_recorders import SimRecorder
 
     recorder = None
     try:

@@ -75,8 +75,8 @@ def _scenario_text(name: str, domain: Path, problem: Path, program: Path, goal: 
 
 
 class _Watch:
-    """A recorder for simulate (tools/records/recorder.py's calls) that keeps only whether
-    the goal is over: satisfied or failed in the agent's decision of the last cycle."""
+    """A recorder for simulate (SimRecorder's calls, tools/records/run_recorders.py) that keeps
+    only whether the goal is over: satisfied or failed in the agent's decision of the last cycle."""
 
     def __init__(self) -> None:
         self.over = False

@@ -104,9 +104,9 @@ def _start(plan: Plan, sup: Supervisor, journal: Journal, outcome: Outcome,
 
 
 def _start_recorder(plan: Plan, held: Held) -> None:
-    """The run's recorder (tools/records/recorder.py); when it cannot start the run goes on
+    """The run's recorder (tools/records/run_recorders.py); when it cannot start the run goes on
     unrecorded, said on the log."""
-    from tools.records.recorder import run_recorder
+    from tools.records.run_recorders import run_recorder
 
     try:
         held.recorder = run_recorder(bus_config(plan, "operator"), plan.run, plan.run_dir,
