@@ -54,6 +54,17 @@ def axis_distance(seg: Segment, x: float, y: float) -> float:
     return math.hypot(max(0.0, -along, along - seg.length), lat)
 
 
+def _axis_distances(city: City, x: float, y: float) -> list[float]:
+    """``axis_distance`` of the point to every segment of the city, in its order."""
+    out = []
+    hypot = math.hypot
+    for s in city.segments:
+        dx, dy = x - s.x0, y - s.y0   # Segment.local, inline
+        along, lat = dx * s.ux + dy * s.uy, -dx * s.uy + dy * s.ux
+        out.append(hypot(max(0.0, -along, along - s.length), lat))
+    return out
+
+
 def _self(city: City, config: WorldConfig, me: CarState,
           aligned: tuple[Segment, int] | None) -> tuple[Percept, str]:
     kind, where, _, _ = city.locate(me.x, me.y)
@@ -222,8 +233,8 @@ def _seen(config: WorldConfig, me: CarState, cars: Sequence[Row], pedestrians: S
     reach = config.perception_range
     aligned = aligned_segment(city, me.x, me.y, me.heading)
     self_percept, my_street = _self(city, config, me, aligned)
-    segs = [(s, axis_distance(s, me.x, me.y)) for s in city.segments]
-    segs = [(s, d) for s, d in segs if d <= reach]
+    segs = [(s, d) for s, d in zip(city.segments, _axis_distances(city, me.x, me.y),
+                                    strict=True) if d <= reach]
     streets = sorted({s.street for s, _ in segs} | {my_street})
     out: list[Percept] = [["street", name] for name in streets]
     out.append(self_percept)
