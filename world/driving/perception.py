@@ -37,6 +37,7 @@ from world.errors import WorldError
 Percept = list[Any]
 Row = dict[str, Any]   # a car, pedestrian or package of a snapshot dict (SNAPSHOT's records)
 
+
 def polar(me: CarState, x: float, y: float) -> tuple[float, float]:
     """(dist [m], angle [deg], + = left of the heading) of a point seen from the car."""
     dx, dy = x - me.x, y - me.y
