@@ -46,11 +46,12 @@ def whole(static: Mapping[str, Any] | None, snapshot: dict[str, Any]) -> dict[st
     """``snapshot`` with the static part put back; one that holds it already is returned as
     it is. Raises WorldError naming the missing keys when it lacks them and ``static`` does
     not give them (the run's static part never reached this reader)."""
-    if has_static(snapshot):
+    names = static_keys(snapshot)
+    if not names or any(k in snapshot for k in names):   # has_static, its keys looked up once
         return snapshot
     merged = {**(static or {}), **snapshot}
-    missing = [k for k in static_keys(snapshot) if k not in merged]
-    if not has_static(merged):
+    missing = [k for k in names if k not in merged]
+    if len(missing) == len(names):
         raise WorldError(f"world state of cycle {snapshot.get('cycle', '?')}: no static "
                          f"{', '.join(missing)} (the run's world/static was not received)")
     return merged

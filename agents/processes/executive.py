@@ -12,7 +12,8 @@ path preferred (seed 000, Adding Goal Priorities). The intention is Decision.to_
 goal list with statuses, the skill path with bindings, the actions and why (and the problem
 solver's goal stacks). The goals live in the goal-entry process; the engine state (paths, goal
 stacks, learned skills, SCS threads) lives here and, with --state, in a file written after
-every cycle and read back at start, so a restart loses none of it (agents/processes/persist.py).
+every cycle that changed it and read back at start, so a restart loses none of it
+(agents/processes/persist.py).
 A program that comes with the percepts of a cycle (`teleo program load`) is swapped in before
 that cycle's step, the state carried over (agents/processes/swapping.py).
 The SCS state (body threads, discount factors, world model) also goes out with the actions as
@@ -217,7 +218,7 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
             raise Refused(f"{p_key}, {b_key}: the inputs of cycle {cycle}: {exc}") from None
         intention = with_hints(decision.to_dict(), seen.percepts, executive.engine.program)
         actions = [a.to_list() for a in decision.actions]
-        if saver is not None:
+        if saver is not None and saver.changed(executive.state):
             saver.save(Saved(cycle, executive.state, intention, actions))
         if out is not None:
             out.save(executive.state.learned)
@@ -238,7 +239,8 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
               help="Keep a program swapped in here, and start from the one it holds.")
 @click.option("--state", "state_path", type=click.Path(dir_okay=False),
               help="Engine state file: read back at start if it exists, written after every "
-                   "cycle (so a restart keeps paths, goal stacks and learned skills).")
+                   "cycle that changed the state (so a restart keeps paths, goal stacks and "
+                   "learned skills).")
 @agent_options(with_program=True)
 def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: str | None,
          learned: str | None, learned_out: str | None, no_solver: bool,

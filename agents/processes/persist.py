@@ -3,7 +3,14 @@ stack, SCS threads, discount factors, learned skills and plans all live in Engin
 serialisable, so a restarted executive loses none of them"): the engine state as JSON, and the
 learned skills in program syntax (agents/lang/solving/learned.py).
 
-The state is written every cycle, so it goes to a file kept open, in one ``pwrite`` system
+The state is written only when a cycle's decision changed it (its cycle number aside,
+``same_but_cycle``): deciding a cycle again from the last state written then gives the
+decision made the first time, since a decision is a function of the state and the cycle's
+inputs (the engine's promise: every result is what a fresh Engine would give). So a restarted
+executive the clock sends a cycle after the last one written decides it as it was decided, and
+one it sends the last one written re-emits that cycle's outputs (``Saved``): a killed executive
+loses nothing whichever cycle it dies in. A state that changes is written most cycles, so it goes
+to a file kept open, in one ``pwrite`` system
 call at offset 0 (padded with spaces, which JSON ignores, to the length of the longest version
 so far): a process killed by a signal either made that call or did not, so the file holds one
 whole version (creating a file costs milliseconds here, the write microseconds; this is not
@@ -20,7 +27,9 @@ import json
 import logging
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
+from functools import cache
+from operator import attrgetter
 from pathlib import Path
 from typing import Any
 
@@ -55,6 +64,17 @@ def set_aside_files(folder: Path) -> list[Path]:
     return sorted(p for p in folder.glob("*.bad*") if re.search(r"\.bad(-\d+)?$", p.name))
 
 
+def same_but_cycle(a: Any, b: Any) -> bool:
+    """Whether two engine states differ in their cycle number at most (a field-by-field
+    comparison: the fields of a state left as it was are the same objects)."""
+    return type(a) is type(b) and _kept(type(a))(a) == _kept(type(b))(b)
+
+
+@cache
+def _kept(kind: type) -> attrgetter:
+    return attrgetter(*(f.name for f in fields(kind) if f.name != "cycle"))
+
+
 @dataclass(frozen=True)
 class Saved:
     """What the executive wrote after deciding bus cycle ``cycle``: the engine state for the
@@ -70,7 +90,8 @@ class Saved:
 
 class StateFile:
     """An executive's state file: ``load`` at start (None when there is none), ``save`` after
-    every decision, before its outputs are published."""
+    a decision that changed the state, before its outputs are published (``changed`` says
+    whether one did)."""
 
     def __init__(self, path: str | Path, log: logging.Logger) -> None:
         self.path = Path(path)
@@ -78,6 +99,7 @@ class StateFile:
         self.fd: int | None = None
         self.size = 0
         self.unsaved: int | None = None  # the first cycle whose save failed, until one works
+        self.written: Any = None         # the engine state last written or read back
 
     def load(self) -> Saved | None:
         """What was last written, or None (no file yet, or one that cannot be read, whatever
@@ -104,7 +126,7 @@ class StateFile:
             self.log.error("engine state %s: cannot be read (%s); kept as %s, starting afresh",
                            self.path, str(exc)[:300], bad)
             return None
-        state = saved.state
+        state = self.written = saved.state
         self.log.info("engine state %s read back (bus cycle %d): %d goal(s), %d goal stack(s), "
                       "%d learned skill(s)", self.path, saved.cycle, len(state.goals),
                       len(state.solver.stacks), len(state.learned))
@@ -116,7 +138,7 @@ class StateFile:
         was written, from which a restart would decide the cycles after it again."""
         data = orjson.dumps({"cycle": saved.cycle, "state": saved.state.to_dict(),
                              "intention": saved.intention, "actions": saved.actions},
-                            option=orjson.OPT_NON_STR_KEYS)  # ~10x json.dumps, every cycle
+                            option=orjson.OPT_NON_STR_KEYS)  # ~10x json.dumps
         try:
             if self.fd is None:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -130,7 +152,12 @@ class StateFile:
                                "earlier cycle's", self.path, saved.cycle, exc.strerror or exc)
             return
         self.size = max(self.size, len(data))
-        self.unsaved = None
+        self.unsaved, self.written = None, saved.state
+
+    def changed(self, state: Any) -> bool:
+        """Whether ``state`` differs from the one on file by more than its cycle number (a
+        state never written, or whose writing failed, has changed)."""
+        return self.written is None or not same_but_cycle(state, self.written)
 
 
 def read_back_learned(program: Any, path: Path, log: logging.Logger) -> tuple[str, ...] | None:

@@ -124,3 +124,38 @@ def test_an_unreadable_learned_file_is_set_aside_and_the_executive_starts(tmp_pa
     again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state), learned_out=str(out))
     again(0, _inputs(0, TOWER))
     assert (tmp_path / "learned-ME.tlp.bad").read_bytes() == b"\xff\xfe(not a skill"
+
+
+CLEAR = [["table", "T", "xpos", 0, "ypos", 0, "height", 2], ["hand", "H1", "status", "empty"],
+         ["block", "C", "xpos", 0, "ypos", 2, "height", 2],
+         ["block", "B", "xpos", 0, "ypos", 4, "height", 2],
+         ["block", "A", "xpos", 0, "ypos", 6, "height", 2]]
+WORLD = [CLEAR] * 3 + [TOWER] * 4   # A clear: nothing to do; then A covered: the stack grows
+
+
+def test_the_state_is_written_only_when_a_decision_changed_it(tmp_path):
+    path = tmp_path / "state-ME.json"
+    step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+    written = []
+    for cycle, percepts in enumerate(WORLD):
+        step(cycle, _inputs(cycle, percepts))
+        written.append(json.loads(path.read_bytes())["cycle"])
+    assert written == [0, 0, 0, 3, 4, 5, 6]   # (clear A) held: cycles 1 and 2 changed nothing
+
+
+def test_a_killed_executive_loses_nothing_whichever_cycle_it_dies_in(tmp_path):
+    """Killed after deciding cycle k, written or not: restarted on its file, given cycle k again
+    (its outputs were not published) or cycle k + 1 (they were), it decides every cycle as the
+    executive that never died."""
+    ref = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(tmp_path / "ref.json"))
+    undisturbed = [_decision(ref(c, _inputs(c, p))) for c, p in enumerate(WORLD)]
+    for k in range(len(WORLD) - 1):
+        for resent in (True, False):
+            path = tmp_path / f"state-{k}-{resent}.json"
+            step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+            got = [_decision(step(c, _inputs(c, WORLD[c]))) for c in range(k + 1)]
+            again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+            if resent:
+                got[k] = _decision(again(k, _inputs(k, WORLD[k])))
+            got += [_decision(again(c, _inputs(c, WORLD[c]))) for c in range(k + 1, len(WORLD))]
+            assert got == undisturbed, (k, resent)

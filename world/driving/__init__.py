@@ -60,10 +60,9 @@ def check_config(table: dict[str, Any], agents: list[str]) -> None:
 
 def perceive(snapshot: dict[str, Any], agent: str) -> list[list[Any]]:
     """The agent's percepts (Table 3's form) from a snapshot dict."""
-    from world.driving.perception import perceive as from_snapshot
-    from world.driving.snapshot import WorldSnapshot
+    from world.driving.perception import perceive_dict
 
-    return from_snapshot(WorldSnapshot.from_dict(snapshot), agent)
+    return perceive_dict(snapshot, agent)
 
 
 def render(snapshots: Sequence[dict[str, Any]], path: Path, agent: str | None = None) -> int:

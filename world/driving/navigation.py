@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from world.driving.city import Building, City, Segment
 
 ARRIVE_BEHIND = 10.0   # [m] an address this far behind the car still counts as ARRIVING
+_WITHIN_45 = math.cos(math.radians(45.0)) - 1e-12   # |cos| of a heading within 45 deg of an axis
 
 
 @dataclass(frozen=True)
@@ -107,7 +108,7 @@ def aligned_segment(city: City, x: float, y: float, heading: float,
     best: tuple[float, int, Segment, int] | None = None
     for k, seg in enumerate(city.segments):
         dot = hx * seg.ux + hy * seg.uy
-        if abs(dot) < math.cos(math.radians(45.0)) - 1e-12:
+        if abs(dot) < _WITHIN_45:
             continue
         along, lat = seg.local(px, py)
         off = max(0.0, -along, along - seg.length)
@@ -125,7 +126,7 @@ def current_edge(city: City, x: float, y: float, heading: float) -> tuple[Segmen
     kind, where, _, _ = city.locate(x, y)
     h = math.radians(heading)
     hx, hy = math.cos(h), math.sin(h)
-    limit = math.cos(math.radians(45.0)) - 1e-12
+    limit = _WITHIN_45
     if kind == "segment":
         seg = city.segment(where)
         dot = hx * seg.ux + hy * seg.uy

@@ -20,7 +20,7 @@ COUNTERS = ("pedestrian_hits", "vehicle_collisions", "off_road", "yellow_crossin
             "speeding_cycles", "deliveries")
 
 
-_config = config_reader(load_world_config)  # every snapshot of a run carries the same config
+read_config = config_reader(load_world_config)  # every snapshot of a run carries the same config
 
 @dataclass(frozen=True)
 class CarState:
@@ -95,7 +95,7 @@ class WorldSnapshot:
         """Rebuild a snapshot from `to_dict` output; raise WorldError naming what is wrong
         (the field, checked against SNAPSHOT, or the config's key)."""
         return rebuild(cls, SNAPSHOT, d, lambda: cls(
-            cycle=int(d["cycle"]), time=d["time"], config=_config(d["config"]),
+            cycle=int(d["cycle"]), time=d["time"], config=read_config(d["config"]),
             cars=tuple(record(CarState, c) for c in d["cars"]),
             pedestrians=tuple(record(PedState, p) for p in d["pedestrians"]),
             packages=tuple(record(PackageState, p) for p in d["packages"]),
@@ -122,3 +122,4 @@ SNAPSHOT = Record({
 """The fields of `WorldSnapshot.to_dict` as perception relies on them (its config, plain data,
 is read by load_world_config, which names a bad key, once per distinct config); other
 top-level keys are let through (a later version may add some)."""
+
