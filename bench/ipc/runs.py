@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import re
-import shutil
 import subprocess
 import sys
 import time
@@ -118,13 +117,15 @@ def run_teleo(domain: str, task: str, domain_file: str, problem_file: str, limit
 def run_pyperplan(domain: str, task: str, domain_file: str, problem_file: str, planner: str,
                   limit_s: float, folder: str) -> Run:
     """Solve the task with pyperplan's ``planner`` within ``limit_s`` [s] (files copied under
-    ``folder``, where pyperplan writes its .soln), its plan replayed like teleo's."""
+    ``folder``, where pyperplan writes its .soln, without any action costs: pyperplan runs
+    none), its plan replayed like teleo's."""
     search, heuristic = PLANNERS[planner]
     here = Path(folder) / f"{domain}-{task}-{planner}"
     here.mkdir(parents=True, exist_ok=True)
     dom, prob = here / "domain.pddl", here / "problem.pddl"
-    shutil.copyfile(domain_file, dom)
-    shutil.copyfile(problem_file, prob)
+    for src, dst in ((domain_file, dom), (problem_file, prob)):   # pyperplan runs no costs
+        text = Path(src).read_text()
+        dst.write_text(strips.uncosted(text) if strips.has_costs(text) else text)
     soln = here / "problem.pddl.soln"
     soln.unlink(missing_ok=True)
     cmd = [sys.executable, "-m", "pyperplan", "-s", search, "-H", heuristic, str(dom), str(prob)]
