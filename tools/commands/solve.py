@@ -43,13 +43,15 @@ class Solved:
     goal: str = ""
     elapsed_s: float = 0.0
     learned_file: str | None = None
+    notes: tuple[str, ...] = ()     # what of the PDDL files the world ignores (action costs)
 
     def to_dict(self) -> dict[str, Any]:
         return {"domain": self.domain, "problem": self.problem, "status": self.status,
                 "goal": self.goal, "cycles": self.cycles, "actions": self.actions,
                 "plan_length": len(self.actions), "learned": self.learned,
                 "solving_cycles": self.solving_cycles, "reason": self.reason,
-                "elapsed_s": round(self.elapsed_s, 3), "learned_file": self.learned_file}
+                "elapsed_s": round(self.elapsed_s, 3), "learned_file": self.learned_file,
+                "notes": list(self.notes)}
 
 
 def _write_learned(out: Path, program: Path, skills: tuple[str, ...]) -> list[Path]:
@@ -133,7 +135,8 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
                                        goal, limit))
         scenario, _ = load_checked(path)
         if not task.goal:
-            return Solved(task.domain.name, task.name, "achieved", 0, goal="(and)")
+            return Solved(task.domain.name, task.name, "achieved", 0, goal="(and)",
+                          notes=task.domain.notes)
         watch = _Watch()
         run = simulate(scenario, limit, learned=learned, recorder=watch,
                        until=lambda states: watch.over)
@@ -156,7 +159,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
     solving = sum(bool(x.get("solving")) for x in sections)
     return Solved(task.domain.name, task.name, verdict, len(run.records), executed(run), new,
                   solving, reason, goal, run.elapsed_s,
-                  str(written[0]) if written else None)
+                  str(written[0]) if written else None, task.domain.notes)
 
 
 @click.command("solve")
@@ -201,6 +204,8 @@ def _echo(r: Solved) -> None:
     click.echo(f"  goal {r.goal}")
     if r.reason:
         click.echo(f"  why: {r.reason}")
+    for note in r.notes:
+        click.echo(f"  note: {note}")
     for k, a in enumerate(r.actions, start=1):
         click.echo(f"  {k:3d} ({' '.join(a)})")
     if r.learned_file:

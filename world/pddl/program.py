@@ -132,7 +132,7 @@ def program_text(model: DomainModel, task: Task | None = None, extra: str = "",
             f"`teleo pddl program` (docs/pddl.md).",
             f"Percepts: (object NAME type T) for each object and each of its types (types: "
             f"{types}); an atom (p a b) as (p _ arg1 a arg2 b), (p) as (p _).",
-            f"Actions: {actions}"]
+            f"Actions: {actions}", *(f"Note: {n}." for n in model.notes)]
     head = [line for text in head for line in textwrap.wrap(
         text, 97, initial_indent="; ", subsequent_indent=";   ", break_on_hyphens=False)]
     head.append("")
@@ -141,7 +141,10 @@ def program_text(model: DomainModel, task: Task | None = None, extra: str = "",
         [negation_clause(model, p, name) for p, name in neg.items()]
     skills = [c for op in model.operators for c in skill_clauses(op, neg)]
     text = "\n".join(head) + "(concepts\n" + "\n".join(concepts) + ")\n\n"
-    text += "(skills\n" + "\n".join(skills) + ")\n"
+    body = "\n".join(skills)
+    # a comment last (an operator with no skill) would swallow the closing parenthesis
+    close = "\n  )" if body.rsplit("\n", 1)[-1].lstrip().startswith(";") else ")"
+    text += "(skills\n" + body + close + "\n"
     if task is not None and task.goal and goals:
         text += f"\n; the goal of problem {task.name}\n(goals\n  {goal_text(task)})\n"
     if extra:
