@@ -42,6 +42,12 @@ def _library():
     return _PARSERS[0]
 
 
+def reset_parsers() -> None:
+    """Drop the parsers made so far (one cut short by a signal mid-parse, as `teleo solve
+    --time-limit` does, is left in a broken state); the next load makes new ones."""
+    _PARSERS.clear()
+
+
 def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
     """The domain in ``path`` (or ``text``, read from there); raises ConfigError (one line)
     for anything it cannot run."""
