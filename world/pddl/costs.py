@@ -27,8 +27,16 @@ _NUMERIC = re.compile(r"\(\s*(increase|decrease|assign|scale-up|scale-down|<=|>=
 
 
 def declares_costs(code: str) -> bool:
-    """Whether ``code`` (comments blanked) declares the `:action-costs` requirement."""
-    return _DECLARED.search(code) is not None
+    """Whether ``code`` (comments blanked) declares the `:action-costs` requirement, or uses
+    action costs without it (a `:functions` block of `(total-cost)` alone, as some IPC files
+    do)."""
+    if _DECLARED.search(code) is not None:
+        return True
+    m = re.search(r"\(\s*:functions\b", code, re.I)
+    if m is None:
+        return False
+    body = code[m.end():_end(code, m.start()) - 1]
+    return [n.lower() for n in re.findall(r"\(\s*([^\s()]+)", body)] == ["total-cost"]
 
 
 def _end(code: str, start: int) -> int:

@@ -81,3 +81,14 @@ def test_a_syntax_error_after_a_blanked_cost_keeps_its_line_and_column(tmp_path)
     with pytest.raises(ConfigError) as exc:
         load_task(ROADS[0], path)
     assert str(exc.value).startswith(f"{path}:9:") and "syntax error" in str(exc.value)
+
+
+def test_costs_used_without_declaring_the_requirement_run_too(tmp_path):
+    # (:functions (total-cost)) alone, no :action-costs: as some IPC files are written
+    text = ROADS[0].read_text().replace(" :action-costs", "").replace(
+        "\n              (road-length ?a ?b - place) - number", "").replace(
+        "(increase (total-cost) (road-length ?a ?b))", "(increase (total-cost) 1)")
+    assert "road-length" not in text
+    path = write_problem(tmp_path, text, "d.pddl")
+    task = load_task(path, ROADS[1])
+    assert task.domain.notes == (NOTE,) and task.domain.operator("drive").add
