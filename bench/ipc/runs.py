@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import re
-import shutil
 import subprocess
 import sys
 import time
@@ -21,6 +20,7 @@ from bench.ipc import strips
 ROOT = Path(__file__).resolve().parents[2]
 TELEO = Path(sys.executable).parent / "teleo"
 PLANNERS = {"gbf-hff": ("gbf", "hff"), "astar-lmcut": ("astar", "lmcut")}
+START_S = 3.0   # the interpreter's start and teleo's import, left out of teleo's own limit [s]
 EXPANDED = re.compile(r"(\d+) Nodes expanded")
 
 
@@ -28,9 +28,9 @@ EXPANDED = re.compile(r"(\d+) Nodes expanded")
 class Run:
     """One run's figures. ``who``: teleo-fresh, teleo-learned, teleo-cross (with the skills of
     another task, ``source``), gbf-hff or astar-lmcut. ``status``: solved, failed (the run ended
-    with the goal unachieved; ``detail`` its reason), limit (teleo's cycle limit), timeout
-    (killed at the time limit), invalid (teleo claimed the goal achieved, the replay denies it;
-    ``detail`` why) or error. ``claimed``: teleo's summary said achieved. ``length`` in
+    with the goal unachieved; ``detail`` its reason), limit (teleo's cycle or time limit),
+    timeout (killed at the time limit), invalid (teleo claimed the goal achieved, the replay
+    denies it; ``detail`` why) or error. ``claimed``: teleo's summary said achieved. ``length`` in
     actions, ``cycles`` and ``solving`` (problem-solving cycles) teleo's, ``wall_s`` [s]
     including the interpreter's start, ``solve_s`` [s] teleo's own time for the run (its
     ``elapsed_s``, without the start of the interpreter and the import of teleo);
@@ -73,11 +73,14 @@ def _reason(data: dict) -> str:
 def run_teleo(domain: str, task: str, domain_file: str, problem_file: str, limit_s: float,
               folder: str, who: str = "teleo-fresh", learned_in: str = "",
               source: str = "", cycles: int = 0) -> Run:
-    """Solve the task with `teleo solve`, killed after ``limit_s`` [s]; the skills it learns go
-    to a file under ``folder``; ``learned_in``: a file of skills learned before."""
+    """Solve the task with `teleo solve --time-limit` (``limit_s`` less START_S, so that it
+    ends itself with status limit and its reason), killed after ``limit_s`` [s]; the skills
+    it learns go to a file under ``folder``; ``learned_in``: a file of skills learned
+    before."""
     out = Path(folder) / f"{domain}-{task}-{who}{'-' + source if source else ''}.tlp"
     out.unlink(missing_ok=True)
-    cmd = [str(TELEO), "solve", domain_file, problem_file, "--json", "--learned-out", str(out)]
+    cmd = [str(TELEO), "solve", domain_file, problem_file, "--json", "--learned-out", str(out),
+           "--time-limit", f"{max(1.0, limit_s - START_S):g}"]
     if learned_in:
         cmd += ["--learned", learned_in]
     if cycles:
@@ -118,13 +121,15 @@ def run_teleo(domain: str, task: str, domain_file: str, problem_file: str, limit
 def run_pyperplan(domain: str, task: str, domain_file: str, problem_file: str, planner: str,
                   limit_s: float, folder: str) -> Run:
     """Solve the task with pyperplan's ``planner`` within ``limit_s`` [s] (files copied under
-    ``folder``, where pyperplan writes its .soln), its plan replayed like teleo's."""
+    ``folder``, where pyperplan writes its .soln, without any action costs: pyperplan runs
+    none), its plan replayed like teleo's."""
     search, heuristic = PLANNERS[planner]
     here = Path(folder) / f"{domain}-{task}-{planner}"
     here.mkdir(parents=True, exist_ok=True)
     dom, prob = here / "domain.pddl", here / "problem.pddl"
-    shutil.copyfile(domain_file, dom)
-    shutil.copyfile(problem_file, prob)
+    for src, dst in ((domain_file, dom), (problem_file, prob)):   # pyperplan runs no costs
+        text = Path(src).read_text()
+        dst.write_text(strips.uncosted(text) if strips.has_costs(text) else text)
     soln = here / "problem.pddl.soln"
     soln.unlink(missing_ok=True)
     cmd = [sys.executable, "-m", "pyperplan", "-s", search, "-H", heuristic, str(dom), str(prob)]

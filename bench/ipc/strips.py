@@ -5,11 +5,15 @@ then add effects applied, and the goal checked on the result. Nothing of teleo's
 engine is used, so a teleo summary that claims a success the replay denies is caught.
 
 Covers what pyperplan parses: STRIPS with typing and domain constants (the five IPC domains of
-bench/ipc/suites). An action is a sequence of lower-case names, ``("stack", "a", "b")``.
+bench/ipc/suites), and action costs, which it drops itself before parsing (``uncosted``: a
+plan's validity does not depend on them). An action is a sequence of lower-case names,
+``("stack", "a", "b")``.
 """
 
 from __future__ import annotations
 
+import re
+import tempfile
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -70,8 +74,50 @@ def _lineage(t) -> frozenset[str]:
     return frozenset(names)
 
 
+def _sexp_end(text: str, start: int) -> int:
+    depth = 0
+    for k in range(start, len(text)):
+        depth += {"(": 1, ")": -1}.get(text[k], 0)
+        if depth == 0:
+            return k + 1
+    return len(text)
+
+
+def has_costs(text: str) -> bool:
+    """Whether PDDL ``text`` uses action costs."""
+    return re.search(r":action-costs|total-cost", text, re.I) is not None
+
+
+def uncosted(text: str) -> str:
+    """PDDL ``text`` without its action costs: the requirement, the ``:functions`` block,
+    ``(increase (total-cost) ...)`` effects (``(and)`` where one is the whole effect), the
+    initial values ``(= (f ...) n)`` and the ``:metric``; a problem's ``:requirements``
+    too (pyperplan reads none there)."""
+    text = re.sub(r";[^\n]*", "", text).replace(":action-costs", "")
+    problem = re.search(r"\(\s*problem\b", text, re.I) is not None
+    pattern = re.compile(r"\((\s*:functions\b|\s*:metric\b|\s*increase\b|\s*=\s*\("
+                         + (r"|\s*:requirements\b" if problem else "") + ")", re.I)
+    while (m := pattern.search(text)) is not None:
+        end = _sexp_end(text, m.start())
+        alone = re.search(r":effect\s*$", text[:m.start()], re.I) is not None
+        text = text[:m.start()] + ("(and)" if alone else "") + text[end:]
+    return text
+
+
 def load(domain: str | Path, problem: str | Path) -> StripsTask:
-    """Parse ``domain`` and ``problem`` (PDDL files) with pyperplan's parser."""
+    """Parse ``domain`` and ``problem`` (PDDL files) with pyperplan's parser (action costs
+    dropped first)."""
+    texts = [Path(domain).read_text(), Path(problem).read_text()]
+    if any(map(has_costs, texts)):
+        with tempfile.TemporaryDirectory(prefix="strips-") as folder:
+            files = [Path(folder) / "domain.pddl", Path(folder) / "problem.pddl"]
+            for f, t in zip(files, texts, strict=True):
+                f.write_text(uncosted(t))
+            return _parsed(*files)
+    return _parsed(domain, problem)
+
+
+def _parsed(domain: str | Path, problem: str | Path) -> StripsTask:
     parser = Parser(str(domain), str(problem))
     dom = parser.parse_domain()
     prob = parser.parse_problem(dom)

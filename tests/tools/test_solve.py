@@ -93,3 +93,28 @@ def test_the_text_output_names_the_status_and_the_plan():
     assert first.startswith("blocks blocks-4-0: achieved in ")
     assert goal == "  goal (and (on d c) (on c b) (on b a))"
     assert plan[0].split(None, 1)[1].startswith("(pick-up") or "unstack" in plan[0]
+
+
+def test_a_run_out_of_time_is_limit_with_its_reason_and_exit_1():
+    # 1 ms: spent before the first cycle whatever the machine (parsing alone takes longer)
+    code, out = _solve(BLOCKS2, "--time-limit", "0.001")
+    assert (code, out["status"], out["actions"], out["learned_file"]) == (1, "limit", [], None)
+    assert out["reason"].startswith("the time limit of 0.001 s ran out")
+
+
+def test_the_time_limits_watch_keeps_the_plan_the_run_executed():
+    from tools.commands.solve import _solve as run_solve
+    from tools.commands.solve import _Watch, solve
+
+    # a run cut short mid-parse first: the next one in the process parses afresh
+    assert solve(BLOCKS2[0], BLOCKS2[1], time_limit=0.001).status == "limit"
+    watch = _Watch()
+    result = run_solve(BLOCKS2[0], BLOCKS2[1], None, None, "", None, watch)
+    assert result.status == "achieved" and len(result.actions) > 4
+    assert watch.actions == result.actions and watch.cycles == result.cycles
+
+
+def test_a_bad_time_limit_is_a_usage_error():
+    result = CliRunner().invoke(cli, ["solve", str(BLOCKS[0]), str(BLOCKS[1]),
+                                      "--time-limit", "0"])
+    assert result.exit_code == 2 and "--time-limit" in result.output

@@ -10,7 +10,10 @@ status and the world's final state to say so (docs/pddl.md, "teleo solve")."""
 from __future__ import annotations
 
 import json
+import signal
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -43,13 +46,15 @@ class Solved:
     goal: str = ""
     elapsed_s: float = 0.0
     learned_file: str | None = None
+    notes: tuple[str, ...] = ()     # what of the PDDL files the world ignores (action costs)
 
     def to_dict(self) -> dict[str, Any]:
         return {"domain": self.domain, "problem": self.problem, "status": self.status,
                 "goal": self.goal, "cycles": self.cycles, "actions": self.actions,
                 "plan_length": len(self.actions), "learned": self.learned,
                 "solving_cycles": self.solving_cycles, "reason": self.reason,
-                "elapsed_s": round(self.elapsed_s, 3), "learned_file": self.learned_file}
+                "elapsed_s": round(self.elapsed_s, 3), "learned_file": self.learned_file,
+                "notes": list(self.notes)}
 
 
 def _write_learned(out: Path, program: Path, skills: tuple[str, ...]) -> list[Path]:
@@ -74,12 +79,44 @@ def _scenario_text(name: str, domain: Path, problem: Path, program: Path, goal: 
             f'goal = {json.dumps(goal)}\npriority = 1\n')
 
 
+class OutOfTime(BaseException):
+    """`teleo solve --time-limit` spent, raised by an alarm wherever its process is (a
+    BaseException, so that no handler of the engine's takes it for a failure of its own)."""
+
+
+@contextmanager
+def _deadline(seconds: float | None) -> Iterator[None]:
+    """Raise OutOfTime in this process after ``seconds`` [s] (none: never)."""
+    if not seconds:
+        yield
+        return
+
+    def ring(signum: int, frame: Any) -> None:
+        raise OutOfTime
+
+    old = signal.signal(signal.SIGALRM, ring)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
 class _Watch:
     """A recorder for simulate (SimRecorder's calls, tools/records/run_recorders.py) that keeps
-    only whether the goal is over: satisfied or failed in the agent's decision of the last cycle."""
+    whether the goal is over (satisfied or failed in the agent's decision of the last cycle),
+    the cycles begun and the actions done so far (for a run cut short by the time limit,
+    whose ``run`` never comes back): an action counts once the next snapshot's
+    `actions_done` grew."""
 
     def __init__(self) -> None:
         self.over = False
+        self.cycles = 0
+        self.actions: list[list[str]] = []
+        self._decided: list[list[str]] = []
+        self._done = 0
+        self.names = ("", "", "", ())   # the domain's, the problem's, the goal, the notes
 
     def goal_list(self, *args: Any) -> None:
         pass
@@ -87,8 +124,11 @@ class _Watch:
     def static(self, *args: Any) -> None:
         pass
 
-    def world(self, *args: Any) -> None:
-        pass
+    def world(self, cycle: int, moving: dict, *args: Any) -> None:
+        self.cycles = cycle + 1
+        done = moving.get("counters", {}).get(AGENT, {}).get("actions_done", self._done)
+        self.actions += self._decided[:max(0, done - self._done)]
+        self._done = done
 
     def world_stats(self, *args: Any) -> None:
         pass
@@ -96,6 +136,8 @@ class _Watch:
     def agent(self, cycle: int, agent: str, seen: Any, *args: Any) -> None:
         self.over = any(g.status.value in ("satisfied", "failed")
                         for g in seen.decision.goals)
+        self._decided = [[str(x).lstrip("*").lower() for x in a.to_list()]
+                         for a in seen.decision.actions]
 
 
 def executed(run: Any) -> list[list[str]]:
@@ -113,8 +155,28 @@ def executed(run: Any) -> list[list[str]]:
 
 
 def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path | None = None,
-          extra: str = "", learned_out: Path | None = None) -> Solved:
-    """Run the problem; raises WorldError, ScenarioError or LangError for bad input."""
+          extra: str = "", learned_out: Path | None = None,
+          time_limit: float | None = None) -> Solved:
+    """Run the problem, within ``time_limit`` [s] if given (then status ``limit``, saying
+    so); raises WorldError, ScenarioError or LangError for bad input."""
+    watch = _Watch()
+    try:
+        with _deadline(time_limit):
+            return _solve(domain, problem, cycles, learned, extra, learned_out, watch)
+    except OutOfTime:
+        from world.pddl.files import reset_parsers
+
+        reset_parsers()   # the alarm may have cut a parse short
+        where = f"in cycle {watch.cycles}" if watch.cycles else "before the first cycle"
+        name, task, goal, notes = watch.names
+        return Solved(name or domain.stem, task or problem.stem, "limit", watch.cycles,
+                      watch.actions, reason=f"the time limit of {time_limit:g} s ran out "
+                      f"{where} (no skills written)", goal=goal,
+                      elapsed_s=float(time_limit or 0), notes=notes)
+
+
+def _solve(domain: Path, problem: Path, cycles: int | None, learned: Path | None, extra: str,
+           learned_out: Path | None, watch: _Watch) -> Solved:
     from tools.commands.scenario_check import load_checked
     from tools.commands.simulate import simulate
     from tools.records import sim_summary
@@ -123,6 +185,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
 
     task = load_task(domain, problem)
     goal = goal_text(task)
+    watch.names = (task.domain.name, task.name, goal, task.domain.notes)
     limit = cycles or default_cycles(len(task.objects), len(task.goal))
     with tempfile.TemporaryDirectory(prefix="teleo-solve-") as folder:
         program = Path(folder) / f"{task.domain.name}.tlp"
@@ -133,8 +196,8 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
                                        goal, limit))
         scenario, _ = load_checked(path)
         if not task.goal:
-            return Solved(task.domain.name, task.name, "achieved", 0, goal="(and)")
-        watch = _Watch()
+            return Solved(task.domain.name, task.name, "achieved", 0, goal="(and)",
+                          notes=task.domain.notes)
         run = simulate(scenario, limit, learned=learned, recorder=watch,
                        until=lambda states: watch.over)
         written = _write_learned(learned_out, program, run.learned[AGENT]) \
@@ -156,7 +219,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
     solving = sum(bool(x.get("solving")) for x in sections)
     return Solved(task.domain.name, task.name, verdict, len(run.records), executed(run), new,
                   solving, reason, goal, run.elapsed_s,
-                  str(written[0]) if written else None)
+                  str(written[0]) if written else None, task.domain.notes)
 
 
 @click.command("solve")
@@ -172,9 +235,12 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
 @click.option("--extra", type=click.Path(exists=True, dir_okay=False, path_type=Path),
               default=None, help="Add this file of your own concepts and skills to the "
                                  "domain's program.")
+@click.option("--time-limit", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Stop after this many seconds with status limit (default: none).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as one JSON object.")
 def solve_command(domain: Path, problem: Path, cycles: int | None, learned: Path | None,
-                  learned_out: Path | None, extra: Path | None, as_json: bool) -> None:
+                  learned_out: Path | None, extra: Path | None, time_limit: float | None,
+                  as_json: bool) -> None:
     """Solve PROBLEM of DOMAIN (PDDL files) with a teleo agent, in one process.
 
     Prints the outcome and the executed plan; exit 0 when the goal was achieved (and the
@@ -183,7 +249,7 @@ def solve_command(domain: Path, problem: Path, cycles: int | None, learned: Path
 
     try:
         text = extra.read_text() if extra else ""
-        result = solve(domain, problem, cycles, learned, text, learned_out)
+        result = solve(domain, problem, cycles, learned, text, learned_out, time_limit)
     except (WorldError, LangError) as exc:
         raise click.ClickException(" ".join(str(exc).split("\n")[:1])
                                    if isinstance(exc, WorldError) else str(exc)) from None
@@ -201,6 +267,8 @@ def _echo(r: Solved) -> None:
     click.echo(f"  goal {r.goal}")
     if r.reason:
         click.echo(f"  why: {r.reason}")
+    for note in r.notes:
+        click.echo(f"  note: {note}")
     for k, a in enumerate(r.actions, start=1):
         click.echo(f"  {k:3d} ({' '.join(a)})")
     if r.learned_file:

@@ -13,14 +13,17 @@ Names are lower-cased (PDDL is case-insensitive); a variable keeps its ``?``.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from pathlib import Path
 
 from world.errors import ConfigError
 from world.pddl.convert import domain_model, task_of
+from world.pddl.costs import NOTE, declares_costs, without_costs
 from world.pddl.task import DomainModel, Task, locate, position, uncommented
 
 INSTALL = "pip install 'teleo[pddl]'"
-SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality"})
+SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality",
+                       "action-costs"})
 
 
 _PARSERS: list = []   # the library's two parsers, made once per process (each builds its grammar)
@@ -39,6 +42,12 @@ def _library():
     return _PARSERS[0]
 
 
+def reset_parsers() -> None:
+    """Drop the parsers made so far (one cut short by a signal mid-parse, as `teleo solve
+    --time-limit` does, is left in a broken state); the next load makes new ones."""
+    _PARSERS.clear()
+
+
 def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
     """The domain in ``path`` (or ``text``, read from there); raises ConfigError (one line)
     for anything it cannot run."""
@@ -46,6 +55,9 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
     text = _read(path) if text is None else text
     code = uncommented(text)
     _check_requirements(code, path)
+    costs = declares_costs(code)
+    if costs:   # run with the costs ignored (costs.py), and say so
+        code = without_costs(code, path, problem=False)
     for construct, name in (("durative-action", "durative actions (:durative-action)"),
                             ("functions", "numeric fluents (:functions)"),
                             ("derived", "derived predicates (:derived)")):
@@ -53,8 +65,9 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
         if m:
             raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not "
                               f"supported; the pddl world runs STRIPS with {_fragment()}")
-    d = _parsed(parse_domain, path, text)
-    return domain_model(d, str(path), text)
+    d = _parsed(parse_domain, path, code if costs else text)
+    model = domain_model(d, str(path), text)
+    return replace(model, notes=(NOTE,)) if costs else model
 
 
 def load_task(domain_path: str | Path, problem_path: str | Path,
@@ -64,8 +77,11 @@ def load_task(domain_path: str | Path, problem_path: str | Path,
     model = load_domain(domain_path, texts[0] if texts else None)
     _, parse_problem = _library()
     text = _read(problem_path) if texts is None else texts[1]
-    _check_requirements(uncommented(text), problem_path)
-    p = _parsed(parse_problem, problem_path, text)
+    code = uncommented(text)
+    _check_requirements(code, problem_path)
+    if model.notes or declares_costs(code):
+        code = without_costs(code, problem_path, problem=True)
+    p = _parsed(parse_problem, problem_path, code)
     return task_of(model, p, str(problem_path), text)
 
 

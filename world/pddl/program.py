@@ -73,9 +73,24 @@ def _condition(lit: Lit, neg: dict[str, str]) -> str:
     return lit.text()
 
 
-def skill_clauses(op: Operator, neg: dict[str, str] | None = None) -> list[str]:
+def static_predicates(model: DomainModel) -> frozenset[str]:
+    """The predicates no operator adds or deletes: true or false for a whole problem."""
+    changed = {lit.pred for op in model.operators for lit in (*op.add, *op.delete)}
+    return frozenset(p for p, _ in model.predicates if p not in changed)
+
+
+def _atom_pattern(lit: Lit) -> str:
+    return "(" + " ".join([lit.pred, ATOM, *[f"arg{k} {a}" for k, a in
+                                            enumerate(lit.args, start=1)]]) + ")"
+
+
+def skill_clauses(op: Operator, neg: dict[str, str] | None = None,
+                  static: frozenset[str] = frozenset()) -> list[str]:
     """The primitive skills of one operator: one per add effect, and one per delete effect of a
-    predicate with a negation concept in ``neg`` (for each `either` choice)."""
+    predicate with a negation concept in ``neg`` (for each `either` choice). A precondition of
+    a ``static`` predicate is matched among the :percepts too, first: it holds now or never,
+    and it narrows the objects a parameter can take before the others are tried (an untyped
+    domain's `(satellite ?s)`)."""
     neg = neg or {}
     adds = " ".join(a.text() for a in op.add) or "nothing"
     dels = " ".join(d.text() for d in op.delete) or "nothing"
@@ -93,9 +108,10 @@ def skill_clauses(op: Operator, neg: dict[str, str] | None = None) -> list[str]:
     if not made:
         return out
     start = " ".join(_condition(p, neg) for p in op.pre)
+    fixed = [_atom_pattern(p) for p in op.pre if p.pred in static and not p.negated]
     for types in product(*[t for _, t in op.params]):
-        percepts = " ".join(f"({OBJECT} {v} type {t})" for (v, _), t in zip(op.params, types,
-                                                                             strict=True))
+        percepts = " ".join([*fixed, *(f"({OBJECT} {v} type {t})" for (v, _), t in
+                                       zip(op.params, types, strict=True))])
         for head in made:
             lines = [f"  ({head}"]
             if percepts:
@@ -132,16 +148,20 @@ def program_text(model: DomainModel, task: Task | None = None, extra: str = "",
             f"`teleo pddl program` (docs/pddl.md).",
             f"Percepts: (object NAME type T) for each object and each of its types (types: "
             f"{types}); an atom (p a b) as (p _ arg1 a arg2 b), (p) as (p _).",
-            f"Actions: {actions}"]
+            f"Actions: {actions}", *(f"Note: {n}." for n in model.notes)]
     head = [line for text in head for line in textwrap.wrap(
         text, 97, initial_indent="; ", subsequent_indent=";   ", break_on_hyphens=False)]
     head.append("")
     neg = negations(model, task)
     concepts = [concept_clause(p, ps) for p, ps in model.predicates] + \
         [negation_clause(model, p, name) for p, name in neg.items()]
-    skills = [c for op in model.operators for c in skill_clauses(op, neg)]
+    static = static_predicates(model)
+    skills = [c for op in model.operators for c in skill_clauses(op, neg, static)]
     text = "\n".join(head) + "(concepts\n" + "\n".join(concepts) + ")\n\n"
-    text += "(skills\n" + "\n".join(skills) + ")\n"
+    body = "\n".join(skills)
+    # a comment last (an operator with no skill) would swallow the closing parenthesis
+    close = "\n  )" if body.rsplit("\n", 1)[-1].lstrip().startswith(";") else ")"
+    text += "(skills\n" + body + close + "\n"
     if task is not None and task.goal and goals:
         text += f"\n; the goal of problem {task.name}\n(goals\n  {goal_text(task)})\n"
     if extra:

@@ -41,7 +41,8 @@ class Operator:
 @dataclass(frozen=True)
 class DomainModel:
     """A domain: its types (type, parent), constants (name, type), predicates (name,
-    parameters as in Operator) and operators, in the file's order where it has one."""
+    parameters as in Operator) and operators, in the file's order where it has one;
+    ``notes``: what of the file the world ignores (action costs: costs.py), for its user."""
 
     name: str
     types: tuple[tuple[str, str], ...]
@@ -49,6 +50,7 @@ class DomainModel:
     predicates: tuple[tuple[str, tuple[tuple[str, tuple[str, ...]], ...]], ...]
     operators: tuple[Operator, ...]
     path: str = ""
+    notes: tuple[str, ...] = ()
 
     def ancestors(self, t: str) -> tuple[str, ...]:
         """``t`` and every type above it, ``object`` last."""

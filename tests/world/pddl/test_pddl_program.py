@@ -13,7 +13,7 @@ from agents.lang.reading.printer import program_text as printed
 from tools.cli import cli
 from world.domain import get_domain
 from world.pddl.files import load_domain, load_task
-from world.pddl.program import goal_text, program_text
+from world.pddl.program import goal_text, program_text, static_predicates
 
 DOMAINS = [BLOCKS, GRIPPER, TRUCKS]
 
@@ -118,3 +118,23 @@ def test_the_program_is_the_same_in_every_process():
                            text=True, check=True).stdout for seed in ("1", "2", "3")}
     assert len(outs) == 1
     assert ":start ((on ?x ?y) (clear ?x) (handempty))" in outs.pop()
+
+
+def test_a_static_precondition_is_matched_among_the_percepts_first():
+    # gripper is untyped: (room ?r), (ball ?b), (gripper ?g) no operator changes; matched
+    # first, they narrow a parameter's objects before every object of the problem is tried
+    # (the solver looks at a bounded number of percept matches: satellite's (satellite ?s)
+    # was out of reach behind its other objects)
+    model = load_domain(GRIPPER[0])
+    assert static_predicates(model) == {"room", "ball", "gripper"}
+    program = load_program_text(program_text(model))
+    pick = next(s for s in program.skills if s.actions[0].name == "*pick"
+                and s.head.pred == "carry")
+    assert [str(p) for p in pick.percepts][:3] == [
+        "(ball _ arg1 ?obj)", "(room _ arg1 ?room)", "(gripper _ arg1 ?gripper)"]
+    assert "(ball ?obj)" in [str(c) for c in pick.start]   # still a start condition
+    move = next(s for s in program.skills if s.actions[0].name == "*move")
+    assert [str(p) for p in move.percepts][:2] == ["(room _ arg1 ?from)", "(room _ arg1 ?to)"]
+    blocks = program_text(load_domain(BLOCKS[0]))   # nothing static: as before
+    assert static_predicates(load_domain(BLOCKS[0])) == frozenset()
+    assert ":percepts ((object ?x type block) (object ?y type block))" in blocks
