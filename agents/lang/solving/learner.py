@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 from ..core.program import Skill
 from ..core.terms import Expr, Literal, PerceptPattern, Test, Var
+from ..execution.effects import undone_by
 from .state import CONCEPT, CONJUNCTION, StackEntry
 from .task import Task, condition, literal
 
@@ -69,8 +70,8 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     else:
         first = dict(entry.starts).get(achieved[0], ())
         subgoals, start = [*achieved, entry.goal], [*first, *held]
-    start = list(dict.fromkeys([*start, *_static(task, entry, achieved),
-                                *_untouched(entry, achieved)]))
+    start = _consistent(task, list(dict.fromkeys(
+        [*start, *_static(task, entry, achieved), *_untouched(task, entry, achieved)])))
     skill = generalise(task, literal(entry.goal), [condition(c) for c in start],
                        [literal(c) for c in subgoals])
     key = canonical(skill)
@@ -92,7 +93,7 @@ def _static(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
             if static(task, c) and named & _objects(c)]
 
 
-def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
+def _untouched(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
     """The start conditions of the skills that achieved the subgoals after the first that
     name no object the subgoals before them, or their skills' starts, name: nothing the earlier
     steps did touched them, so they held when the new skill began (seed 000's start, the first
@@ -105,8 +106,24 @@ def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
         if k:
             out += [c for c in starts.get(a, ()) if c not in achieved and
                     isinstance(cond := condition(c), Literal) and not cond.negated and
-                    not touched & set(cond.args)]
+                    not touched & set(cond.args) and (cond.args or static(task, c))]
         touched |= {x for c in (a, *starts.get(a, ())) for x in _objects(c)}
+    return out
+
+
+def _consistent(task: Task, start: list[str]) -> list[str]:
+    """``start`` without each condition that one before it excludes: achieving the earlier
+    ground literal undoes it (the program's effects; ``(handempty)`` undoes ``(holding b1)``),
+    so both never hold at once and a start asking for both would never apply. Seed 000's own
+    start (the first step's) comes first and is kept; what the later steps add yields."""
+    out: list[str] = []
+    for c in start:
+        cond = condition(c)
+        if isinstance(cond, Literal) and not cond.negated and not cond.variables() and any(
+                undone_by(cond, task.effects.undoes(x)) for x in map(condition, out)
+                if isinstance(x, Literal) and not x.negated and not x.variables()):
+            continue
+        out.append(c)
     return out
 
 
