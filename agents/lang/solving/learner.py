@@ -34,8 +34,8 @@ from dataclasses import dataclass
 from ..core.program import Skill
 from ..core.terms import Expr, Literal, PerceptPattern, Test, Var
 from ..execution.effects import undone_by
-from .state import CONCEPT, CONJUNCTION, StackEntry
-from .task import Task, condition, literal
+from .state import CONCEPT, CONJUNCTION, StackEntry, condition, literal
+from .task import Task
 
 
 @dataclass(frozen=True, slots=True)
