@@ -72,8 +72,13 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
         subgoals, start = [*achieved, entry.goal], [*first, *held]
     start = _consistent(task, list(dict.fromkeys(
         [*start, *_static(task, entry, achieved), *_untouched(task, entry, achieved)])))
+    # a subgoal achieved on the side (by a path the executive found for another goal) left
+    # no start: what it needed is not known, so its objects stay constants (else the skill
+    # would fly a plane to that package's airport for any package, of any city)
+    side = {x for a in achieved if a not in dict(entry.starts) for x in _objects(a)} \
+        if way.kind != CONCEPT else set()
     skill = generalise(task, literal(entry.goal), [condition(c) for c in start],
-                       [literal(c) for c in subgoals])
+                       [literal(c) for c in subgoals], side)
     key = canonical(skill)
     duplicate = known.get(key, "")
     if not duplicate:
@@ -144,20 +149,23 @@ def static(task: Task, text: str) -> bool:
         c.relations or c.tests for c in task.program.concepts.get(cond.pred, ()))
 
 
-def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) -> Skill:
+def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal],
+               keep: set | frozenset = frozenset()) -> Skill:
     """A skill with the percept ids of ``head`` replaced by variables named after their
     percept type (``?b1`` for the first block), consistently, and with them every percept id
-    that a positive :start literal ties to one replaced (see the module docstring)."""
+    that a positive :start literal ties to one replaced (see the module docstring); the ids
+    in ``keep`` stay constants."""
     names: dict[object, Var] = {}
     taken = {v.name for c in (head, *start, *subgoals) for v in c.variables()}
     types: list[tuple[Var, str, tuple]] = []
-    ids = {x for x in head.args if isinstance(x, str) and task.type_of(x) is not None}
+    ids = {x for x in head.args if isinstance(x, str) and task.type_of(x) is not None} - keep
     ties = [c for c in start if isinstance(c, Literal) and not c.negated]
     grown = True
     while grown:
         grown = False
         for c in ties:
-            mine = {x for x in c.args if isinstance(x, str) and task.type_of(x) is not None}
+            mine = {x for x in c.args if isinstance(x, str) and task.type_of(x) is not None
+                    } - keep
             if mine & ids and not mine <= ids:
                 ids |= mine
                 grown = True
