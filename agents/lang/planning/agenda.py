@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 
 from ..core.conjunction import Conjunction
 from ..reading.goals import GoalEntry, ordered
-from ..solving.task import literal
+from ..solving.state import literal
 from .backchain import build, check, replan_note
 from .control import Control, GoalView
 from .domain import with_facts

@@ -24,8 +24,8 @@ from ..core.matcher import subst
 from ..core.store import FactStore, PerceptIndex
 from ..core.terms import Literal, Var
 from ..solving.search import decide
-from ..solving.state import StackEntry
-from ..solving.task import Task, literal
+from ..solving.state import StackEntry, literal
+from ..solving.task import Task
 from .control import Control, OperatorView
 from .domain import Domain, Metric, project
 from .memory import excluded_here

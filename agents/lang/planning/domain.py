@@ -15,8 +15,7 @@ from ..core.matcher import ground, match_fact, match_percept, solve, subst, unif
 from ..core.program import Program, Skill
 from ..core.store import FactStore, PerceptIndex
 from ..core.terms import Literal, Var
-from ..solving.state import Alternative
-from ..solving.task import literal
+from ..solving.state import Alternative, literal
 from .state import PlanStep
 from .syntax import ControlRule, OperatorSpec, RequestSpec, Travel, between_vars
 

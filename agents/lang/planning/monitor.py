@@ -22,7 +22,8 @@ from functools import cached_property
 from ..core.outcomes import Outcome
 from ..core.store import FactStore, PerceptIndex
 from ..core.terms import Literal
-from ..solving.task import Task, literal
+from ..solving.state import literal
+from ..solving.task import Task
 from .domain import Domain, Metric, project, with_facts
 from .memory import exclude
 from .merge import Carry

@@ -33,8 +33,9 @@ from dataclasses import dataclass
 
 from ..core.program import Skill
 from ..core.terms import Expr, Literal, PerceptPattern, Test, Var
-from .state import CONCEPT, CONJUNCTION, StackEntry
-from .task import Task, condition, literal
+from ..execution.effects import undone_by
+from .state import CONCEPT, CONJUNCTION, StackEntry, condition, literal
+from .task import Task
 
 
 @dataclass(frozen=True, slots=True)
@@ -69,10 +70,15 @@ def learn(task: Task, entry: StackEntry, comment: str, known: dict[str, str]
     else:
         first = dict(entry.starts).get(achieved[0], ())
         subgoals, start = [*achieved, entry.goal], [*first, *held]
-    start = list(dict.fromkeys([*start, *_static(task, entry, achieved),
-                                *_untouched(entry, achieved)]))
+    start = _consistent(task, list(dict.fromkeys(
+        [*start, *_static(task, entry, achieved), *_untouched(task, entry, achieved)])))
+    # a subgoal achieved on the side (by a path the executive found for another goal) left
+    # no start: what it needed is not known, so its objects stay constants (else the skill
+    # would fly a plane to that package's airport for any package, of any city)
+    side = {x for a in achieved if a not in dict(entry.starts) for x in _objects(a)} \
+        if way.kind != CONCEPT else set()
     skill = generalise(task, literal(entry.goal), [condition(c) for c in start],
-                       [literal(c) for c in subgoals])
+                       [literal(c) for c in subgoals], side)
     key = canonical(skill)
     duplicate = known.get(key, "")
     if not duplicate:
@@ -92,7 +98,7 @@ def _static(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
             if static(task, c) and named & _objects(c)]
 
 
-def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
+def _untouched(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
     """The start conditions of the skills that achieved the subgoals after the first that
     name no object the subgoals before them, or their skills' starts, name: nothing the earlier
     steps did touched them, so they held when the new skill began (seed 000's start, the first
@@ -105,8 +111,24 @@ def _untouched(entry: StackEntry, achieved: list[str]) -> list[str]:
         if k:
             out += [c for c in starts.get(a, ()) if c not in achieved and
                     isinstance(cond := condition(c), Literal) and not cond.negated and
-                    not touched & set(cond.args)]
+                    not touched & set(cond.args) and (cond.args or static(task, c))]
         touched |= {x for c in (a, *starts.get(a, ())) for x in _objects(c)}
+    return out
+
+
+def _consistent(task: Task, start: list[str]) -> list[str]:
+    """``start`` without each condition that one before it excludes: achieving the earlier
+    ground literal undoes it (the program's effects; ``(handempty)`` undoes ``(holding b1)``),
+    so both never hold at once and a start asking for both would never apply. Seed 000's own
+    start (the first step's) comes first and is kept; what the later steps add yields."""
+    out: list[str] = []
+    for c in start:
+        cond = condition(c)
+        if isinstance(cond, Literal) and not cond.negated and not cond.variables() and any(
+                undone_by(cond, task.effects.undoes(x)) for x in map(condition, out)
+                if isinstance(x, Literal) and not x.negated and not x.variables()):
+            continue
+        out.append(c)
     return out
 
 
@@ -127,20 +149,23 @@ def static(task: Task, text: str) -> bool:
         c.relations or c.tests for c in task.program.concepts.get(cond.pred, ()))
 
 
-def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal]) -> Skill:
+def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal],
+               keep: set | frozenset = frozenset()) -> Skill:
     """A skill with the percept ids of ``head`` replaced by variables named after their
     percept type (``?b1`` for the first block), consistently, and with them every percept id
-    that a positive :start literal ties to one replaced (see the module docstring)."""
+    that a positive :start literal ties to one replaced (see the module docstring); the ids
+    in ``keep`` stay constants."""
     names: dict[object, Var] = {}
     taken = {v.name for c in (head, *start, *subgoals) for v in c.variables()}
     types: list[tuple[Var, str, tuple]] = []
-    ids = {x for x in head.args if isinstance(x, str) and task.type_of(x) is not None}
+    ids = {x for x in head.args if isinstance(x, str) and task.type_of(x) is not None} - keep
     ties = [c for c in start if isinstance(c, Literal) and not c.negated]
     grown = True
     while grown:
         grown = False
         for c in ties:
-            mine = {x for x in c.args if isinstance(x, str) and task.type_of(x) is not None}
+            mine = {x for x in c.args if isinstance(x, str) and task.type_of(x) is not None
+                    } - keep
             if mine & ids and not mine <= ids:
                 ids |= mine
                 grown = True

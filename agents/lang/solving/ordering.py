@@ -34,7 +34,8 @@ from ..core.terms import Literal, Test, Var
 from ..execution.effects import undone_by
 from .landmarks import key as _key
 from .landmarks import landmarks
-from .task import Task, condition, literal, pushable
+from .state import condition, literal, pushable
+from .task import Task
 
 MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
 MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]

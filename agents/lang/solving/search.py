@@ -20,8 +20,19 @@ from dataclasses import dataclass, replace
 from ..core.terms import Literal
 from ..execution.paths import Found
 from .ordering import agenda
-from .state import CONCEPT, CONJUNCTION, SKILL, Alternative, GoalStack, StackEntry
-from .task import Task, condition, goal_of, literal, pushable
+from .state import (
+    CONCEPT,
+    CONJUNCTION,
+    SKILL,
+    Alternative,
+    GoalStack,
+    StackEntry,
+    condition,
+    goal_of,
+    literal,
+    pushable,
+)
+from .task import Task
 
 MAX_STACK = 64      # deepest goal stack [entries] (clearing the bottom of a tower of 30
                     # blocks pushes two entries per block above it)

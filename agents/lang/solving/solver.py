@@ -31,8 +31,8 @@ from .learner import canonical, learn
 from .ordering import agenda, one_step
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
-from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry
-from .task import Task, literal
+from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
+from .task import Task
 from .typed import TypedEffects
 
 

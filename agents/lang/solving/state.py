@@ -3,12 +3,22 @@ decision taken at each level (seed 000, "Problem Solving and Skill Learning": "p
 selected subgoal onto a goal stack and records details about its decisions for future use"),
 kept between cycles and across a restart of the executive process (to_dict/from_dict).
 
-Literals are kept as program text (``(unstackable B A)``), so the state is plain data."""
+Literals are kept as program text (``(unstackable B A)``), so the state is plain data; read
+back with ``condition``, ``goal_of`` and ``literal``, and written with ``grounded``."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Any
+
+from ..core.conjunction import Conjunction
+from ..core.errors import GoalError, LangError
+from ..core.sexpr import Atom, read
+from ..core.terms import Literal, Test
+from ..execution.paths import show
+from ..reading.goals import parse_goal
+from ..reading.parser import Parser, Parts
 
 SKILL = "skill"       # skill chaining: achieve the start of a skill whose head is the goal
 CONCEPT = "concept"   # concept chaining: achieve the subconcepts of the goal's definition
@@ -165,3 +175,63 @@ class SolverState:
 
 def _texts(items: Any) -> tuple[str, ...]:
     return tuple(str(x) for x in items or ())
+
+
+@lru_cache(maxsize=4096)
+def condition(text: str) -> Literal | Test:
+    """A condition (literal, ``(not ...)`` or test) read back from its program text."""
+    forms, _ = read(f"({text})", "<solver>")
+    parts = Parts()
+    found = Parser("<solver>", parts).conditions(forms[0] if forms else None)
+    if len(found) != 1 or parts.diags:
+        raise ValueError(f"solver state: cannot read the condition {text!r}")
+    return found[0]
+
+
+@lru_cache(maxsize=1024)
+def goal_of(text: str) -> Literal | Conjunction:
+    """A (sub)goal read back from its text: a literal, or the conjunction at the bottom of a
+    conjunctive goal's stack."""
+    if text.startswith("(and "):
+        try:
+            return parse_goal(text)
+        except GoalError as exc:
+            raise ValueError(f"solver state: cannot read the goal {text!r}: {exc}") from None
+    return literal(text)
+
+
+def literal(text: str) -> Literal:
+    """A (sub)goal read back from its text."""
+    cond = condition(text)
+    if not isinstance(cond, Literal):
+        raise ValueError(f"solver state: {text!r} is not a literal")
+    return cond
+
+
+def pushable(cond: Literal | Test) -> bool:
+    """Only a positive, ground literal can become a subgoal (no skill achieves a negation or
+    a test; a variable would leave the subgoal open)."""
+    return isinstance(cond, Literal) and not cond.negated and not cond.variables()
+
+
+def grounded(conds: list, b: dict) -> list | None:
+    """``conds`` with ``b``'s values written in, read back (the solver keeps its goals and
+    learns its skills as program text); None when a value does not read back as itself (a
+    symbol that is empty, spaced, a number or a variable as text: only a malformed percept or
+    belief holds one): such a binding is no way to chain off."""
+    if not all(map(_writable, b.values())):
+        return None
+    try:
+        return [condition(show(c, b)) for c in conds]
+    except (ValueError, LangError):
+        return None
+
+
+@lru_cache(maxsize=4096)
+def _writable(value: object) -> bool:
+    """Whether ``value`` (a binding's constant) reads back from its text as itself."""
+    if not isinstance(value, str):
+        return True   # numbers print as they read
+    forms, diags = read(value, "<solver>")
+    return not diags and len(forms) == 1 and isinstance(forms[0], Atom) and \
+        forms[0].value == value

@@ -8,7 +8,7 @@ import pytest
 
 from agents.lang.planning.backchain import build, check
 from agents.lang.planning.control import Control
-from agents.lang.solving.task import literal
+from agents.lang.solving.state import literal
 
 from .toy import World
 

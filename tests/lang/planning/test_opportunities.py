@@ -22,7 +22,7 @@ from agents.lang.planning.merge import choose
 from agents.lang.planning.monitor import Env
 from agents.lang.planning.opportunity import opportunity
 from agents.lang.planning.state import Task
-from agents.lang.solving.task import literal
+from agents.lang.solving.state import literal
 from bench.office.office_sets import (
     PEOPLE,
     ROOMS,
