@@ -16,6 +16,7 @@ their first unsatisfied subgoal, and further kinds (SCS bodies, seed 002) regist
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import chain
 from typing import Any, Protocol
 
 from ..core.explanation import PassOver, PathStep
@@ -252,8 +253,15 @@ class PathFinder:
 
     def solutions(self, conds: list, b0: dict, walk: Walk) -> list[dict]:
         """Distinct solutions of ``conds`` extending ``b0``, in a deterministic order."""
-        sols: dict = {}
-        for b in solve(conds, b0, walk.pidx, walk.store):
+        found = solve(conds, b0, walk.pidx, walk.store)
+        first = next(found, None)
+        if first is None:
+            return []
+        second = next(found, None)
+        if second is None:   # the usual case: one solution, nothing to order
+            return [first]
+        sols: dict = {binding_key(first): first}
+        for b in chain((second,), found):
             sols.setdefault(binding_key(b), b)
             if len(sols) >= MAX_BINDINGS:
                 break
