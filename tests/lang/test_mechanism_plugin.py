@@ -17,7 +17,7 @@ from agents.lang import Engine, EngineState, GoalStatus, ProgramError, load_prog
 from agents.lang.core.mechanism import Mechanism, slot_kinds
 from agents.lang.core.sexpr import Atom, SList, to_text
 from agents.lang.core.terms import Loc
-from agents.lang.execution.executive import Impasse
+from agents.lang.execution.executive import Impasse, ImpasseHandler
 from agents.lang.registry import MECHANISMS, AgentRecord, summary_lines, summary_sections
 
 # -- the toy mechanism: counts the impasses of its agent, gives up after (toy (give-up-after N))
@@ -78,11 +78,8 @@ class ToySection:
         return [f"toy: impasse {self.impasses}"]
 
 
-class ToyHandler:
+class ToyHandler(ImpasseHandler):
     """The toy's impasse handler (Engine(solver="toy"))."""
-
-    def begin(self, finder: Any, walk: Any) -> None:
-        pass
 
     def solve(self, finder: Any, walk: Any, entry: Any, unsatisfied: list) -> Impasse:
         n = walk.current("toy").impasses + 1
