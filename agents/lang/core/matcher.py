@@ -75,8 +75,12 @@ def match_fact(lit: Literal, b: dict, store: FactStore) -> Iterator[dict]:
 
 
 def holds(lit: Literal, b: dict, store: FactStore) -> bool:
-    """True if some fact matches ``lit`` (unbound variables existential)."""
-    return next(match_fact(Literal(lit.pred, lit.args), b, store), None) is not None
+    """True if some fact matches ``lit`` (unbound variables existential; its sign is not
+    read)."""
+    args = lit.args
+    if not b and not any(isinstance(a, Var) for a in args):   # a ground literal: one lookup
+        return tuple(args) in store.get(lit.pred)
+    return next(match_fact(lit, b, store), None) is not None
 
 
 def test_holds(t: Test, b: dict) -> bool:
