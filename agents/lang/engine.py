@@ -41,9 +41,8 @@ def as_percepts(percepts: Iterable) -> list[Percept]:
 
 SOLVERS: dict[str, type] = handlers(MECHANISMS)
 """Impasse handlers by name, from the registered mechanisms: seed 000's means-ends problem
-solver and learner, seed 003's ROGUE planner (agents/lang/planning). A handler may also
-offer ``known(state, store)`` (its own facts, added to the beliefs the walk judges goals by)
-and ``finish(decision, state)`` (its word on the decision, after the walk)."""
+solver and learner, seed 003's ROGUE planner (agents/lang/planning); each an ImpasseHandler
+(agents/lang/execution/executive.py: its hooks)."""
 
 
 class Engine:
@@ -62,7 +61,11 @@ class Engine:
         solvers = handlers(self.mechanisms)
         if isinstance(solver, str) and solver not in solvers:
             raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(solvers)}")
-        self.solver = solvers[solver]() if isinstance(solver, str) else solver
+        self.solver = solvers[solver]() if isinstance(solver, str) else \
+            ImpasseHandler() if solver is None else solver
+        if not isinstance(self.solver, ImpasseHandler):
+            raise LangError(f"Engine: solver must be a name ({', '.join(solvers)}), an "
+                            f"ImpasseHandler or None, got {type(solver).__name__}")
         self.inference = Inference(program)
         self.executive = Executive(program, self.solver)
         # shared rows only (the executive process's input): last cycle's grouping and the
@@ -196,11 +199,7 @@ class Engine:
 
     def _decide(self, state: EngineState, index: PerceptIndex, store: FactStore,
                 outcomes: Iterable) -> tuple[Decision, EngineState]:
-        known = getattr(self.solver, "known", None)
-        if known is not None:
-            store = known(state, store)
+        store = self.solver.known(state, store)
         decision, new_state = self.executive_for(state).decide(state, index, store,
                                                                as_outcomes(outcomes))
-        finish = getattr(self.solver, "finish", None)
-        return (decision, new_state) if finish is None else finish(decision, new_state)
-
+        return self.solver.finish(decision, new_state)

@@ -7,11 +7,13 @@ string hashing."""
 
 from __future__ import annotations
 
+from hashlib import blake2b
+
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from agents.lang.core.store import FactStore
-from agents.lang.execution.loops import WINDOW, LoopState, Watch, situation
+from agents.lang.core.store import FactStore, PerceptIndex
+from agents.lang.execution.loops import WINDOW, LoopState, Watch, situation, world
 
 from .test_determinism import under_hash_seeds
 
@@ -77,3 +79,24 @@ def test_the_digest_is_the_same_in_every_process():
     outputs = under_hash_seeds(SCRIPT)
     assert outputs[0] == outputs[1] == outputs[2] and len(outputs[0].strip()) == 32
     assert situation.__doc__ and "no Python hash" in situation.__doc__
+
+
+_ATOM = st.one_of(st.sampled_from(["A", "B", "ME", "a'b"]), st.integers(-3, 3),
+                  st.sampled_from([0.0, -0.0, 1.0, 2.5]))
+
+
+@settings(max_examples=150, deadline=None)
+@given(rows=st.lists(st.tuples(st.sampled_from(["self", "street", "s"]), _ATOM, _ATOM),
+                     max_size=6),
+       facts=st.dictionaries(st.sampled_from(["on", "near", "clear", "o"]),
+                             st.sets(st.tuples(_ATOM, _ATOM), max_size=4), max_size=4))
+def test_the_world_digest_hashes_one_line_per_row_and_belief(rows, facts):
+    """The world digest is the blake2b of each percept row's repr and each belief (its
+    predicate then its tuple's repr) as sorted "\\n"-terminated lines, the parts split by "|"
+    (the digests of earlier states compare equal to today's only if the bytes are these)."""
+    index = PerceptIndex.of_groups({t: [[t, i, "v", v] for tt, i, v in rows if tt == t]
+                                    for t in {r[0] for r in rows}})
+    lines = [r + "\n" for r in sorted(repr((t, i, "v", v)) for t, i, v in rows)]
+    lines += ["|"] + [f"{p}{x}\n" for p in sorted(facts) for x in sorted(map(repr, facts[p]))]
+    want = blake2b("".join(lines).encode(), digest_size=16).hexdigest()
+    assert world(index, FactStore({p: set(ts) for p, ts in facts.items()})) == want

@@ -13,11 +13,18 @@ from typing import Any
 
 import pytest
 
-from agents.lang import Engine, EngineState, GoalStatus, ProgramError, load_program_text
+from agents.lang import (
+    Engine,
+    EngineState,
+    GoalStatus,
+    LangError,
+    ProgramError,
+    load_program_text,
+)
 from agents.lang.core.mechanism import Mechanism, slot_kinds
 from agents.lang.core.sexpr import Atom, SList, to_text
 from agents.lang.core.terms import Loc
-from agents.lang.execution.executive import Impasse
+from agents.lang.execution.executive import Impasse, ImpasseHandler
 from agents.lang.registry import MECHANISMS, AgentRecord, summary_lines, summary_sections
 
 # -- the toy mechanism: counts the impasses of its agent, gives up after (toy (give-up-after N))
@@ -78,11 +85,8 @@ class ToySection:
         return [f"toy: impasse {self.impasses}"]
 
 
-class ToyHandler:
+class ToyHandler(ImpasseHandler):
     """The toy's impasse handler (Engine(solver="toy"))."""
-
-    def begin(self, finder: Any, walk: Any) -> None:
-        pass
 
     def solve(self, finder: Any, walk: Any, entry: Any, unsatisfied: list) -> Impasse:
         n = walk.current("toy").impasses + 1
@@ -145,6 +149,25 @@ def test_a_toy_mechanism_runs_without_a_kernel_edit() -> None:
     assert second.state.failure_of("p1") == "the toy gave up after 2 impasses"
 
 
+def test_a_solver_is_an_impasse_handler_and_none_leaves_the_impasse() -> None:
+    """Every hook of the base class is a no-op: ``solver=None`` is the base class itself (the
+    goal stays in impasse); a solver of another type is refused, naming it."""
+    program = load_program_text(PROGRAM, "toy.tlp", mechanisms=WITH_TOY)
+    engine = Engine(program, solver=None)
+    assert type(engine.solver) is ImpasseHandler
+    first = engine.cycle(engine.initial_state(), DARK)
+    assert first.decision.status_of("p1") is GoalStatus.IMPASSE
+    assert engine.cycle(first.state, DARK).decision.status_of("p1") is GoalStatus.IMPASSE
+
+    class Duck:
+        def solve(self, finder: Any, walk: Any, entry: Any, unsatisfied: list) -> Impasse:
+            return Impasse()
+
+    with pytest.raises(LangError, match=r"Engine: solver must be a name \(.*toy.*\), an "
+                                        r"ImpasseHandler or None, got Duck"):
+        Engine(program, solver=Duck())
+
+
 def test_the_toy_slot_round_trips_through_the_state_file() -> None:
     engine = Engine(load_program_text(PROGRAM, "toy.tlp", mechanisms=WITH_TOY), solver="toy")
     state = engine.cycle(engine.initial_state(), DARK).state
@@ -193,7 +216,7 @@ def test_each_mechanism_implements_the_protocol(mechanism: Mechanism) -> None:
     with pytest.raises(dataclasses.FrozenInstanceError):
         mechanism.name = "other"  # type: ignore[misc]
     assert all(callable(h) for h in mechanism.sections().values())
-    assert all(callable(f) for f in mechanism.impasse_handlers().values())
+    assert all(isinstance(f(), ImpasseHandler) for f in mechanism.impasse_handlers().values())
     assert all(hasattr(r, "expand") for r in mechanism.runners().values())
     if mechanism.slot:
         empty = mechanism.state_type()

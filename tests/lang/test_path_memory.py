@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from agents.lang import Engine, GoalError, GoalStatus, LangError, ProgramError, load_program_text
-from agents.lang.execution.executive import Impasse
+from agents.lang.execution.executive import Impasse, ImpasseHandler
 
 from .conftest import me
 
@@ -77,11 +77,8 @@ def test_a_program_goal_with_such_a_variable_is_a_program_error():
         load_program_text(text, "goals.tlp")
 
 
-class _GiveUp:
+class _GiveUp(ImpasseHandler):
     """An impasse handler that gives every goal up at once, to show what failing means."""
-
-    def begin(self, finder, walk):
-        pass
 
     def solve(self, finder, walk, entry, unsatisfied):
         return Impasse(failed=f"no way to achieve {unsatisfied[0]}")

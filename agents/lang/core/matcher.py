@@ -12,6 +12,8 @@ from .store import MISSING, FactStore, PerceptIndex
 from .terms import Literal, PerceptPattern, Test, Var, sort_key
 
 _TESTS: dict[int, object] = {}
+_PICKS: dict[tuple, tuple] = {}  # (ids of the conditions, bound variables) -> (first, rest, conds)
+MAX_PICKS = 4096  # orders kept (cleared when full: a program's skills need a few hundred)
 
 
 def subst(term: object, b: dict) -> object:
@@ -73,8 +75,12 @@ def match_fact(lit: Literal, b: dict, store: FactStore) -> Iterator[dict]:
 
 
 def holds(lit: Literal, b: dict, store: FactStore) -> bool:
-    """True if some fact matches ``lit`` (unbound variables existential)."""
-    return next(match_fact(Literal(lit.pred, lit.args), b, store), None) is not None
+    """True if some fact matches ``lit`` (unbound variables existential; its sign is not
+    read)."""
+    args = lit.args
+    if not b and not any(isinstance(a, Var) for a in args):   # a ground literal: one lookup
+        return tuple(args) in store.get(lit.pred)
+    return next(match_fact(lit, b, store), None) is not None
 
 
 def test_holds(t: Test, b: dict) -> bool:
@@ -111,9 +117,21 @@ def solve(conds: list, b: dict, pidx: PerceptIndex, store: FactStore) -> Iterato
     if not conds:
         yield b
         return
-    i = _pick(conds, b)
-    rest = conds[:i] + conds[i + 1:]
-    for nb in step(conds[i], b, pidx, store):
+    # which condition goes first depends only on the conditions and on which variables are
+    # bound, not on their values: chosen once per such pair (the entry holds the conditions,
+    # so the ids in its key stay theirs)
+    if len(conds) == 1:
+        cond, rest = conds[0], ()
+    else:
+        key = (*map(id, conds), frozenset(b))
+        got = _PICKS.get(key)
+        if got is None:
+            if len(_PICKS) >= MAX_PICKS:
+                _PICKS.clear()
+            i = _pick(conds, b)
+            got = _PICKS[key] = (conds[i], (*conds[:i], *conds[i + 1:]), tuple(conds))
+        cond, rest = got[0], got[1]
+    for nb in step(cond, b, pidx, store):
         yield from solve(rest, nb, pidx, store)
 
 

@@ -20,7 +20,6 @@ try something else, and fails after MAX_LOOPS such circles (agents/lang/executio
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Protocol
 
 from ..core.conjunction import Conjunction, first_binding
 from ..core.explanation import Decision, GoalPath, GoalReport, GoalStatus
@@ -48,18 +47,44 @@ class Impasse:
     note: str = ""
 
 
-class ImpasseHandler(Protocol):
+class ImpasseHandler:
     """What the executive asks when a goal has no executable skill path (seed 000, "Problem
-    Solving and Skill Learning"). ``begin`` runs once per cycle before the goal walk. A handler
-    may also offer ``agenda(finder, walk, entry, conj, current)`` (the conjuncts to pursue, best
-    first), ``loop(finder, walk, entry, reason)`` (back off after a circle; True if it did) and
-    ``possible(finder, walk, instance)`` (False for a goal's instance that nothing can make
-    true: it is left out of the goal's instances)."""
+    Solving and Skill Learning"), and the engine around each cycle's walk. Every hook is a
+    no-op here, so this class itself is the handler that leaves an impasse an impasse; a
+    mechanism's handler (agents/lang/core/mechanism.py) overrides the hooks it needs."""
 
-    def begin(self, finder: PathFinder, walk: Walk) -> None: ...
+    def begin(self, finder: PathFinder, walk: Walk) -> None:
+        """Once per cycle, before the goal walk."""
 
     def solve(self, finder: PathFinder, walk: Walk, entry: GoalEntry,
-              unsatisfied: list) -> Impasse: ...
+              unsatisfied: list) -> Impasse:
+        """The answer for ``entry``, the first goal the walk reaches with no executable path
+        (``unsatisfied``: its unsatisfied instances). Here: none (it stays an impasse)."""
+        return Impasse()
+
+    def agenda(self, finder: PathFinder, walk: Walk, entry: GoalEntry, conj: Conjunction,
+               current: str) -> list:
+        """The conjuncts of ``conj`` to pursue, best first (``current``: the one pursued last
+        cycle). Here: the unsatisfied ground literal conjuncts in written order."""
+        return [c for c in conj.literals if not c.negated and not c.variables()
+                and not satisfied(c, walk.store)]
+
+    def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
+        """Back off after a circle (``reason``); True if it did. Here: False."""
+        return False
+
+    def possible(self, finder: PathFinder, walk: Walk, instance: Literal) -> bool:
+        """False for an instance of a goal that nothing can make true (left out of the goal's
+        instances). Here: True."""
+        return True
+
+    def known(self, state: EngineState, store: FactStore) -> FactStore:
+        """The beliefs the walk judges goals by: ``store`` plus the handler's own facts."""
+        return store
+
+    def finish(self, decision: Decision, state: EngineState) -> tuple[Decision, EngineState]:
+        """The handler's word on the cycle's decision, after the walk."""
+        return decision, state
 
 
 class Executive:
@@ -69,7 +94,9 @@ class Executive:
         self.program = program
         self.finder = PathFinder(program, body_runners(program.mechanisms))
         self.hooks = cycle_hooks(self.finder.bodies, {s.kind for s in program.skills})
-        self.solver = solver
+        self.solver = ImpasseHandler() if solver is None else solver
+        # only a handler that can rule instances out is asked about each one
+        self.filters = type(self.solver).possible is not ImpasseHandler.possible
 
     def decide(self, state: EngineState, pidx: PerceptIndex, store: FactStore,
                outcomes: tuple[Outcome, ...] = ()) -> tuple[Decision, EngineState]:
@@ -77,8 +104,7 @@ class Executive:
         walk = Walk(self.program, pidx, store, state, outcomes)
         for hook in self.hooks:
             hook.begin(self.finder, walk)
-        if self.solver is not None:
-            self.solver.begin(self.finder, walk)
+        self.solver.begin(self.finder, walk)
         reports, paths, idle, seen = [], [], [], []
         remembered = dict(state.paths)
         failed = dict(walk.current("failed"))
@@ -89,7 +115,7 @@ class Executive:
                                     tuple(x for m in self.program.mechanisms
                                           for x in m.intention(state)), len(state.learned)))
         stop = ""  # id of the goal in impasse (or failed) that blocks the rest
-        possible = getattr(self.solver, "possible", None)
+        possible = self.solver.possible if self.filters else None
         ends: dict[str, str] = {}  # goal id -> why it ended this cycle (once, deadline)
         for e in goals:
             walk.goal_id = e.id
@@ -208,7 +234,8 @@ class Executive:
         agenda) with an executable path, the one the remembered path was for first, and
         that path."""
         if isinstance(e.literal, Conjunction):   # the agenda's order is the preference
-            unsat = self._agenda(walk, e, e.literal, prev[0].goal if prev else "")
+            unsat = self.solver.agenda(self.finder, walk, e, e.literal,
+                                       prev[0].goal if prev else "")
             if not unsat:
                 return e.literal, None
         else:
@@ -219,16 +246,6 @@ class Executive:
             if found:
                 return inst, found
         return unsat[0], None
-
-    def _agenda(self, walk: Walk, e: GoalEntry, conj: Conjunction, current: str) -> list:
-        """The conjuncts of ``conj`` to pursue, best first: the impasse handler's agenda, or
-        without one the unsatisfied literal conjuncts in written order (bound as the first
-        binding of the positive ones allows)."""
-        agenda = getattr(self.solver, "agenda", None)
-        if agenda is not None:
-            return agenda(self.finder, walk, e, conj, current)
-        return [c for c in conj.literals if not c.negated and not c.variables()
-                and not satisfied(c, walk.store)]
 
     def _circle(self, walk: Walk, e: GoalEntry, prev: tuple, why: str,
                 watcher: Watcher) -> str:
@@ -243,13 +260,10 @@ class Executive:
         if watcher.loops(e.id) > MAX_LOOPS:
             return f"{e.text} cannot be achieved without going round in a circle " \
                    f"({MAX_LOOPS + 1} returns); last: {why}"
-        back = getattr(self.solver, "loop", None)
-        backed = back is not None and back(self.finder, walk, e, why)
+        backed = self.solver.loop(self.finder, walk, e, why)
         return "" if step or backed else f"{e.text} cannot be achieved: {why}"
 
     def _impasse(self, walk: Walk, e: GoalEntry, unsat: list) -> Impasse:
-        if self.solver is None:
-            return Impasse()
         return self.solver.solve(self.finder, walk, e, unsat)
 
 

@@ -55,12 +55,16 @@ def combined(world_digest: str, intention: str) -> str:
 def world(pidx: PerceptIndex, store: FactStore) -> str:
     """A digest of what the agent perceives and believes (the world part of a situation)."""
     # each percept row and each belief a "\n"-terminated line, the two parts split by "|";
-    # hashed in one piece (the same bytes, so the same digest, as hashing line by line)
+    # hashed in one piece (the same bytes, so the same digest, as hashing line by line), the
+    # lines of a part (and a predicate's beliefs) joined in C rather than made one by one
     rows = sorted(map(repr, map(tuple, pidx.rows())))
-    facts = [f"{pred}{t}\n" for pred in sorted(k for k in store.facts if isinstance(k, str))
-             for t in sorted(map(repr, store.facts[pred]))]
-    text = "".join([*(r + "\n" for r in rows), "|", *facts])
-    return hashlib.blake2b(text.encode(), digest_size=16).hexdigest()
+    parts = ["\n".join(rows), "\n|"] if rows else ["|"]
+    facts = store.facts
+    for pred in sorted(k for k in facts if isinstance(k, str)):
+        lines = sorted(map(repr, facts[pred]))
+        if lines:
+            parts += (pred, ("\n" + pred).join(lines), "\n")
+    return hashlib.blake2b("".join(parts).encode(), digest_size=16).hexdigest()
 
 
 @dataclass(frozen=True, slots=True)

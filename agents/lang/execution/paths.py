@@ -16,6 +16,7 @@ their first unsatisfied subgoal, and further kinds (SCS bodies, seed 002) regist
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import chain
 from typing import Any, Protocol
 
 from ..core.explanation import PassOver, PathStep
@@ -102,7 +103,9 @@ class PathFinder:
         self.res = program.resources
         self.bodies = bodies
         self.effects = Effects(program)
-        self.kept = [_kept_vars(s) for s in program.skills]  # by skill number
+        # by skill number: the variables a continued skill keeps, by name (the skill's own
+        # Var objects, so that its bindings are found by identity)
+        self.kept = [{v.name: v for v in _kept_vars(s)} for s in program.skills]
 
     # -- higher goals ------------------------------------------------------------------------
     def undoes(self, walk: Walk, actions) -> str:
@@ -158,8 +161,8 @@ class PathFinder:
             return None
         s = self.remembered(prev, text)
         if s is not None:
-            b = {Var(k): v for k, v in prev.steps[0].bindings}
-            found = self.keep(walk, s, b, goal, text, prev, depth, on_path)
+            found = self.keep(walk, s, prev.steps[0].bindings, goal, text, prev, depth,
+                              on_path)
             if found:
                 return found
         for n, s in enumerate(skills):
@@ -181,13 +184,13 @@ class PathFinder:
         s = self.program.skills[head.skill]
         return s if s.name == head.skill_name else None
 
-    def keep(self, walk: Walk, s: Skill, prev_b: dict, goal: Literal, text: str,
+    def keep(self, walk: Walk, s: Skill, bindings: tuple, goal: Literal, text: str,
              prev: Remembered, depth, on_path) -> Found | None:
         """Keep the remembered skill: its head and :start bindings stay, percepts are matched
         afresh (their values change every cycle) and :requires must hold; :start is checked
         only when resuming after a suspension."""
         keep = self.kept[s.number]  # (s is one of the program's skills: ``remembered``)
-        b0 = unify_head(s.head, goal, {v: x for v, x in prev_b.items() if v in keep})
+        b0 = unify_head(s.head, goal, {keep[k]: x for k, x in bindings if k in keep})
         if b0 is None:
             return None
         resume = prev.resume
@@ -252,8 +255,15 @@ class PathFinder:
 
     def solutions(self, conds: list, b0: dict, walk: Walk) -> list[dict]:
         """Distinct solutions of ``conds`` extending ``b0``, in a deterministic order."""
-        sols: dict = {}
-        for b in solve(conds, b0, walk.pidx, walk.store):
+        found = solve(conds, b0, walk.pidx, walk.store)
+        first = next(found, None)
+        if first is None:
+            return []
+        second = next(found, None)
+        if second is None:   # the usual case: one solution, nothing to order
+            return [first]
+        sols: dict = {binding_key(first): first}
+        for b in chain((second,), found):
             sols.setdefault(binding_key(b), b)
             if len(sols) >= MAX_BINDINGS:
                 break

@@ -25,7 +25,7 @@ from ..core.explanation import Decision, GoalReport, GoalStatus, PathStep
 from ..core.program import Program
 from ..core.store import FactStore
 from ..core.terms import Action, Literal
-from ..execution.executive import Impasse
+from ..execution.executive import Impasse, ImpasseHandler
 from ..execution.paths import PathFinder, Walk
 from ..execution.state import EngineState
 from ..reading.goals import GoalEntry
@@ -39,7 +39,7 @@ _STATUS = {"selected": GoalStatus.ACTIVE, "waiting": GoalStatus.SUSPENDED,
            "blocked": GoalStatus.SUSPENDED}
 
 
-class RoguePlanner:
+class RoguePlanner(ImpasseHandler):
     """Stateless between cycles (the domain of each program is cached)."""
 
     def __init__(self) -> None:

@@ -19,7 +19,6 @@ is refused (``enumerable``).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 from ..core.conjunction import (
     Conjunction,
@@ -143,12 +142,22 @@ def instances(goal: Goal, program: Program, pidx: PerceptIndex) -> list[Literal]
     return [found[k] for k in sorted(found)]
 
 
-@lru_cache(maxsize=1024)
+_KINDS: dict[int, tuple] = {}  # id(patterns) -> (patterns, their kinds): see _kinds
+
+
 def _kinds(patterns: tuple[PerceptPattern, ...]) -> tuple[PerceptPattern, ...]:
     """The percept patterns without their constant-valued attributes: which objects a goal
-    with variables is about (see the module docstring)."""
-    return tuple(replace(p, attrs=tuple((a, t) for a, t in p.attrs if isinstance(t, Var)))
-                 for p in patterns)
+    with variables is about (see the module docstring). Made once per clause's patterns,
+    found by identity (hashing them, as a cache by value would, costs more than the walk it
+    saves); the entry holds the patterns, so their id stays theirs."""
+    got = _KINDS.get(id(patterns))
+    if got is None or got[0] is not patterns:
+        if len(_KINDS) >= 4096:
+            _KINDS.clear()
+        got = _KINDS[id(patterns)] = (patterns, tuple(
+            replace(p, attrs=tuple((a, t) for a, t in p.attrs if isinstance(t, Var)))
+            for p in patterns))
+    return got[1]
 
 
 def enumerable(goal: Goal, program: Program) -> str:

@@ -23,7 +23,7 @@ from dataclasses import replace
 from ..core.conjunction import Conjunction
 from ..core.terms import Literal
 from ..execution.effects import Effects
-from ..execution.executive import Impasse
+from ..execution.executive import Impasse, ImpasseHandler
 from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
@@ -36,7 +36,7 @@ from .task import Task
 from .typed import TypedEffects
 
 
-class MeansEndsSolver:
+class MeansEndsSolver(ImpasseHandler):
     """Stateless: everything it keeps between cycles is in EngineState.solver (goal stacks)
     and EngineState.learned (learned skills), so one instance serves every agent (within a
     cycle it keeps the Task of each goal, so that the executive's agenda and the search share
