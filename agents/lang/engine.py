@@ -45,6 +45,29 @@ solver and learner, seed 003's ROGUE planner (agents/lang/planning); each an Imp
 (agents/lang/execution/executive.py: its hooks)."""
 
 
+class _Adopted(ImpasseHandler):
+    """A handler written to the duck-typed protocol of earlier releases (any object with
+    ``solve``): its own hooks, the base class's no-ops for those it lacks."""
+
+    def __init__(self, handler: object) -> None:
+        self.handler = handler
+        for name in HOOKS:
+            hook = getattr(handler, name, None)
+            if callable(hook):
+                setattr(self, name, hook)
+
+
+HOOKS = tuple(n for n, v in vars(ImpasseHandler).items() if callable(v) and n[0] != "_")
+
+
+def adopted(solver: object) -> ImpasseHandler | None:
+    """``solver`` as an ImpasseHandler: itself, adopted when it only has the hooks (at least
+    ``solve``), or None when it is no handler at all."""
+    if isinstance(solver, ImpasseHandler):
+        return solver
+    return _Adopted(solver) if callable(getattr(solver, "solve", None)) else None
+
+
 class Engine:
     """Runs a Program cycle by cycle. Holds compiled program data and what inference carries
     from cycle to cycle (``Inference``: last cycle's percept relations, facts and derivation
@@ -62,10 +85,11 @@ class Engine:
         if isinstance(solver, str) and solver not in solvers:
             raise LangError(f"Engine: unknown solver {solver!r}; known: {', '.join(solvers)}")
         self.solver = solvers[solver]() if isinstance(solver, str) else \
-            ImpasseHandler() if solver is None else solver
-        if not isinstance(self.solver, ImpasseHandler):
+            ImpasseHandler() if solver is None else adopted(solver)
+        if self.solver is None:
             raise LangError(f"Engine: solver must be a name ({', '.join(solvers)}), an "
-                            f"ImpasseHandler or None, got {type(solver).__name__}")
+                            f"ImpasseHandler or None, got {type(solver).__name__} (it has no "
+                            f"solve method)")
         self.inference = Inference(program)
         self.executive = Executive(program, self.solver)
         # shared rows only (the executive process's input): last cycle's grouping and the

@@ -151,7 +151,8 @@ def test_a_toy_mechanism_runs_without_a_kernel_edit() -> None:
 
 def test_a_solver_is_an_impasse_handler_and_none_leaves_the_impasse() -> None:
     """Every hook of the base class is a no-op: ``solver=None`` is the base class itself (the
-    goal stays in impasse); a solver of another type is refused, naming it."""
+    goal stays in impasse); an object with the hooks is adopted; anything else is refused,
+    naming it."""
     program = load_program_text(PROGRAM, "toy.tlp", mechanisms=WITH_TOY)
     engine = Engine(program, solver=None)
     assert type(engine.solver) is ImpasseHandler
@@ -159,13 +160,24 @@ def test_a_solver_is_an_impasse_handler_and_none_leaves_the_impasse() -> None:
     assert first.decision.status_of("p1") is GoalStatus.IMPASSE
     assert engine.cycle(first.state, DARK).decision.status_of("p1") is GoalStatus.IMPASSE
 
-    class Duck:
+    class Duck:   # the duck-typed protocol of earlier releases: adopted, its hook called
+        calls = 0
+
         def solve(self, finder: Any, walk: Any, entry: Any, unsatisfied: list) -> Impasse:
+            Duck.calls += 1
             return Impasse()
 
+    ducked = Engine(program, solver=Duck())
+    assert isinstance(ducked.solver, ImpasseHandler)
+    assert ducked.cycle(ducked.initial_state(), DARK).decision.status_of("p1") \
+        is GoalStatus.IMPASSE and Duck.calls == 1
+
+    class NoHandler:
+        pass
+
     with pytest.raises(LangError, match=r"Engine: solver must be a name \(.*toy.*\), an "
-                                        r"ImpasseHandler or None, got Duck"):
-        Engine(program, solver=Duck())
+                                        r"ImpasseHandler or None, got NoHandler"):
+        Engine(program, solver=NoHandler())
 
 
 def test_the_toy_slot_round_trips_through_the_state_file() -> None:
