@@ -7,7 +7,8 @@ import enum
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
-from bus.messages import Actions, Message, ProcessStats
+from bus.messages import Actions, Message
+from bus.stats import stats_of
 
 MAX_PENDING = 64
 """Incomplete cycles a stage keeps at most (older ones are dropped as stale)."""
@@ -103,13 +104,15 @@ class CycleBook:
     stage_ms: dict[str, float] = field(default_factory=dict)
 
     def record(self, msg: Message, last_seen: dict[str, int]) -> None:
-        """Note `msg`; ProcessStats of any cycle also update `last_seen[process]`."""
-        if isinstance(msg, ProcessStats):
-            prev = last_seen.get(msg.process, -1)
-            last_seen[msg.process] = max(prev, msg.env.cycle)
-            if msg.env.cycle == self.cycle:
-                self.stage_ms[msg.process] = msg.compute_ms
-        elif isinstance(msg, Actions) and msg.env.cycle == self.cycle and msg.agent in self.agents:
+        """Note `msg`; the stats it is or carries (bus/stats.py: a ProcessStats, an agent's
+        Actions with its pipeline's), of any cycle, also update `last_seen[process]`."""
+        cycle = msg.env.cycle
+        for s in stats_of(msg):
+            prev = last_seen.get(s.process, -1)
+            last_seen[s.process] = max(prev, cycle)
+            if cycle == self.cycle:
+                self.stage_ms[s.process] = s.compute_ms
+        if isinstance(msg, Actions) and cycle == self.cycle and msg.agent in self.agents:
             self.actions.setdefault(msg.agent, msg.actions)
             self.memory.setdefault(msg.agent, msg.memory)
 
@@ -119,7 +122,9 @@ class CycleBook:
 
 def culprit(pipeline: Sequence[str], last_seen: Mapping[str, int], cycle: int) -> str:
     """The stage holding an agent's cycle up: the first, in pipeline order, that has not
-    reported stats for `cycle` (the last stage if all did but no actions came)."""
+    reported stats for `cycle` (the last stage if all did but no actions came). A stage's
+    stats of a cycle reach the clock with the agent's Actions or, once the stage has been
+    idle `Stage.quiet_s` after it, alone (bus/stage.py)."""
     for process in pipeline:
         if last_seen.get(process, -1) < cycle:
             return process

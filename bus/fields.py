@@ -25,11 +25,14 @@ from bus.schema import (
     FieldError,
     Int,
     ListOf,
+    MapOf,
+    Num,
     OneOf,
     Plain,
     Record,
     Spec,
     Str,
+    TupleOf,
 )
 
 MEMORY_DEPTH = 128
@@ -100,6 +103,10 @@ SWAP = Record({}, {"program": Str(max_len=UNBOUNDED), "ok": Bool(),
 """A stage's verdict on a program swapped in at this cycle (docs/bus.md, "Changing a running
 launch")."""
 MAP = Record({}, open=True)   # a map, its inside checked by its reader
+STATS = MapOf(TupleOf(Num(0.0, as_float=True), Int(0)), key=NAME, max_len=256,
+              what="stage stats {process: [compute_ms, late]}")
+"""The stats an output carries (docs/bus.md, "Stage stats"): its stage's and those its inputs
+carried, all of the message's cycle; process -> [compute_ms, late] (ProcessStats' fields)."""
 TEXT = Str(max_len=UNBOUNDED, what="a string")
 
 ENVELOPE = Record({"v": Int(), "run": TEXT, "cycle": Int(-1, INT64[1], what="a cycle"),

@@ -25,6 +25,7 @@ from bus.fields import (
     OUTCOME,
     OUTCOMES,
     PROGRAM,
+    STATS,
     SWAP,
     TEXT,
     All,
@@ -131,6 +132,7 @@ class Percepts(MessageKind):
     outcomes: tuple = spec(Tuple(OUTCOMES), default=())  # {"action", "status", "reason"}
     memory: dict = spec(MEMORY, default_factory=dict)  # the agent's memory, as echoed
     program: dict = spec(All(Plain(4), PROGRAM), default_factory=dict)  # {"name", "text"}
+    stats: dict = spec(STATS, default_factory=dict)  # stage stats carried (bus/stats.py)
 
 
 @message
@@ -142,6 +144,7 @@ class Beliefs(MessageKind):
     agent: str = spec(NAME)
     beliefs: tuple = spec(Rows())  # belief lists, e.g. ["at-street", "ME", "B"]
     swap: dict = spec(All(Plain(4), SWAP), default_factory=dict)  # a program swapped in
+    stats: dict = spec(STATS, default_factory=dict)  # stage stats carried (bus/stats.py)
 
 
 @message
@@ -156,6 +159,7 @@ class Actions(MessageKind):
     agent: str = spec(NAME)
     actions: tuple = spec(Rows())  # action lists, e.g. ["*gas", 6.25]
     memory: dict = spec(MEMORY, default_factory=dict)  # {"model": [fact lists], "scs": {}}
+    stats: dict = spec(STATS, default_factory=dict)  # stage stats carried (bus/stats.py)
 
 
 @message
@@ -208,6 +212,10 @@ class GoalList(MessageKind):
 @message
 class ProcessStats(MessageKind):
     """Per-cycle figures of one process, for the clock (which stage is late) and the inspector.
+    A stage carries them in its output instead (the ``stats`` field of Percepts, Beliefs and
+    Actions; bus/stats.py) and sends them alone only when it has no such output or has been
+    idle a while after a cycle (docs/bus.md, "Stage stats"); the world and the recorder send
+    them alone.
 
     compute_ms: time spent computing this cycle [ms]; late: cycles this process has
     skipped so far because a newer cycle had already arrived (it fell behind) [count].

@@ -5,7 +5,13 @@
     stage.run(stop)          # stop: threading.Event set from SIGINT/SIGTERM handlers
 
 `step(cycle, {input_key: msg}) -> [(key, msg), ...]` is called once per cycle with the
-inputs of exactly that cycle. The stage publishes its ProcessStats, then what `step` returned.
+inputs of exactly that cycle. The stage publishes what `step` returned, its stats carried in
+the first output whose kind has a ``stats`` field (with the stats its inputs carried: an
+agent's Actions hold its whole pipeline's; bus/stats.py), or in a ProcessStats of their own
+when no output can carry them. A stage idle for `quiet_s` after a cycle also sends that
+cycle's ProcessStats alone: a stalled or late cycle is then attributed by the clock to the
+first stage that has not said it is done (docs/bus.md, "Stage stats"), while a fast lockstep
+cycle sends no stats message at all.
 A cycle seen again (the clock re-sent state t for a restarted stage) re-emits the cached
 outputs without calling `step` again; cycles older than the last handled one are dropped;
 when it has fallen behind it skips to the newest complete cycle and counts the skipped
@@ -20,6 +26,7 @@ import signal
 import threading
 import time
 from collections.abc import Callable, Sequence
+from dataclasses import fields, replace
 
 from bus import keys
 from bus.collector import Collector
@@ -28,6 +35,7 @@ from bus.errors import Refused
 from bus.lifeline import hold_on_to_parent
 from bus.messages import Message, ProcessStats
 from bus.node import Inbox, Node
+from bus.stats import STATS_FIELD
 
 log = logging.getLogger(__name__)
 
@@ -53,6 +61,10 @@ def stop_on_signals(child: bool = False) -> threading.Event:
     return stop
 
 
+QUIET_S = 0.02
+"""Stage.quiet_s's default [s]: above a lockstep cycle of the demo (~6 ms here), far below
+the clock's deadline (2 s), stall threshold (1 s) and a realtime period (50 ms and up)."""
+
 StepFn = Callable[[int, dict[str, Message]], list[tuple[str, Message]]]
 
 
@@ -68,12 +80,16 @@ class Stage:
     otherwise wait for the rest of it (a shared process starts its agents' perception and
     inference on the world state while their goal lists are on the way); what it computes
     is for `step_fn` to use.
+    quiet_s: after a cycle, idle this long [s] (no input came), the stage sends that cycle's
+    ProcessStats alone: well below the clock's deadline, stall threshold and realtime period,
+    well above a fast lockstep cycle (docs/bus.md, "Stage stats").
     """
 
     def __init__(self, node: Node, process: str, inputs: Sequence[str], step_fn: StepFn,
                  outputs: Sequence[str] = (), ready_timeout: float = 10.0,
                  stages: Sequence[str] = (),
-                 early: Callable[[str, Message], None] | None = None) -> None:
+                 early: Callable[[str, Message], None] | None = None,
+                 quiet_s: float = QUIET_S) -> None:
         self.node = node
         self.early = early
         self.process = keys.check_chunk(process, "process")
@@ -88,6 +104,8 @@ class Stage:
         self._cache: list[tuple[str, Message]] = []
         self._inbox: Inbox | None = None
         self.stages = tuple(stages)
+        self.quiet_s = quiet_s
+        self._quiet: ProcessStats | None = None  # the last cycle's stats, not yet sent alone
 
     @property
     def inbox(self) -> Inbox:
@@ -123,8 +141,12 @@ class Stage:
     def step_once(self, timeout: float) -> int | None:
         """Wait up to `timeout` [s] for input, handle the newest complete cycle in the
         inbox; return its number, or None if no cycle completed."""
-        first = self.inbox.receive(timeout)
+        quiet = self._quiet is not None and timeout > self.quiet_s
+        first = self.inbox.receive(self.quiet_s if quiet else timeout)
         if first is None:
+            if self._quiet is not None and (quiet or timeout >= self.quiet_s):
+                self.node.publish(self._stats_key, self._quiet)  # idle: say it is done
+                self._quiet = None
             return None
         batch = [self.joiner.add(first.key, first.msg)]
         newest = {first.key: first.msg}
@@ -173,8 +195,38 @@ class Stage:
         if self.stages:
             self.node.publish_many(outs)
             return
-        # stats first, so the clock has every stage's figures when the actions arrive;
-        # encoded together and put back to back (see Node.publish_many)
         stats = ProcessStats(self.node.envelope(joined.cycle), self.process, compute_ms,
                              self.late)
-        self.node.publish_many([(self._stats_key, stats), *outs])
+        if joined.repeat:  # the cached outputs carry that cycle's stats already, if any
+            carried = outs if any(getattr(m, STATS_FIELD, None) for _, m in outs) else None
+        else:
+            carried = self._carry(outs, joined.inputs, stats)
+        if carried is None:  # no output can carry them: on their own, before the outputs
+            self.node.publish_many([(self._stats_key, stats), *outs])
+            return
+        self._cache, self._quiet = carried, stats
+        self.node.publish_many(carried)
+
+    def _carry(self, outs: list[tuple[str, Message]], inputs: dict[str, Message],
+               stats: ProcessStats) -> list[tuple[str, Message]] | None:
+        """`outs` with `stats` (and those the inputs carried) in the first output that has a
+        stats field; None when none has."""
+        for i, (key, msg) in enumerate(outs):
+            if STATS_FIELD in _field_names(type(msg)):
+                merged: dict[str, list] = {}
+                for m in inputs.values():
+                    merged.update(getattr(m, STATS_FIELD, None) or {})
+                merged[self.process] = [stats.compute_ms, stats.late]
+                return [*outs[:i], (key, replace(msg, stats=merged)), *outs[i + 1:]]
+        return None
+
+
+_FIELDS: dict[type, frozenset[str]] = {}
+
+
+def _field_names(kind: type) -> frozenset[str]:
+    """The field names of message kind `kind` (cached per kind)."""
+    names = _FIELDS.get(kind)
+    if names is None:
+        names = _FIELDS[kind] = frozenset(f.name for f in fields(kind))
+    return names

@@ -42,16 +42,25 @@ def measure(run_dir: Path, endpoint: str, run: str, seconds: float) -> tuple[flo
     from bus import keys
     from bus.config import BusConfig
     from bus.node import open_node
+    from bus.stats import stats_of
 
     cfg = BusConfig(mode="client", connect=(endpoint,), listen=())
     with open_node(cfg, run, "burst-stats") as node:
-        ring = node.subscribe_ring(keys.all_stats(run), capacity=200_000)
+        # stats alone (the goals stage, the world, a stage gone idle) and those each agent's
+        # Actions carry for its pipeline (bus/stats.py); one figure per process and cycle
+        rings = [node.subscribe_ring(k, capacity=200_000)
+                 for k in (keys.all_stats(run), keys.all_actions(run))]
         start, t0 = cycles_done(run_dir), time.monotonic()
         time.sleep(seconds)
         cycles_per_s = (cycles_done(run_dir) - start) / (time.monotonic() - t0)
+        seen: dict[tuple[str, int], float] = {}
+        for ring in rings:
+            for got in ring.drain():
+                for s in stats_of(got.msg):
+                    seen.setdefault((s.process, s.env.cycle), s.compute_ms)
         per: dict[str, list[float]] = {}
-        for got in ring.drain():
-            per.setdefault(got.msg.process, []).append(got.msg.compute_ms)
+        for (process, _), ms in seen.items():
+            per.setdefault(process, []).append(ms)
     return cycles_per_s, {p: statistics.mean(v) for p, v in sorted(per.items())}
 
 

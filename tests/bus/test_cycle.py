@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from bus.cycle import CycleBook, CycleReport, Joined, Joiner, culprit, pick
-from bus.messages import Actions, Envelope, Percepts, ProcessStats
+from bus.messages import Actions, Beliefs, Envelope, Percepts, ProcessStats
+from bus.stats import record_stats, stats_of
 
 P, B = "teleo/r/agent/A/percepts", "teleo/r/agent/A/beliefs"
 
@@ -68,6 +69,35 @@ def test_book_keeps_actions_of_its_cycle_only_and_tracks_stats():
     assert book.actions == {"A": (["*gas", 1.0],)}
     assert book.stage_ms == {"A.perception": 2.5}
     assert seen == {"A.perception": 7, "A.inference": 5}
+
+
+def test_book_takes_the_stats_an_agents_actions_carry_for_its_pipeline():
+    """Issue 36: the stages' stats come with the Actions, no message of their own."""
+    book, seen = CycleBook(7, frozenset({"A"})), {"A.inference": 9}
+    carried = {"A.perception": [2.5, 0], "A.inference": [1.0, 3], "A.executive": [0.5, 0]}
+    book.record(Actions(Envelope(1, "r", 7, "A.executive", 0), "A", (), {}, carried), seen)
+    book.record(Actions(Envelope(1, "r", 6, "B.executive", 0), "B", (), {},
+                        {"B.perception": [4.0, 0]}), seen)
+    assert book.actions == {"A": ()}
+    assert book.stage_ms == {"A.perception": 2.5, "A.inference": 1.0, "A.executive": 0.5}
+    assert seen == {"A.perception": 7, "A.inference": 9, "A.executive": 7, "B.perception": 6}
+
+
+def test_stats_of_reads_a_process_stats_and_the_stats_an_output_carries():
+    env = Envelope(1, "r", 4, "A.inference", 11)
+    beliefs = Beliefs(env, "A", (), {}, {"A.perception": [2.0, 0], "A.inference": [1.5, 2]})
+    assert stats_of(beliefs) == (
+        ProcessStats(Envelope(1, "r", 4, "A.perception", 11), "A.perception", 2.0, 0),
+        ProcessStats(Envelope(1, "r", 4, "A.inference", 11), "A.inference", 1.5, 2))
+    assert [s.process for s in stats_of(beliefs, own=True)] == ["A.inference"]
+    assert stats_of(stats("A.executive", 3)) == (stats("A.executive", 3),)
+    assert stats_of(Percepts(env, "A", ())) == ()
+    wire = {"kind": "Beliefs", "env": {"cycle": 4, "sender": "A.inference"},
+            "stats": {"A.perception": [2.0, 0], "A.inference": [1.5, 2]}}
+    assert list(record_stats(wire, own=True)) == [("A.inference", 4, 1.5, 2)]
+    old = {"kind": "ProcessStats", "env": {"cycle": 3}, "process": "A.executive",
+           "compute_ms": 0.25, "late": 1}   # a record written before issue 36
+    assert list(record_stats(old)) == [("A.executive", 3, 0.25, 1)]
 
 
 def test_culprit_is_the_first_stage_behind_in_pipeline_order():

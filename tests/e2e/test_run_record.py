@@ -86,9 +86,17 @@ def test_the_mcap_holds_every_key_of_every_cycle_from_cycle_0(demo):
     run = summary["run"]
     expected = {keys.world_state(run), keys.percepts(run, "ME"), keys.beliefs(run, "ME"),
                 keys.actions(run, "ME"), keys.intention(run, "ME"), keys.goal_list(run, "ME"),
-                keys.stats(run, "goals"), keys.stats(run, "world")} | {
-        keys.stats(run, f"ME.{s}") for s in ("perception", "inference", "executive")}
-    assert set(counts) == expected | {keys.world_static(run)}
+                keys.stats(run, "goals"), keys.stats(run, "world")}
+    # issue 36: the stages' stats travel in their outputs; alone only from a stage that was
+    # idle a while after a cycle (a slow cycle on a loaded machine): some cycles, or none
+    pipeline = [f"ME.{s}" for s in ("perception", "inference", "executive")]
+    idle = {keys.stats(run, p) for p in pipeline}
+    assert expected | {keys.world_static(run)} <= set(counts) <= \
+        expected | idle | {keys.world_static(run)}
+    for key in idle & set(cycles):
+        assert set(cycles.pop(key)) <= set(range(CYCLES)), key
+    carried = [sorted(r.get("stats", {})) for _, r in RunRecord(path).kinds("actions")]
+    assert carried == [sorted(pipeline)] * len(carried) and len(carried) >= CYCLES
     # the world's static part outside the cycles (issue 35): as put, and as the recorder
     # asked for it
     assert set(cycles.pop(keys.world_static(run))) == {-1}
@@ -208,9 +216,10 @@ def test_a_replayed_record_shows_in_the_view(demo, tmp_path):
             played = teleo("replay", str(path), "--connect", router.endpoint, "--speed", "0",
                            "--wait", "30", timeout=300)
             assert played.returncode == 0, played.stderr
-            sent = sum(r["kind"] != "WorldStatic"   # 11 a cycle, and any re-sent (a stall);
-                       for _, r in RunRecord(path).records())   # the static part is asked
-            assert sent >= CYCLES * 11
+            # 8 a cycle (the stages' stats travel in their outputs, issue 36), any re-sent (a
+            # stall) and a stage's stats sent alone when it went idle; the static part is asked
+            sent = sum(r["kind"] != "WorldStatic" for _, r in RunRecord(path).records())
+            assert sent >= CYCLES * 8
             assert f"replayed {sent} messages ({CYCLES} cycles) of run {summary['run']} to " \
                    f"router {router.endpoint}" in played.stderr
 

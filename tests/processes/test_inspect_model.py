@@ -77,3 +77,18 @@ def test_the_view_shows_restarts_and_the_worlds_own_stats():
             if line.strip().startswith("│") and len(line.split()) > 8}
     assert rows["world"][:6] == ["│", "up", "│", "1", "│", "0"] and "0.80" in rows["world"]
     assert rows["ME.inference"][:6] == ["│", "up", "│", "2", "│", "1"]
+
+
+def test_stage_figures_are_read_from_the_stats_an_output_carries():
+    """Issue 36: a stage's stats travel in its output; the inspector shows its own only (the
+    executive's Actions carry the whole pipeline's, each counted where its stage sent it)."""
+    model = Model(RUN)
+    carried = {"ME.perception": [1.25, 0], "ME.inference": [0.5, 1]}
+    model.feed(f"teleo/{RUN}/agent/ME/beliefs",
+               Beliefs(env(5, "ME.inference", 0), "ME", (), {}, carried), b"b", 0)
+    model.feed(f"teleo/{RUN}/agent/ME/actions",
+               Actions(env(5, "ME.executive", 0), "ME", (), {},
+                       {**carried, "ME.perception": [9.0, 0], "ME.executive": [0.75, 0]}),
+               b"a", 0)
+    assert model.stages == {"ME.inference": {"compute_ms": 0.5, "late": 1, "cycle": 5},
+                            "ME.executive": {"compute_ms": 0.75, "late": 0, "cycle": 5}}

@@ -92,9 +92,11 @@ class Model:
             return
         stats.last_cycle = env.cycle
         self._arrival(short, stats, env.cycle, t_ns)
-        if type(msg).__name__ == "ProcessStats":
-            self.stages[msg.process] = {"compute_ms": msg.compute_ms, "late": msg.late,
-                                        "cycle": env.cycle}
+        from bus.stats import stats_of  # bus is loaded by the command (fast --help)
+
+        for st in stats_of(msg, own=True):  # a ProcessStats, or those an output carries
+            self.stages[st.process] = {"compute_ms": st.compute_ms, "late": st.late,
+                                       "cycle": env.cycle}
 
     def _arrival(self, short: str, stats: KeyStats, cycle: int, t_ns: int) -> None:
         """Note when `short`'s message of `cycle` arrived; set its two latencies."""

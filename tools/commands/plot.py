@@ -45,8 +45,11 @@ class Series:
         self.percepts = {a: rec.by_cycle("percepts", a) for a in self.agents}
         self.intentions = {a: rec.by_cycle("intention", a) for a in self.agents}
         self.stats: dict[str, dict[int, float]] = defaultdict(dict)
-        for _, r in rec.kinds("stats"):
-            self.stats[r["process"]][r["env"]["cycle"]] = float(r["compute_ms"])
+        from bus.stats import record_stats
+
+        for _, r in rec.records():  # each stage's stats, alone or carried in its output
+            for process, cycle, ms, _ in record_stats(r, own=True):
+                self.stats[process][cycle] = ms
 
     def t(self, cycles: list[int]) -> list[float]:
         return [self.time.get(c, 0.0) for c in cycles]

@@ -26,6 +26,7 @@ import orjson
 
 from agents.lang import LangError
 from bus import keys
+from bus.stats import record_stats
 from tools.records.run_record import GoalHistory
 from tools.records.tree import Node, decision_tree, to_json
 from tools.view import scene
@@ -115,10 +116,9 @@ class ViewModel:
             self._world(cycle, record["snapshot"])
         elif kind == "WorldStatic":
             self.told, self.wants_static = dict(record.get("static") or {}), False
-        elif kind == "ProcessStats":
-            self.stats[record["process"]] = {"compute_ms": record["compute_ms"],
-                                             "late": record["late"], "cycle": cycle}
-        elif kind in ("Intention", "Percepts", "Beliefs") and cycle in self.cycles:
+        for process, at, ms, late in record_stats(record, own=True):  # alone or carried
+            self.stats[process] = {"compute_ms": ms, "late": late, "cycle": at}
+        if kind in ("Intention", "Percepts", "Beliefs") and cycle in self.cycles:
             agent = keys.agent_of_key(key) or record.get("agent", "")
             self.agents.add(agent)
             slot = self.cycles[cycle].agents.setdefault(agent, {})
