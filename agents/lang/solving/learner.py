@@ -107,29 +107,13 @@ def _untouched(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
     starts = dict(entry.starts)
     out: list[str] = []
     touched: set = set()
-    goal = _objects(entry.goal)
     for k, a in enumerate(achieved):
         if k:
             out += [c for c in starts.get(a, ()) if c not in achieved and
                     isinstance(cond := condition(c), Literal) and not cond.negated and
-                    (not touched & set(cond.args) or
-                     goal & set(cond.args) and _kept(task, cond, achieved[:k]))
-                    and (cond.args or static(task, c))]
+                    not touched & set(cond.args) and (cond.args or static(task, c))]
         touched |= {x for c in (a, *starts.get(a, ())) for x in _objects(c)}
     return out
-
-
-def _kept(task: Task, cond: Literal, earlier: list[str]) -> bool:
-    """Whether the program's effects say that achieving none of ``earlier`` changes the
-    ground ``cond`` (one about an object of the goal): depot's crate at the distributor
-    stays there while the truck drives there (both name the place), so it belongs to the
-    start of loading it there. (Not for the other objects: a truck at the airport a later
-    step needs may have been driven there by that step.)"""
-    if cond.variables():
-        return False
-    lits = [literal(a) for a in earlier]
-    return not any(cond == x or undone_by(cond, task.effects.undoes(x)) or
-                   undone_by(cond, tuple(task.effects.achieved_with(x))) for x in lits)
 
 
 def _consistent(task: Task, start: list[str]) -> list[str]:
