@@ -44,7 +44,7 @@ def solved(domain: str, task: int) -> dict:
 
 
 def test_every_unseen_suite_holds_five_tasks_pyperplan_reads():
-    for domain in ("zenotravel", "transport", "parcprinter"):
+    for domain in ("zenotravel", "transport", "parcprinter", "tpp"):
         for task in range(1, 6):
             t = strips.load(*files(domain, task))
             assert t.goal and t.operators, (domain, task)
@@ -56,6 +56,17 @@ def test_every_unseen_suite_holds_five_tasks_pyperplan_reads():
 def test_teleo_solves_unseen_tasks_with_plans_the_replay_accepts(domain, task):
     data = solved(domain, task)
     assert data["status"] == "achieved" and data["actions"]
+
+
+@pytest.mark.parametrize("task", [1, 3])
+def test_a_skill_whose_static_percepts_bind_two_variables_to_one_object_applies(task):
+    # TPP's goal (stored goods1 level1) has one way: (unload goods1 truck1 depot1 level0
+    # level1 level0 level1), the two (next ?a ?b) percepts fixing the level pairs alike;
+    # keeping each variable's object apart left stored with no primitive skill that applies
+    data = solved("tpp", task)
+    assert data["status"] == "achieved", data["reason"]
+    assert ["unload", "goods1", "truck1", "depot1", "level0", "level1", "level0",
+            "level1"] in data["actions"]
 
 
 @pytest.mark.parametrize("domain,task", [("transport", 2), ("transport", 3)])

@@ -83,14 +83,17 @@ class Ways:
         if b0 is None:
             return []
         conds = [*s.start, *s.requires]
-        ranked = []
-        for b in self._candidates(list(s.percepts), conds, b0):
-            ground = grounded(conds, b)
-            if ground is not None and self._chainable(ground, applicable) \
-                    and self.admits(s, b, goal) and not self.undoes_skill(s, b) and \
-                    (applicable or not self._circular(goal, ground)):
-                ready = applicable and all(self.holds(c) for c in ground)
-                ranked.append(((not ready,), binding_key(b), b, ground))
+        ranked: list = []
+        for shared in (False, True):   # objects shared only when no binding keeps them apart
+            for b in self._candidates(list(s.percepts), conds, b0, shared=shared):
+                ground = grounded(conds, b)
+                if ground is not None and self._chainable(ground, applicable) \
+                        and self.admits(s, b, goal) and not self.undoes_skill(s, b) and \
+                        (applicable or not self._circular(goal, ground)):
+                    ready = applicable and all(self.holds(c) for c in ground)
+                    ranked.append(((not ready,), binding_key(b), b, ground))
+            if ranked:
+                break
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
                             self._shows(s, b))
                 for _, _, b, ground in self._best(self._ranks(ranked), not applicable)]
@@ -162,15 +165,17 @@ class Ways:
         best = ranked[:self.per_clause]
         return [r for r in best if r[0][:-1] == best[0][0][:-1]] if closest else best
 
-    def _candidates(self, percepts: list, conds: list, b0: dict, anything: bool = False
-                    ) -> list[dict]:
+    def _candidates(self, percepts: list, conds: list, b0: dict, anything: bool = False,
+                    shared: bool = False) -> list[dict]:
         """Bindings of the clause's variables: its :percepts matched, then any variable left
         taken from beliefs matching a positive condition (in written order), and, with
         ``anything`` (a concept's or a conjunction's relations, when the beliefs give no
         way), also each variable from the objects perceived (``(on ?x A)`` with nothing on
         A: each block may be put there; ``Task.impossible`` then leaves out what nothing can
         make true). A variable the goal does not fix names an object of its own: one the goal
-        or another such variable names is not taken (no (unstack B B) to clear B)."""
+        or another such variable names is not taken (no (unstack B B) to clear B), unless
+        ``shared``: a skill none of whose bindings keeps its objects apart may share them
+        (TPP's (unload G T D L0 L1 L0 L1): ``next`` fixes two level pairs, both the same)."""
         sols = list(islice(solve(percepts, b0, self.pidx, self.store), MAX_BINDINGS)) \
             if percepts else [b0]
         lits = [c for c in conds if isinstance(c, Literal) and not c.negated]
@@ -179,7 +184,7 @@ class Ways:
         for b in sols:
             for nb in self._bind_rest(lits, b, anything):
                 extra = [v for k, v in nb.items() if k not in b0]
-                if len(set(extra)) == len(extra) and not fixed & set(extra):
+                if shared or (len(set(extra)) == len(extra) and not fixed & set(extra)):
                     out.setdefault(binding_key(nb), nb)
         return [out[k] for k in sorted(out)][:MAX_BINDINGS]
 
