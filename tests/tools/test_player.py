@@ -35,6 +35,20 @@ def test_groups_are_the_record_in_order_cut_where_the_cycle_changes(runs):
             assert g.world_ns == g.cycle * 10**8
 
 
+@given(CYCLE_RUNS)
+def test_pacing_never_runs_back_past_the_first_world_time(runs):
+    """A record started mid-run whose first cycles lack their world state (`teleo record`
+    joining between a state and its agents' messages): those cycles are paced at the first
+    world time the record holds, not at 0, so the play does not wait the run's age first."""
+    runs = sorted((c + 4000, n) for c, n in runs if c >= 0)   # a run's cycles, late in it
+    times = {c: c * 10**8 for c, _ in runs if c % 3 == 0}    # some cycles lack their state
+    groups = cycles_of(items_of(runs), times)
+    paced = [g.world_ns for g in groups]
+    assert paced == sorted(paced)                             # never back in time
+    if times:
+        assert paced[0] == times[min(times)]                  # the first known, not 0
+
+
 def test_a_start_past_the_record_is_refused_with_its_cycles():
     groups = cycles_of(items_of([(0, 2), (1, 2), (2, 2)]), {})
     assert [g.cycle for g in from_cycle(groups, 1)] == [1, 2]

@@ -38,11 +38,13 @@ class CycleGroup:
 def cycles_of(items: Iterable[tuple[str, bytes, int]], times: dict[int, int]) -> list[CycleGroup]:
     """(key, payload, cycle) in record order -> one group per run of equal cycles, each with
     the world time of its cycle (`times`: cycle -> [ns]; the last known one for a cycle
-    without a world state, such as the messages outside any cycle)."""
+    without a world state, such as the messages outside any cycle; the first known one for
+    those before any: a record started mid-run whose first cycle lacks its state would
+    otherwise be paced from world time 0, hundreds of seconds before its next cycle)."""
     groups: list[CycleGroup] = []
     current: list[tuple[str, bytes]] = []
     cycle: int | None = None
-    last_ns = 0
+    last_ns = times[min(times)] if times else 0
     for key, payload, c in items:
         if c != cycle and current:
             groups.append(CycleGroup(cycle, last_ns, tuple(current)))
