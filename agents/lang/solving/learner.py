@@ -107,13 +107,44 @@ def _untouched(task: Task, entry: StackEntry, achieved: list[str]) -> list[str]:
     starts = dict(entry.starts)
     out: list[str] = []
     touched: set = set()
+    goal = _objects(entry.goal)
     for k, a in enumerate(achieved):
         if k:
             out += [c for c in starts.get(a, ()) if c not in achieved and
                     isinstance(cond := condition(c), Literal) and not cond.negated and
-                    not touched & set(cond.args) and (cond.args or static(task, c))]
+                    (not touched & set(cond.args) or
+                     goal & set(cond.args) and _kept(task, cond, achieved[:k]))
+                    and (cond.args or static(task, c))]
         touched |= {x for c in (a, *starts.get(a, ())) for x in _objects(c)}
     return out
+
+
+def _kept(task: Task, cond: Literal, earlier: list[str]) -> bool:
+    """Whether the program's effects say that achieving none of ``earlier`` changes the
+    ground ``cond`` (one about an object of the goal): depot's crate at the distributor
+    stays there while the truck drives there (both name the place), so it belongs to the
+    start of loading it there. (Not for the other objects: a truck at the airport a later
+    step needs may have been driven there by that step.) Only where the effect model is
+    complete (``_stated``): a program whose skills do not state their effects predicts too
+    little to vouch for it (blocks: nothing says whether achieving ``(clear C)`` leaves the
+    concept ``(pickupable B T)``, with its ``(hand-empty)``, alone; asking for it made the
+    skill learned for ``(on B C)`` too narrow to apply again)."""
+    if cond.variables() or not _stated(task, cond.pred):
+        return False
+    lits = [literal(a) for a in earlier]
+    return all(_stated(task, x.pred) for x in lits) and not any(
+        cond == x or undone_by(cond, task.effects.undoes(x)) or
+        undone_by(cond, tuple(task.effects.achieved_with(x))) for x in lits)
+
+
+def _stated(task: Task, pred: str) -> bool:
+    """Whether the program's effects of ``pred`` are all known: no concept derives it by
+    relations, and the primitive skills that make it (head or effect) state their effects."""
+    if any(c.relations or c.tests for c in task.program.concepts.get(pred, ())):
+        return False
+    makers = [s for s in task.program.skills if s.head.pred == pred or
+              any(e.pred == pred and not e.negated for e in s.effects)]
+    return bool(makers) and all(s.kind == "primitive" and s.effects for s in makers)
 
 
 def _consistent(task: Task, start: list[str]) -> list[str]:

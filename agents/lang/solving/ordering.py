@@ -42,15 +42,18 @@ MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]
 MAX_SHARED = 64    # agendas kept across cycles [agendas]
 
 
-def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
+def agenda(task: Task, conds: tuple[str, ...], current: str = "",
+           above: tuple[str, ...] = ()) -> list[str]:
     """The literals to pursue for a conjunction with ground ``conds``, best first (see the
-    module docstring); ``current``: the one being worked on. Empty when nothing can be
-    pushed (every conjunct holds, or one that does not is a negation or a test)."""
-    key = ("agenda", task.situation, conds, current, task.protected)
+    module docstring); ``current``: the one being worked on; ``above``: the goals on the
+    stack above (a skill's start: its plans go no way back through them). Empty when
+    nothing can be pushed (every conjunct holds, or one that does not is a negation or a
+    test)."""
+    key = ("agenda", task.situation, conds, current, task.protected, above)
     if key in task.shared:
         return task.shared[key]
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
-    plans = {h: needs(task, h) for h in unsat}
+    plans = {h: needs(task, h, above) for h in unsat}
     if current and current not in conds:   # a part of a conjunct's plan, done first: that
         # conjunct's plan goes on (issue 31: not another's, which would move again what the
         # first would have put in its place)
@@ -85,19 +88,22 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "") -> list[str]:
     return out
 
 
-def needs(task: Task, goal: str) -> dict[Literal, str]:
+def needs(task: Task, goal: str, above: tuple[str, ...] = ()) -> dict[Literal, str]:
     """What the solver's plan for ``goal`` needs to hold at some point, each with the nearest
-    unsatisfied goal above it in that plan ("" for ``goal`` itself)."""
-    key = ("needs", goal)
+    unsatisfied goal above it in that plan ("" for ``goal`` itself); its ways go not through
+    the goals ``above`` (depot's crate into the truck at the depot where it lies, not by a
+    hoist at the distributor where it is to be lifted from the truck: that hoist lifting
+    it is the goal the truck's unloading is for)."""
+    key = ("needs", goal, above)
     if key not in task.memo:
         out: dict[Literal, str] = {}
-        _regress(task, literal(goal), "", 0, frozenset(), out)
+        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above))
         task.memo[key] = out
     return task.memo[key]
 
 
 def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozenset,
-             out: dict[Literal, str]) -> None:
+             out: dict[Literal, str], avoid: frozenset = frozenset()) -> None:
     out.setdefault(goal, above)
     if depth >= MAX_PLAN or goal in on_path:
         return
@@ -107,7 +113,8 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
         return
     ways = task.alternatives(goal, applicable=True)   # an executable skill is a way too,
     ways = sorted(ways, key=lambda w: not all(task.holds(c) for c in w.conditions))  # first
-    path = {str(g) for g in on_path} | {str(goal)}   # not a way back through the plan above
+    path = {str(g) for g in on_path} | {str(goal)} | avoid   # not a way back through the
+    # plan above, nor through the goals ``avoid`` above it on the stack
     ways = [w for w in ways if not path & set(w.conditions)] or ways   # (put F down to clear it)
     if not ways:
         return
@@ -119,7 +126,7 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
         if cond.negated or cond.variables():
             out.setdefault(cond, here)
         else:
-            _regress(task, cond, here, depth + 1, on_path | {goal}, out)
+            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid)
 
 
 def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:

@@ -142,7 +142,8 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
             # a skill's start as a conjunction: achieve first what achieving another of its
             # conditions would not undo (the package into the truck before the truck to
             # where it is unloaded), as the agenda orders conjuncts
-            items = [c for c in agenda(task, way.conditions) if c in way.conditions and
+            items = [c for c in agenda(task, way.conditions, above=(entry.goal,))
+                     if c in way.conditions and
                      c not in on_stack and entry.pushes.count(c) < MAX_PUSHES]
             cond = items[0] if items else cond
     if cond is None:
