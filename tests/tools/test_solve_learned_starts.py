@@ -14,8 +14,7 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from pyperplan.grounding import ground
-from pyperplan.pddl.parser import Parser
+from test_solve import replayed  # pyperplan's reading of the files, not the world's
 
 from tools.commands.solve import solve
 
@@ -63,20 +62,6 @@ def _clash(start: list[tuple[str, ...]]) -> str:
             if a[0] in ("ontable", "clear", "on") and a[1] == b or a[0] == "on" and a[2] == b:
                 return f"(holding {b}) with ({' '.join(a)})"
     return ""
-
-
-def replayed(files, actions: list[list[str]]) -> bool:
-    """Whether ``actions`` apply in turn from the problem's start and end in a state that
-    satisfies its goal, by pyperplan's reading of the files (not the world's code)."""
-    parser = Parser(str(files[0]), str(files[1]))
-    task = ground(parser.parse_problem(parser.parse_domain()))
-    ops = {op.name: op for op in task.operators}
-    state = task.initial_state
-    for a in actions:
-        op = ops.get(f"({' '.join(a)})")
-        assert op is not None and op.applicable(state), a
-        state = op.apply(state)
-    return task.goal_reached(state)
 
 
 def _twice(tmp_path: Path, problem: Path):
