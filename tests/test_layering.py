@@ -106,7 +106,8 @@ def test_processes_never_import_the_command_layer() -> None:
 
 # The rooms of tools/ (docs/architecture.md, "tools/: its rooms") and the rooms each may
 # import: runs below records, both below launching, the commands on top; the web view beside
-# the commands, below them. tools/paths.py (output-file checks) is under every room.
+# the commands, below them. tools/paths.py (output-file checks) and tools/alarm.py (a time
+# limit on a block of code) are under every room.
 TOOLS_ROOMS = {
     "tools.runs": set(),
     "tools.records": {"tools.runs"},
@@ -114,7 +115,7 @@ TOOLS_ROOMS = {
     "tools.view": {"tools.records", "tools.runs"},
     "tools.commands": {"tools.launching", "tools.records", "tools.runs"},
 }
-TOOLS_BASE = {"tools.paths"}
+TOOLS_BASE = {"tools.alarm", "tools.paths"}
 
 
 def _tools_room(name: str) -> str:

@@ -32,14 +32,13 @@ import json
 import logging
 import random
 import re
-import signal
 import statistics
 import sys
 import tempfile
 import time
 import traceback
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -48,6 +47,8 @@ import click
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))  # `bus` is the package, not bench/speed/bus.py
 sys.path.append(str(ROOT / "bench" / "faults"))  # after ROOT: fuzz_values, fuzz_bus, fuzz_events
+
+from tools.alarm import raised_after  # noqa: E402
 
 SPECIAL = ["(", ")", "((", "))", "?", "?a?b", "??", ":percepts", ":tests", ":subgoals", "NaN",
            "Infinity", "-Infinity", "nan", "inf", "1e999", "-1e999", "1e-999", str(2**63),
@@ -97,19 +98,9 @@ class Hang(BaseException):
     under test must not catch it)."""
 
 
-@contextmanager
-def time_limit(seconds: float):
+def time_limit(seconds: float) -> AbstractContextManager[None]:
     """Raise Hang in this thread when the block runs longer than ``seconds``."""
-    def alarm(signum: int, frame: object) -> None:
-        raise Hang(f"longer than {seconds:g} s")
-
-    previous = signal.signal(signal.SIGALRM, alarm)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+    return raised_after(seconds, lambda: Hang(f"longer than {seconds:g} s"))
 
 
 def located(source: str) -> Callable[[str, object], bool]:

@@ -10,16 +10,14 @@ status and the world's final state to say so (docs/pddl.md, "teleo solve")."""
 from __future__ import annotations
 
 import json
-import signal
 import tempfile
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import click
 
+from tools.alarm import raised_after
 from tools.paths import OutputPath
 from world.errors import WorldError
 
@@ -84,25 +82,6 @@ class OutOfTime(BaseException):
     BaseException, so that no handler of the engine's takes it for a failure of its own)."""
 
 
-@contextmanager
-def _deadline(seconds: float | None) -> Iterator[None]:
-    """Raise OutOfTime in this process after ``seconds`` [s] (none: never)."""
-    if not seconds:
-        yield
-        return
-
-    def ring(signum: int, frame: Any) -> None:
-        raise OutOfTime
-
-    old = signal.signal(signal.SIGALRM, ring)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
-
-
 class _Watch:
     """A recorder for simulate (SimRecorder's calls, tools/records/run_recorders.py) that keeps
     whether the goal is over (satisfied or failed in the agent's decision of the last cycle),
@@ -161,7 +140,7 @@ def solve(domain: Path, problem: Path, cycles: int | None = None, learned: Path 
     so); raises WorldError, ScenarioError or LangError for bad input."""
     watch = _Watch()
     try:
-        with _deadline(time_limit):
+        with raised_after(time_limit, OutOfTime):
             return _solve(domain, problem, cycles, learned, extra, learned_out, watch)
     except OutOfTime:
         from world.pddl.files import reset_parsers
