@@ -26,7 +26,7 @@ import signal
 import threading
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import fields, replace
+from dataclasses import replace
 
 from bus import keys
 from bus.collector import Collector
@@ -212,7 +212,7 @@ class Stage:
         """`outs` with `stats` (and those the inputs carried) in the first output that has a
         stats field; None when none has."""
         for i, (key, msg) in enumerate(outs):
-            if STATS_FIELD in _field_names(type(msg)):
+            if STATS_FIELD in msg.__dataclass_fields__:   # a kind with a stats field
                 merged: dict[str, list] = {}
                 for m in inputs.values():
                     merged.update(getattr(m, STATS_FIELD, None) or {})
@@ -220,13 +220,3 @@ class Stage:
                 return [*outs[:i], (key, replace(msg, stats=merged)), *outs[i + 1:]]
         return None
 
-
-_FIELDS: dict[type, frozenset[str]] = {}
-
-
-def _field_names(kind: type) -> frozenset[str]:
-    """The field names of message kind `kind` (cached per kind)."""
-    names = _FIELDS.get(kind)
-    if names is None:
-        names = _FIELDS[kind] = frozenset(f.name for f in fields(kind))
-    return names
