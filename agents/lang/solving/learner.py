@@ -140,7 +140,7 @@ def _kept(task: Task, cond: Literal, earlier: list[str]) -> bool:
 def _stated(task: Task, pred: str) -> bool:
     """Whether the program's effects of ``pred`` are all known: no concept derives it by
     relations, and the primitive skills that make it (head or effect) state their effects."""
-    if any(c.relations or c.tests for c in task.program.concepts.get(pred, ())):
+    if _derived(task, pred):
         return False
     makers = [s for s in task.program.skills if s.head.pred == pred or
               any(e.pred == pred and not e.negated for e in s.effects)]
@@ -176,8 +176,12 @@ def static(task: Task, text: str) -> bool:
     cond = condition(text)
     if not isinstance(cond, Literal) or cond.negated:
         return False
-    return not task.program.skills_for(cond.pred) and not any(
-        c.relations or c.tests for c in task.program.concepts.get(cond.pred, ()))
+    return not task.program.skills_for(cond.pred) and not _derived(task, cond.pred)
+
+
+def _derived(task: Task, pred: str) -> bool:
+    """Whether a concept derives ``pred`` from relations or tests (not only from percepts)."""
+    return any(c.relations or c.tests for c in task.program.concepts.get(pred, ()))
 
 
 def generalise(task: Task, head: Literal, start: list, subgoals: list[Literal],
