@@ -133,6 +133,24 @@ def test_a_goal_that_leaves_the_goal_list_was_withdrawn(tmp_path):
     assert not Follower("g1", 13).goal_list(12, ())   # a list from before the post
 
 
+def test_a_failed_goal_that_left_the_list_before_a_decision_said_so_still_ends_in_its_line(
+        capsys):
+    """Under load the goal list without the goal can come before the decision saying it
+    failed: the goal-entry process's record gives the verdict, and the line is printed as a
+    decision's would be (a script reads the last line's status)."""
+    from types import SimpleNamespace
+
+    from tools.commands.goal_wait import _withdrawn
+
+    follower = Follower("g1", 3)
+    assert follower.goal_list(40, ())
+    record = {"id": "g1", "status": "failed", "updated_cycle": 39, "note": "nothing to chain off"}
+    _withdrawn(follower, "ME", lambda *a: SimpleNamespace(goals=[record]))
+    assert (follower.ended, follower.cycle, follower.reason) == \
+        ("failed", 39, "nothing to chain off")
+    assert capsys.readouterr().out.splitlines()[-1].split() == ["cycle", "39", "failed"]
+
+
 def test_two_goals_taking_turns_are_told_once_then_counted(tmp_path):
     """Issue 31 (N7): g10 waited on g7 and g9 in turn, a line at every flip (499 lines in 10
     minutes). A flip back to a line of the last REPEAT_CYCLES cycles is said once, then a

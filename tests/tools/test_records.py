@@ -43,6 +43,23 @@ def test_a_record_waits_for_its_cycles_world_state_to_take_its_time(tmp_path) ->
                    ("Percepts", 3, 1_800_000_000, 99)]   # extrapolated with the last step
 
 
+def test_a_spoilt_cycle_far_out_of_range_is_recorded_not_left_to_fail_the_close(tmp_path):
+    path = tmp_path / "r.mcap"
+    env = lambda c, sent=99: Envelope(1, "r1", c, "t", sent)  # noqa: E731
+    with RecordWriter(path, "r1") as rec:
+        _add(rec, keys.world_state("r1"), WorldState(env(0), {"time": 1.5}, {}, []))
+        _add(rec, keys.world_state("r1"), WorldState(env(1), {"time": 1.6}, {}, []))
+        _add(rec, keys.percepts("r1", "A"), Percepts(env(2**62), "A", ()))  # time past 2**64 ns
+        _add(rec, keys.percepts("r1", "A"), Percepts(env(-2**40, -5), "A", ()))
+    from mcap.reader import make_reader
+
+    with path.open("rb") as f:
+        got = sorted((json.loads(m.data)["env"]["cycle"], m.log_time, m.publish_time)
+                     for _, _, m in make_reader(f).iter_messages())
+    assert got == [(-2**40, 1_600_000_000, 0), (0, 1_500_000_000, 99),
+                   (1, 1_600_000_000, 99), (2**62, 2**64 - 1, 99)]
+
+
 def test_the_summary_says_which_share_of_the_run_its_record_lacks(tmp_path) -> None:
     assert coverage(tmp_path, 5) is None                     # not recorded: nothing to say
     env = lambda c: Envelope(1, "r1", c, "t", 99)  # noqa: E731

@@ -254,6 +254,8 @@ def _withdrawn(follower: Follower, agent: str, ask: Callable) -> None:
     if record is not None and record.get("status") == "failed":
         follower.ended, follower.reason = "failed", str(record.get("note", ""))
         follower.cycle = int(record.get("updated_cycle", cycle))
+        # no decision reported it (the goal left the list first): the line it would have had
+        click.echo(f"cycle {follower.cycle:>6}  failed")
         return
     if record is not None and record.get("status") == "cancelled":
         raise WaitEnded(f"{gid} was cancelled at cycle {record.get('updated_cycle', cycle)} "

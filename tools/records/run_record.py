@@ -44,6 +44,7 @@ GOAL_HISTORY = "goal-history.json"  # a launch without a record: its goal histor
                                     # (tools/records/goal_watch.py)
 STATE_RANGES = "world_state_cycles"  # in RUN_META: [[first, last], ...] of the states held
 _KEEP_TIMES = 4096  # cycles whose world time is remembered (a forever run must not grow)
+_MAX_NS = 2**64 - 1  # the largest time an MCAP record holds [ns]
 
 
 class RecordError(Exception):
@@ -133,9 +134,8 @@ class RecordWriter:
                 schema_id=self._schema(record["kind"]))
         if record["kind"] in ("Intention", "GoalList"):
             self.history.feed(record, self._states.__contains__)
-        self._mcap.add_message(channel_id=channel, log_time=max(0, log_ns),
-                               data=orjson.dumps(record),
-                               publish_time=max(0, sent_ns))
+        self._mcap.add_message(channel_id=channel, log_time=_stamp(log_ns),
+                               data=orjson.dumps(record), publish_time=_stamp(sent_ns))
         self.messages += 1
 
     def _schema(self, kind: str) -> int:
@@ -162,6 +162,12 @@ class RecordWriter:
             self._mcap.add_metadata(name, data)
         self._mcap.finish()
         self._file.close()
+
+
+def _stamp(ns: int) -> int:
+    """A time an MCAP record can hold (unsigned 64 bits [ns]): a spoilt message's cycle or
+    send time far out of range is recorded at the nearest end, not left to fail the close."""
+    return min(max(0, ns), _MAX_NS)
 
 
 def locate(run: str | Path) -> Path:
