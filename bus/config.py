@@ -114,7 +114,7 @@ class BusConfig:
         return bool(self.credentials or self.router_security)
 
     def to_zenoh(self) -> zenoh.Config:
-        """The zenoh config for `zenoh.open` (see shared/notes/zenoh.md, section 1)."""
+        """The zenoh config for `zenoh.open` (docs/bus.md, "Zenoh in Python", item 4)."""
         conf = zenoh.Config()
         conf.insert_json5("mode", json.dumps(self.mode.value))
         conf.insert_json5("connect/endpoints", json.dumps(list(self.connect)))

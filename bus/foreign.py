@@ -1,6 +1,6 @@
-"""What a stranger can do to a secured run (docs/bus.md "Security"; bench/faults/drills.py foreign,
-tests/e2e/test_secure_live.py): the checks of fault drill F10, against a run started with
-`teleo launch --secure`.
+"""What a stranger can do to a secured run (docs/bus.md "Security"; bench/faults/drills.py
+foreign, tests/e2e/test_secure_live.py): the checks of docs/faults.md's foreign-client drill,
+against a run started with `teleo launch --secure`.
 
 `probe(endpoint, run, secrets)` tries, each in a session of its own:
 - to open a session with no credentials at all (zenoh's default config), over plain TCP to

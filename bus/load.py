@@ -1,7 +1,6 @@
 """How busy the machine is, so that waits for processes to start or answer follow what the
-machine is doing rather than a fixed figure (issue 31: at a 1-minute load average of 20-46 on
-2 CPUs, launches failed at the router's 15 s start limit and tools passed 30 s, while nothing
-was wrong but the load).
+machine is doing rather than a fixed figure: on a heavily loaded machine a fixed start limit fails
+launches where nothing is wrong but the load.
 
 ``busy()`` is the 1-minute load average per CPU this process may use, at least 1 (an idle or
 lightly loaded machine: the figures as written); ``scaled(seconds)`` stretches a limit by it,

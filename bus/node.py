@@ -8,7 +8,7 @@
         node.publish(keys.percepts("r1", "ME"), Percepts(node.envelope(msg.env.cycle), ...))
 
 The session is always closed on leaving the `with` block: an open session's callback
-threads keep the interpreter alive (shared/notes/zenoh.md, pitfall 1). Open nodes only in
+threads keep the interpreter alive (docs/bus.md, "Zenoh in Python", item 1). Open nodes only in
 processes started by spawn/subprocess, never in a child forked after a session was open.
 """
 

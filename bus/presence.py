@@ -2,8 +2,8 @@
 subscriber (history on) and seeded by one liveliness get.
 
 Liveliness shows presence, not progress: a SIGKILLed process vanishes within milliseconds,
-a SIGSTOPped one only when its lease expires, a hung one never (shared/notes/zenoh.md,
-pitfall 6). The clock's per-cycle deadline covers the latter two.
+a SIGSTOPped one only when its lease expires, a hung one never (docs/bus.md, "Zenoh in Python",
+item 3). The clock's per-cycle deadline covers the latter two.
 """
 
 from __future__ import annotations

@@ -128,7 +128,7 @@ def grants(run: str, user: str) -> dict[str, list[str]]:
     if user == "world":
         own["put"] += [keys.world_state(run), keys.world_static(run)]
         own["sub"] += [keys.all_actions(run), keys.all_stats(run), keys.world_events(run)]
-        own["serve"] += [keys.world_static(run)]   # its static part, asked (issue 35)
+        own["serve"] += [keys.world_static(run)]   # its static part, asked
         own["serve"] += [keys.world_events(run)]   # `teleo event` asks for a verdict
         own["serve"] += [keys.world_control(run)]  # `teleo pause`, `step-run`, `resume`
     elif user == "goals":
@@ -147,7 +147,7 @@ def grants(run: str, user: str) -> dict[str, list[str]]:
         agent, _, stage = user.rpartition(".")
         own["put"] += _stage_outputs(run, agent, stage)
         own["sub"] += _stage_inputs(run, agent, stage)
-        if stage == "perception":   # the world's static part (issue 35)
+        if stage == "perception":   # the world's static part
             own["ask"] += [keys.world_static(run)]
     return own
 

@@ -1,5 +1,5 @@
 """A payload's round trip between two processes over zenoh, sent as plain bytes or in a
-zenoh shared-memory buffer (zenoh.shm), for bench/speed/bus_shm.py (issue 27: zenoh's
+zenoh shared-memory buffer (zenoh.shm), for bench/speed/bus_shm.py (zenoh's
 shared-memory transport between processes on one host, measured against today's puts).
 
     python -m bus.shm_probe --endpoint tcp/127.0.0.1:PORT    # the echo side, until killed

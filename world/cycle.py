@@ -1,4 +1,4 @@
-"""One cognitive cycle, written once (shared/DESIGN.md, "One cognitive cycle"): the world
+"""One cognitive cycle, written once (docs/bus.md, "The cycle"): the world
 process (world/process.py, agents over the bus) and `teleo simulate` (tools/commands/simulate.py,
 agents in the same process) both run it through a CycleRunner and differ only in their
 `Agents`, the transport.
@@ -97,7 +97,7 @@ class CycleRunner:
             else {a: [] for a in self.agents}
         self.memory: dict[str, dict[str, Any]] = memory if memory is not None \
             else {a: {} for a in self.agents}
-        self.static = split(sim.snapshot_dict())[0]   # told once a run (issue 35)
+        self.static = split(sim.snapshot_dict())[0]   # told once a run
 
     def cycle(self, t: int, agents: Agents,
               arrived: Callable[[World], list[dict[str, Any]]] | None = None,

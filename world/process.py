@@ -1,4 +1,4 @@
-"""The world process: the simulation and the clock of a run (DESIGN.md, One cognitive cycle).
+"""The world process: the simulation and the clock of a run (docs/bus.md, "The cycle").
 
     python -m world.process --run RUN --scenario FILE --cycles N --seed S
                             --run-mode lockstep|realtime --out DIR [--resume] [bus flags]
@@ -101,11 +101,11 @@ def _arrived(events_in: Inbox, asked: PendingQueries, node, t: int):
 
 def record_window(agents: int) -> int:
     """[cycles] a lockstep run may be ahead of its recorder: about RECORD_BACKLOG messages
-    (a world state and its stats, each agent's percepts, beliefs, intention, actions, goal
-    list and three stats, the goal-entry process's stats per cycle), an eighth of what the
-    recorder's queue holds, so that no sender ever waits for it with messages queued (a
-    process that stops drops them: 7,447 of 120,000 in tests/e2e/test_record_drain.py's
-    case, 8,124 of 45,594 cycles in drill d4d) and its drain at a stop stays short."""
+    (a world state and its stats, each agent's percepts, beliefs, intention, actions, goal list
+    and three stats, the goal-entry process's stats per cycle), an eighth of what the
+    recorder's queue holds, so that no sender ever waits for it with messages queued (a process
+    that stops drops them: tests/e2e/test_record_drain.py) and its drain at a stop stays
+    short."""
     return max(20, RECORD_BACKLOG // (8 * agents + 3))
 
 
@@ -162,7 +162,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
     long to wait for every stage (longer when some run on other hosts); `recorded`: the
     launch records the run, so its recorder is waited for at the start and, in lockstep,
     kept pace with as a stage would be (Clock.keep_pace, required): the run stops rather
-    than drop cycles from its record (drills 2026-12-04 D9)."""
+    than drop cycles from its record (docs/faults.md)."""
     agents = scenario.agent_ids
     domain = get_domain(scenario.domain)
     begun = _begin(domain, scenario, seed, out, again)
@@ -187,7 +187,7 @@ def run_world(cfg: BusConfig, run: str, scenario: Scenario, cycles: int, seed: i
         gate = Gate(node, clock.mode is CycleMode.LOCKSTEP, stop, rec.event, changes.check)
         runner = CycleRunner(sim, agents, scenario.events, begun.outcomes, begun.memory)
         static = WorldStatic(node.envelope(), domain.name, runner.static)
-        node.serve(keys.world_static(run),   # sent once a run, and asked (issue 35)
+        node.serve(keys.world_static(run),   # sent once a run, and asked
                    lambda _asked: replace(static, env=node.envelope()))
         node.announce()
         collector = Collector()

@@ -179,7 +179,7 @@ RUN_NAME_RULE = (f"a name of at most {RUN_NAME_CHARS} characters without spaces,
 
 def run_name_ok(name: str) -> bool:
     """Whether ``name`` can begin a run id (`NAME-xxxxxx`): one chunk of a bus key and the
-    name of a folder under the runs folder, never a path out of it (issue 24, #2)."""
+    name of a folder under the runs folder, never a path out of it."""
     try:
         check_chunk(name, "run name")
     except KeyFormatError:

@@ -1,4 +1,4 @@
-"""Reading the fields of a scenario's tables while keeping every error (issue 24, #8, #9): each
+"""Reading the fields of a scenario's tables while keeping every error: each
 reader records what is wrong with its field, naming the field and its value
 (`[run].cycles: expected >= 0, got -5`), and returns the field's default, so that the rest of
 the file is read and checked too and `teleo check` reports every error at once."""

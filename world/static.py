@@ -1,4 +1,4 @@
-"""A world's static configuration, sent once per run rather than in every snapshot (issue 35).
+"""A world's static configuration, sent once per run rather than in every snapshot.
 
 The keys of a snapshot that stay the same for a whole run are its Domain's ``static_keys``
 (world/domain.py: driving's and the office's "config", the blocks table): the world process

@@ -184,8 +184,8 @@ class Engine:
         """The executive step: (Decision, next EngineState). ``outcomes``: the world's report
         on the previous cycle's actions (Outcome values or neutral dicts). It reads ``percepts``
         itself, whatever ``infer`` was given before: no state passes from ``infer`` to
-        ``decide``, so a list changed in place between the two is read as it is now (code
-        review 2026-12-04, 3.2)."""
+        ``decide``, so a list changed in place between the two is read as it is now, as a fresh
+        Engine would read it."""
         return self._decide(state, self._index(percepts), store_of(beliefs), outcomes)
 
     def cycle(self, state: EngineState, percepts: Iterable,

@@ -61,7 +61,7 @@ def load_program_text(text: str, source: str = "<text>", *more: tuple[str, str],
                       mechanisms: tuple = MECHANISMS) -> Program:
     """Parse and check program ``text`` (plus further (text, source) pairs forming one
     program) with ``mechanisms`` (agents/lang/core/mechanism.py). A program whose files hold no
-    forms at all is an error (issue 24, #17); one empty file among others is a warning."""
+    forms at all is an error; one empty file among others is a warning."""
     parts = Parts(mechanisms)
     sources = ((text, source), *more)
     read_all = [(read(t, src), src) for t, src in sources]

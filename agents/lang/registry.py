@@ -1,4 +1,4 @@
-"""The registry: the one module outside the mechanism packages that imports them (issue 26).
+"""The registry: the one module outside the mechanism packages that imports them.
 
 A mechanism (agents/lang/core/mechanism.py) is registered by one line in ``MECHANISMS``; the kernel
 iterates over the mechanisms it is handed and never names one. Layering (docs/architecture.md,
@@ -40,7 +40,7 @@ use_slots(slot_kinds(MECHANISMS))
 __all__ = ["MECHANISMS", "AgentRecord", "Mechanism", "clause_heads", "handlers",
            "is_learned_text", "learned_text", "memory_of", "program_named", "read_learned",
            "remember", "summary_lines", "summary_sections"]
-__all__ += ["instances_warning", "never_true"]   # a goal's impossible instances (issue 31)
+__all__ += ["instances_warning", "never_true"]   # a goal's impossible instances
 
 
 def handlers(mechanisms: Iterable[Mechanism] = MECHANISMS) -> dict[str, type]:

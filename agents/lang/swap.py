@@ -1,4 +1,4 @@
-"""A running agent's program swapped for another (`teleo program load`, issue 34; docs/language.md,
+"""A running agent's program swapped for another (`teleo program load`; docs/language.md,
 "Changing a running agent's program"). Pure: the process modules build the new Engine and hand
 the old state here; what comes back is the state under the new program and what of the old
 one was dropped, each a sentence.

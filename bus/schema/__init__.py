@@ -1,4 +1,4 @@
-"""Declarative checks of the messages teleo's processes read (issue 24): a small schema per
+"""Declarative checks of the messages teleo's processes read: a small schema per
 message kind, kept in the package that owns the message (bus/codec.py for the bus messages'
 fields, each world's events and snapshot records, the goal-entry process's view of an
 intention), written with the specs here. A value that does not fit is refused with a

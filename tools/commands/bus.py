@@ -99,7 +99,7 @@ def echo(keyexpr: str, text: str | None, count: int | None, seconds: float | Non
                                             end, stop)
     except BusError as exc:
         raise click.ClickException(str(exc)) from exc
-    if not printed:   # as `teleo hz` says it (issue 31, N10: echo printed nothing, exit 0)
+    if not printed:   # as `teleo hz` says it (not nothing printed and exit 0)
         within = f" within {seconds:g} s" if seconds else ""
         raise click.ClickException(
             f"{seen} message(s) on {keyexpr}{within}, none containing {text!r}" if seen else
@@ -147,7 +147,7 @@ def record(file: Path, run_id: str | None, seconds: float | None, count: int | N
     from tools.records.recorder import FOREGROUND_SETTLE_S, FOREGROUND_STOP_S, BusRecorder
     from tools.runs.target import find_target
 
-    if file.exists() and not force:   # trial 2026-12-04 N9: a record replaced without a word
+    if file.exists() and not force:   # never replace a record without a word
         raise click.ClickException(f"record: writing {file}: it exists already; give "
                                    f"another file, or --force to replace it")
 

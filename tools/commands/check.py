@@ -117,7 +117,7 @@ def _scenario(path: str, overrides: tuple[str, ...]) -> dict[str, Any]:
 def _instance_warnings(path: str, scenario: Any, programs: dict) -> list[dict[str, Any]]:
     """A warning for each goal, the scenario's [[goals]] and its agents' programs' (goals
     ...), whose instances in the world as the scenario starts include one that no skill or
-    concept can make true (agents/processes/goal_warnings.py, issue 31)."""
+    concept can make true (agents/processes/goal_warnings.py)."""
     from agents.processes.goal_warnings import engine_warner
 
     warn = engine_warner(scenario, programs)

@@ -8,7 +8,7 @@ One line at each change of the goal's status, and of what it does (at most one a
 the same status: a driving path switches between skills every few cycles), then the end. A
 goal that goes back to a line said within the last REPEAT_CYCLES cycles is thrashing (two
 goals taking turns): that is said once, then a line every REPEAT_S with the number of
-changes, until something new happens (issue 31, N7: 499 lines in 10 minutes):
+changes, until something new happens, not a line at every turn:
 
     exit 0    achieved
     exit 1    failed (the reason said)

@@ -8,7 +8,7 @@ message rate, payload size and two latencies, each stage's compute time and late
 without them it refreshes live until Ctrl-C.
 
 Latencies are measured by arrival here, on one clock, not from the senders' stamps: a world
-state is stamped before the realtime clock's pacing wait (~100 ms), so stamps would show the
+state is stamped before the realtime clock's pacing wait (up to a period), so stamps would show the
 wait, not the pipeline. "latency ms" is the time from the arrival of the world state of a
 message's cycle to the message's; "stage ms" the time from the arrival of its input of the
 same cycle (percepts <- world state, beliefs <- percepts, actions and intention <- beliefs):

@@ -82,8 +82,8 @@ GOAL_ID = re.compile(r"([A-Za-z][A-Za-z0-9_-]{0,31})=(?=\()")   # 'g1=(...)'
 
 def _goal_id(option: str) -> tuple[str | None, str]:
     """'g1=(clear B):1' -> ('g1', '(clear B):1'): the id the goal had in the run (teleo
-    explain --percepts suggests it, issue 31, N21: step numbered them from the program's
-    goals on); without 'ID=', (None, option)."""
+    explain --percepts suggests it; a numbering from the program's goals on would not
+    match the run's); without 'ID=', (None, option)."""
     found = GOAL_ID.match(option)
     return (found.group(1), option[found.end():]) if found else (None, option)
 
@@ -186,7 +186,7 @@ def step(program: str, percepts_file: str, outcomes_file: str | None, state_file
 def _check_learned_entries(engine: Engine, state: EngineState, path: str) -> None:
     """Each learned skill of a state file read against the program on its own, so that a
     bad one is named by the file and its entry (`s.json: learned[2]:1:7: ...`), not as
-    `<learned>` (issue 31, drill n9); raises LangError."""
+    `<learned>`; raises LangError."""
     for k, clause in enumerate(state.learned):
         extend_program(engine.program, (clause,), f"{path}: learned[{k}]")
 

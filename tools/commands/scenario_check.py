@@ -161,8 +161,8 @@ def goal_warnings(scenario: Scenario) -> list[str]:
     """A warning (without the file's name) for each scripted goal that names an object (a
     symbol, not a number nor a variable) which neither the world as it starts nor the
     agent's program names anywhere:
-    the agent would wait for a percept of it, then fail (issue 31, N12: `(delivered fax-jhm
-    r-5399)` passed check, there being no r-5399). A warning, not an error: a world may
+    the agent would wait for a percept of it, then fail (`(delivered fax-jhm r-5399)`
+    where there is no r-5399). A warning, not an error: a world may
     bring an object later, and a test may post such a goal on purpose."""
     posts = [(k, g) for k, g in enumerate(scenario.goals) if g.op == "post" and g.goal]
     if not posts:
@@ -214,7 +214,7 @@ def _text(path: Path) -> str:
 
 def _with_suggestion(message: str, program: Program) -> str:
     """``message`` with "did you mean" for an undefined concept close to one the program
-    has, as a program's own errors have it (issue 31, N14)."""
+    has, as a program's own errors have it."""
     found = re.search(r"undefined concept '([^']+)'", message)
     if not found or "did you mean" in message:
         return message
@@ -290,8 +290,8 @@ override_option = click.option(
 def check_learned(scenario: Scenario, learned: str) -> None:
     """Refuse a learned file that does not fit every agent's program, before any process
     starts (the message names file:line:col, e.g. a concept the program does not define),
-    and an empty one, as `teleo check` refuses it (issue 31: launch and simulate took an
-    empty file, check did not; a run's learned file is never empty, its first line names
+    and an empty one, as `teleo check` refuses it (launch and simulate must not take
+    a file check refuses; a run's learned file is never empty, its first line names
     its program). `teleo launch --learned` and `teleo simulate --learned` call it."""
     from agents.lang import LangError
     from agents.lang.loader import read_text

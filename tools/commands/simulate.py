@@ -75,7 +75,7 @@ def _cycles(scenario: Scenario, cycles: int | None, seed: int | None, keep_every
     runner = CycleRunner(sim, agents, scenario.events)
     team = InProcessAgents(scenario, engines, states, domain, run, runner.static, recorder)
     if recorder is not None:
-        recorder.static(domain.name, runner.static)   # as a launch's world: once (issue 35)
+        recorder.static(domain.name, runner.static)   # as a launch's world: once
     total = scenario.run.cycles if cycles is None else cycles
     start = time.monotonic()
     for cycle in progress_cycles(total, show_progress):

@@ -5,7 +5,7 @@ a `.json` file (one snapshot dict or a list of them), a run record (the record.m
 launch, a simulate or `teleo record`: its world states), or a scenario `.toml`: its world as
 the scenario starts it, at cycle 0, so that every line of the picture's caption is true (no
 agent has run: a robot "idle" and "travelled 0.0 m" at cycle 100 would say it idled for
-50 s, issue 24 #14); `--steps N` steps the world N cycles without its agents (traffic and
+50 s); `--steps N` steps the world N cycles without its agents (traffic and
 pedestrians move, the agents' cars and robots stand), and the command's line says so.
 """
 

@@ -244,8 +244,8 @@ def check_secrets(plan: Plan) -> None:
 def claim_run_dir(run: str, run_dir: Path, given: bool, name: str, secure: bool
                   ) -> tuple[str, Path]:
     """Make the run's new folder, which no other launch can then take: a launch never writes
-    into an earlier run's folder (drills 2026-12-04 D3: a second `--run r1` overwrote the
-    first run's trace and record and replayed its executive's state). A `--run` id whose
+    into an earlier run's folder (a second `--run r1` would overwrite the
+    first run's trace and record and replay its executive's state). A `--run` id whose
     folder exists is refused, not renamed: the id is what the user's tools (`goal post --run`,
     `explain`) will ask for, so a launch under another id would answer them with another
     run; a generated id that is taken is drawn again."""

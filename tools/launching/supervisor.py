@@ -3,8 +3,9 @@
 Like `ros2 launch` with `respawn=True`: a process that exits while the run goes on is started
 again with the same command (plus its `restart_args`, e.g. the world's `--resume`), at most
 `max_restarts` times. Children are started with subprocess (fork + exec at once), never by
-forking a Python process that has a zenoh session (notes/zenoh.md, pitfall 2). Each child's
-output goes to its own log file, and each is told the launcher's pid (TELEO_PARENT_PID) so it
+forking a Python process that has a zenoh session (docs/bus.md, "Zenoh in Python", item 2).
+Each child's output goes to its own log file, and each is told the launcher's pid
+(TELEO_PARENT_PID) so it
 exits when the launcher dies (bus/lifeline.py).
 
 Stopping is bounded (docs/faults.md: Ctrl-C stops a run within 2 s in any state): the `first`

@@ -19,14 +19,14 @@ class GoalHistory:
 
     The records are kept by cycle and the changes worked out from them in cycle order (the
     goal list of a cycle before the intention decided from it), so the history is the same
-    whatever order the records arrived in (drills 2026-12-04 D2: the goal list of cycle t+1
-    reaching the recorder before the intention of t that said "failed" turned the failure
-    into "cancelled", and a failed run into a completed one).
+    whatever order the records arrived in (the goal list of cycle t+1
+    reaching the recorder before the intention of t that said "failed" must not turn the
+    failure into "cancelled", nor a failed run into a completed one).
 
     A change seen after a gap in the record (cycles whose world state it lacks, between the
     agent's previous intention and this one) happened at some cycle of the gap or at the one
     seen: its entry has "after", the last cycle known before it, so that nobody takes the
-    cycle after a gap for the cycle of the change (drill N1: "achieved 486" for 216)."""
+    cycle after a gap for the cycle of the change (not the cycle the gap ended at)."""
 
     FINAL = frozenset({"failed", "cancelled"})
 
@@ -67,7 +67,7 @@ class GoalHistory:
     def ended_before(self, agent: str, record: dict[str, Any]) -> None:
         """A user goal the goal store says failed or was cancelled (a record of its list:
         id, goal, priority, status, updated_cycle, note), taken as one change when nothing
-        of it was fed: a view opened after it ended saw no message of it (issue 31, N5)."""
+        of it was fed: a view opened after it ended saw no message of it."""
         gid, status = record.get("id"), record.get("status")
         if status in self.FINAL and isinstance(gid, str):
             self._ended[agent][gid] = record

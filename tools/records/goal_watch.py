@@ -1,9 +1,8 @@
-"""The goal histories of a launch that keeps no record (`teleo launch --no-record`; trial
-2026-12-04 N6: its summary listed "g1 ... cancelled" with no history, where simulate's and a
-recorded launch's show "(active 0, achieved 66, ...)"): the launcher takes the agents'
-intentions and goal lists off the bus into a GoalHistory, as the recorder would, and writes
-the histories to the run folder (`GOAL_HISTORY`) at the stop, where the summary finds them
-(tools/records/goal_reports.py with_history)."""
+"""The goal histories of a launch that keeps no record (`teleo launch --no-record`, whose
+summary shows each goal's history as simulate's and a recorded launch's do): the launcher takes
+the agents' intentions and goal lists off the bus into a GoalHistory, as the recorder would,
+and writes the histories to the run folder (`GOAL_HISTORY`) at the stop, where the summary
+finds them (tools/records/goal_reports.py with_history)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""A program's goals, skills and concepts as a graph (`teleo graph PROGRAM`, issue 34; as
+"""A program's goals, skills and concepts as a graph (`teleo graph PROGRAM`; as
 py_trees renders a tree): the program's goals on top, each pointing to the skills that achieve
 it, each nonprimitive skill to the skills of its :subgoals (an SCS body, seed 002, to its
 steps, and a step that is a subgoal to that subgoal's skills); and, beside them, each concept

@@ -1,6 +1,6 @@
 """What a run record holds and what it lacks, as a launch's summary tells it: the ranges of
-cycles whose world state it lacks (drill N1, docs/faults.md: a router kill once cost the
-record about half of the demo's cycles, and nothing said which)."""
+cycles whose world state it lacks (docs/faults.md: a router kill can cost the
+record many of a run's cycles, and the summary says which)."""
 
 from __future__ import annotations
 

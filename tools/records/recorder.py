@@ -30,7 +30,7 @@ FOREGROUND_SETTLE_S = 1.0  # [s] `teleo record`: messages still in flight taken 
 FOREGROUND_STOP_S = 10.0  # [s] `teleo record`: the longest it writes after its stop
 PROGRESS_S = 0.05  # [s] a launch's recorder says the cycle it has reached at most this often
 AGAIN_S = 0.5      # [s] and says it again this often when it has not moved
-STATIC_ASK_S = 0.5  # [s] the wait for the world's answer about its static part (issue 35):
+STATIC_ASK_S = 0.5  # [s] the wait for the world's answer about its static part:
                     # a live world answers in milliseconds; where none serves it (a launch's
                     # recorder starts before its world) the record is not held back long
 
@@ -174,7 +174,7 @@ class BusRecorder:
             log.error("recorder of run %s stopped: %s", self.run, exc)
 
     def _ask_static(self, node: Any) -> None:
-        """The world's static part (issue 35), asked once: a recorder that starts after the
+        """The world's static part, asked once: a recorder that starts after the
         world published it (`teleo record` of a running launch) still holds it; a launch's
         recorder, there before the world, records what the world publishes."""
         key = keys.world_static(self.run)
@@ -221,7 +221,7 @@ class BusRecorder:
         it has the first), for the world to keep pace with."""
         whole = self.writer.cycles - 2
         now = time.monotonic()
-        if whole < -1:   # nothing recorded yet: -2 is no cycle (trial 2026-12-04 N8)
+        if whole < -1:   # nothing recorded yet: -2 is no cycle, not one to report
             return
         if self._node is None or now - self._told_at < (
                 PROGRESS_S if whole > self._told else AGAIN_S):  # said again now and then:

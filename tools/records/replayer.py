@@ -89,7 +89,7 @@ def _play(run: str, groups: list, target: Target, router: RouterProcess | None,
           player: Player, keys, wait_s: float, static: tuple[str, bytes] | None = None
           ) -> None:
     """Say where, wait for subscribers, play, say how many were sent; answer queries for the
-    world's static part as the world did (`static`: its key and payload; issue 35)."""
+    world's static part as the world did (`static`: its key and payload)."""
     if target.run == run:
         raise click.ClickException(
             f"run {run} is the running launch itself: its own record would be played into "

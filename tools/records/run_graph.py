@@ -1,4 +1,4 @@
-"""A run's processes and the bus keys between them (`teleo graph --run RUN`, issue 34; as ROS 2's
+"""A run's processes and the bus keys between them (`teleo graph --run RUN`; as ROS 2's
 rqt_graph): a node for each process of the run that holds its liveliness token now (the live
 system's own answer, bus/presence.py: the world with its clock, each agent's perception,
 inference and executive, the goal entry, the launch's recorder), a node for each key, an edge

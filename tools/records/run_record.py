@@ -194,7 +194,7 @@ def locate(run: str | Path) -> Path:
 class RunRecord:
     """A run record opened for reading (the whole file is read once, lazily). Its world
     states are whole: the world's static part, held once (world/static), is put back into
-    each (issue 35); ``raw``: as they were sent (a replay sends them so again)."""
+    each; ``raw``: as they were sent (a replay sends them so again)."""
 
     def __init__(self, path: Path, raw: bool = False) -> None:
         self.path = Path(path)

@@ -36,7 +36,7 @@ def run_recorder(cfg: BusConfig, run: str, run_dir: Path, scenario: Any) -> BusR
     the bus as the run's processes do (`cfg`: theirs, with the operator's credentials on a
     secured run): a peer among peers keeps its own links to each of them, so a router that
     dies costs it nothing, as it costs them nothing (a client of the router lost every
-    message sent while it was reconnecting: drill N1, docs/faults.md); a client among
+    message sent while it was reconnecting: docs/faults.md); a client among
     clients waits for the router with them, and the lockstep world re-sends the cycle it
     waits on, which every stage answers again."""
     return BusRecorder(cfg, run, run_dir / RECORD_FILE, record_meta("launch", scenario),

@@ -15,7 +15,7 @@ The run's status (docs/faults.md, "What counts as a failed run"):
   problem solver may have been working on it) is listed as not achieved, not as failed.
   Goals the goal store lost (a damaged file it could not recover) fail the run too. A
   scenario's `[run] status = "system"` leaves the goals out: a goal not kept is then
-  reported (`goals_not_kept`) but fails nothing (issue 31, N15); a scripted request the goal
+  reported (`goals_not_kept`) but fails nothing; a scripted request the goal
   store refused is reported (`requests_refused`) and fails nothing either;
   a run record that lacks cycles fails the run (unless a stop asked for cut its drain
   short);
@@ -303,7 +303,7 @@ def render(run_dir: Path, out: Path, agent: str) -> int:
 def _goals(path: Path) -> tuple[list[dict[str, Any]], list[str], list[str]]:
     """The goal records, recovery incidents and refused scripted requests of the goal store,
     whatever shape the file has: only records that are objects are kept; a file that is not
-    a goal store adds an incident saying so (drill F2: a goal that was an integer crashed the
+    a goal store adds an incident saying so (a goal that is an integer must not crash the
     summary)."""
     doc = read_json_file(path)
     if doc is None:

@@ -4,7 +4,7 @@ the learned skills `learned-AGENT.tlp`, its last memory as the world's trace rec
 handed to every registered mechanism, which makes its own entry of it (agents/lang/registry.py:
 the means-ends learner's "learned", SCS's "bodies", ROGUE's "planner"); and how a summary of
 many agents stays readable: natural order (A2 before A10), alike lines folded, the cycle
-time's stages summed beyond the largest (issue 31, N20).
+time's stages summed beyond the largest.
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ def agent_sections(run_dir: Path, counters: dict[str, dict[str, int]],
 
 
 def natural(name: str) -> list[Any]:
-    """A sort key that puts A2 before A10 (issue 31, N20: 50 agents came A0, A1, A10, ...)."""
+    """A sort key that puts A2 before A10 (not A0, A1, A10, ...)."""
     return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", name)]
 
 
@@ -136,7 +136,7 @@ SHARES_SHOWN = 5   # of many stages, the largest shares named; the rest summed
 
 def shares_text(shares: dict[str, float]) -> list[str]:
     """The cycle time's shares as `name pct %`; of more than 2 * SHARES_SHOWN agent stages
-    (50 agents have 150), the SHARES_SHOWN largest and the others summed (issue 31, N20)."""
+    (50 agents have 150), the SHARES_SHOWN largest and the others summed."""
     fixed = ("world", "goals", "bus and waits")
     stages = {k: v for k, v in shares.items() if k not in fixed}
     if len(stages) <= 2 * SHARES_SHOWN:

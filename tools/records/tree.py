@@ -1,5 +1,6 @@
-"""A decision as a tree, rendered in one place (STYLE.md, "Explanation as a tree"): `decision_tree`
-walks an intention's decision dict (Decision.to_dict, docs/architecture.md) once into `Node`s;
+"""A decision as a tree, rendered in one place (as py_trees explains a tree by drawing it):
+`decision_tree` walks an intention's decision dict (Decision.to_dict, docs/architecture.md)
+once into `Node`s;
 `render_text` draws them like py_trees' ascii display, `to_json` gives them to scripts and to
 the web view (tools/view), which draws the same nodes.
 

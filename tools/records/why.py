@@ -1,4 +1,4 @@
-"""Why a concept instance is or is not believed at one cycle (`teleo why`, issue 34; as Soar's
+"""Why a concept instance is or is not believed at one cycle (`teleo why`; as Soar's
 `matches`): the cycle's percepts (and the agent's world model, the facts its SCS bodies
 asserted) go through the engine's inference (Engine.infer) for the beliefs, and each clause of
 the concept is matched against them with the engine's own explainable matcher

@@ -77,7 +77,7 @@ def path_of(info: RunInfo) -> Path:
 
 def write(info: RunInfo) -> Path:
     """Register (or update) a run; the file is readable by its owner only. Its folder and
-    scenario are kept absolute (issue 31, N4: a tool started in another folder lost the
+    scenario are kept absolute (a tool started in another folder must still find the
     program that the scenario names relative to the launch's folder)."""
     cwd = info.cwd or os.getcwd()
     scenario = str(Path(cwd, info.scenario)) if info.scenario else ""

@@ -92,7 +92,7 @@ class BusFeed:
 
     def _static(self, node) -> None:
         """Ask the world for its static part when a world state came without it (the view
-        opened after the world published it: issue 35); a replay answers as the world."""
+        opened after the world published it); a replay answers as the world."""
         run = self.model.run
         if run is None or not self.model.wants_static:
             return
@@ -108,7 +108,7 @@ class BusFeed:
     def _past_goals(self, node) -> None:
         """Ask the goal-entry process once for each agent's goals (retried a few times: a
         replay has none): those that failed or were cancelled before the view opened are
-        in no message it will see (issue 31, N5)."""
+        in no message it will see."""
         run, now = self.model.run, time.monotonic()
         if run is None or now < self._next_ask or self._tries >= ASK_TRIES:
             return

@@ -140,7 +140,7 @@ class ViewModel:
                 slot["percepts"] = orjson.dumps([record.get("percepts", []), model])
 
     def _world(self, cycle: int, snapshot: dict[str, Any]) -> None:
-        if not has_static(snapshot):   # sent once a run (issue 35): until known, not shown
+        if not has_static(snapshot):   # sent once a run: until known, not shown
             if self.told is None:
                 self.wants_static = True
                 return

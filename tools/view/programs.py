@@ -47,7 +47,7 @@ class Programs:
     def from_scenario(self, scenario: str, base: str = "") -> None:
         """The programs a scenario file gives its agents (nothing when it cannot be read);
         ``base``: the folder the launch ran in (the run registry's `cwd`), where the
-        scenario's and its programs' relative paths start (issue 31, N4)."""
+        scenario's and its programs' relative paths start."""
         from world.errors import WorldError
         from world.run_scenario import load_scenario
 

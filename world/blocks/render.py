@@ -176,7 +176,7 @@ def render_gif(snaps: list[BlocksSnapshot], path: str | Path, agent: str | None 
                px_per_m: float = 28.0, frame_ms: int = 500) -> Path:
     """Write an animated GIF of a run, one frame per snapshot (thinned to at most
     pictures.MAX_FRAMES), `frame_ms` [ms] each (a Blocks World cycle is one whole action, so
-    slower than the driving world's 100 ms), all frames drawn to the same height."""
+    shown longer than a driving frame), all frames drawn to the same height."""
     if not snaps:
         raise WorldError(f"render_gif {path}: no snapshots")
     top = frame_top(snaps, agent, px_per_m)

@@ -159,7 +159,7 @@ def load_world_config(d: dict | None) -> WorldConfig:
     if not unknown:
         return _read_known(d)
     first = f"[world] unknown keys {sorted(unknown)}; known: {sorted(_KNOWN)}"
-    try:   # the rest is read too, so a check names its errors as well (issue 31, N14)
+    try:   # the rest is read too, so a check names its errors as well
         _read_known({k: v for k, v in d.items() if k in _KNOWN})
     except ConfigError as exc:
         raise ConfigError(f"{first}\n{exc}") from None

@@ -48,7 +48,7 @@ AGENT_BIT, TRAFFIC_BIT, PED_BIT = 1, 2, 4
 CT_AGENT, CT_TRAFFIC, CT_PED = 1, 2, 3
 PED_RADIUS = 0.35   # [m]
 HIT_SPEED = 0.3    # [m/s] a car slower than this does not hit a walker who bumps into it
-CITY_EDGE = 20.0   # [m] beyond the outer streets: an agent's car stops there (issue 31, N18)
+CITY_EDGE = 20.0   # [m] beyond the outer streets: an agent's car stops there
 
 
 @dataclass
@@ -248,7 +248,7 @@ class Simulation(BaseWorld):
     def _keep_in_city(self, car: AgentCar) -> None:
         """Stop a car that drives more than CITY_EDGE [m] past the outer streets at that
         distance, with a `city_edge` event once per stay: off the map, the view lost it and
-        its percepts placed it on a street 100 m away (issue 31, N18). It may turn there and
+        its percepts placed it on a street 100 m away. It may turn there and
         drive back into the city."""
         width, height = self.city.size
         x, y = car.body.position

@@ -1,4 +1,4 @@
-"""A STRIPS world from PDDL (issue 35): a scenario `[world] domain = "pddl"` with `domain_file`
+"""A STRIPS world from PDDL: a scenario `[world] domain = "pddl"` with `domain_file`
 and `problem_file`; the state is the problem's true atoms, perceived each cycle, and the agents'
 ground actions are applied with PDDL semantics (docs/pddl.md, percepts.md).
 

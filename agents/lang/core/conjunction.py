@@ -1,4 +1,4 @@
-"""Conjunctive goals (issue 22): ``(and L1 L2 ...)``, written wherever a goal is written (a
+"""Conjunctive goals: ``(and L1 L2 ...)``, written wherever a goal is written (a
 program's (goals ...), a scenario's [[goals]], ``teleo goal post``, ``teleo step --goal``).
 
 A conjunction is read as the body of a concept without head arguments (seed 000, Table 2's

@@ -1,7 +1,7 @@
 """The Mechanism protocol: what a mechanism (the means-ends solver, SCS bodies, the ROGUE
 planner, or a fourth) contributes to the kernel, so that the kernel never names one
-(issue 26; ../shared/STYLE.md: pyperplan wires its searches from registries, py_trees ticks
-any behaviour through one interface).
+(as pyperplan wires its searches from registries, and py_trees ticks any behaviour
+through one interface).
 
 A mechanism is a frozen value whose hooks the kernel calls in registry order
 (agents/lang/registry.py holds the shipped ones); every hook has a default that contributes

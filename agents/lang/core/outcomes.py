@@ -1,5 +1,5 @@
-"""Action outcomes: what the world reports for each action of the previous cycle (DESIGN.md,
-"Outcomes, safety and records"). SCS bodies succeed or fail by them (seed 002, Appendix C:
+"""Action outcomes: what the world reports for each action of the previous cycle
+(docs/bus.md, "The cycle"). SCS bodies succeed or fail by them (seed 002, Appendix C:
 "an action returns either success or failure") and ROGUE monitors its actions with them
 (seed 003, section 6)."""
 

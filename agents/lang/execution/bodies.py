@@ -1,6 +1,7 @@
-"""The kinds of skill body and the runner of each (STYLE.md, "One interface for every skill
-body"): ``Skill.kind`` names the kind; the path finder asks its runner for the path below an
-entered skill. A new kind (an SCS body, a learned or planned skill) is a mechanism's runner
+"""The kinds of skill body and the runner of each (one interface for every skill body, as
+py_trees ticks every behaviour through one): ``Skill.kind`` names the kind; the path finder
+asks its runner for the path below an entered skill. A new kind (an SCS body, a learned or
+planned skill) is a mechanism's runner
 (Mechanism.runners), not a new branch in the path finder. A runner that keeps state across
 cycles may also be a ``CycleHook``: the executive calls ``begin`` before each cycle's goal
 walk and ``end`` after it (the SCS runner settles action outcomes and shows its threads

@@ -1,4 +1,4 @@
-"""What an action is known to achieve and to undo, read from the program alone (issue 22: the
+"""What an action is known to achieve and to undo, read from the program alone (the
 solver "does not undo a goal of higher priority that holds"; seed 000, "Adding Goal
 Priorities": higher goals "always hold during execution of low-priority tasks").
 

@@ -1,4 +1,4 @@
-"""The loop watch (issue 22): an agent that comes back to a situation it has already been in
+"""The loop watch: an agent that comes back to a situation it has already been in
 while pursuing the same goal, without the goal having held in between, is going round in a
 circle (a lower goal undoing a higher one that is then restored, a learned skill moving a block
 to the table and back). The executive notices it within a bounded number of cycles and makes

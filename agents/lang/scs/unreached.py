@@ -1,5 +1,5 @@
 """Steps of a body that can never run because an earlier ``(assert FACT)`` makes the body's
-goal true (issue 31, N19). A body serves its goal: from the cycle after the assert the goal
+goal true. A body serves its goal: from the cycle after the assert the goal
 holds and the executive ends the body (runner.py ``end``, "bodies ended: goal achieved"),
 as seed 002's goals are "world states that the system is trying to achieve". In the assert's
 own cycle the body goes on up to its next action; every step after that is cut off.
