@@ -13,11 +13,11 @@ memory) ask here, not the mechanism package."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable
 from dataclasses import replace
 from typing import Any
 
-from .core.mechanism import AgentRecord, Mechanism, slot_kinds
+from .core.mechanism import Mechanism, slot_kinds
 from .execution.state import EngineState, use_slots
 from .planning.mechanism import Planning
 from .scs.mechanism import Scs
@@ -37,9 +37,8 @@ ROGUE planner. A fourth is one package plus one entry here."""
 
 use_slots(slot_kinds(MECHANISMS))
 
-__all__ = ["MECHANISMS", "AgentRecord", "Mechanism", "clause_heads", "handlers",
-           "is_learned_text", "learned_text", "memory_of", "program_named", "read_learned",
-           "remember", "summary_lines", "summary_sections"]
+__all__ = ["MECHANISMS", "Mechanism", "clause_heads", "handlers", "is_learned_text",
+           "learned_text", "memory_of", "program_named", "read_learned", "remember"]
 __all__ += ["instances_warning", "never_true"]   # a goal's impossible instances
 
 
@@ -72,22 +71,3 @@ def remember(state: EngineState, memory: dict[str, Any], program: Any,
         if value is not None and m.slot:
             changes[m.slot] = value
     return replace(state, **changes) if changes else state
-
-
-def summary_sections(agents: Mapping[str, AgentRecord],
-                     mechanisms: Iterable[Mechanism] = MECHANISMS) -> dict[str, Any]:
-    """Each mechanism's entry of the run summary ("learned", "bodies", "planner"), in
-    registry order: per agent, by name, what the mechanism makes of what the run left."""
-    return {m.summary_key: {name: entry for name, agent in sorted(agents.items())
-                            if (entry := m.summary(agent)) is not None}
-            for m in mechanisms if m.summary_key}
-
-
-def summary_lines(summary: Mapping[str, Any],
-                  mechanisms: Iterable[Mechanism] = MECHANISMS) -> list[str]:
-    """The mechanisms' entries of ``summary`` as the summary prints them."""
-    out: list[str] = []
-    for m in sorted((m for m in mechanisms if m.summary_key), key=lambda m: m.summary_rank):
-        for name, entry in summary.get(m.summary_key, {}).items():
-            out += m.summary_lines(name, entry)
-    return out

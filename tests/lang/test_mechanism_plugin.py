@@ -25,7 +25,14 @@ from agents.lang.core.mechanism import Mechanism, slot_kinds
 from agents.lang.core.sexpr import Atom, SList, to_text
 from agents.lang.core.terms import Loc
 from agents.lang.execution.executive import Impasse, ImpasseHandler
-from agents.lang.registry import MECHANISMS, AgentRecord, summary_lines, summary_sections
+from agents.lang.registry import MECHANISMS
+from tools.records.mechanism_reports import (
+    REPORTS,
+    AgentRecord,
+    Report,
+    summary_lines,
+    summary_sections,
+)
 
 # -- the toy mechanism: counts the impasses of its agent, gives up after (toy (give-up-after N))
 
@@ -110,18 +117,20 @@ class Toy(Mechanism):
     def impasse_handlers(self) -> dict[str, Any]:
         return {"toy": ToyHandler}
 
-    summary_key: str = "toy"
-    summary_rank: int = 3
-
-    def summary(self, agent: AgentRecord) -> dict[str, Any] | None:
-        toy = agent.state.get("toy")
-        return {"impasses": toy["impasses"]} if toy else None
-
-    def summary_lines(self, name: str, entry: dict[str, Any]) -> list[str]:
-        return [f"  {name}: toy impasses {entry['impasses']}"]
-
-
 WITH_TOY = (*MECHANISMS, Toy())
+
+
+def toy_entry(agent: AgentRecord) -> dict[str, Any] | None:
+    toy = agent.state.get("toy")
+    return {"impasses": toy["impasses"]} if toy else None
+
+
+def toy_lines(name: str, entry: dict[str, Any]) -> list[str]:
+    return [f"  {name}: toy impasses {entry['impasses']}"]
+
+
+TOY_REPORT = Report("toy", 3, toy_entry, toy_lines)   # its part of the run summary (tools')
+WITH_TOY_REPORT = (*REPORTS, TOY_REPORT)
 PROGRAM = """(concepts
   ((lit ?l) :percepts ((lamp ?l on T))))
 (goals (lit L1))
@@ -194,11 +203,11 @@ def test_the_toy_has_its_entry_and_lines_in_the_run_summary() -> None:
     engine = Engine(load_program_text(PROGRAM, "toy.tlp", mechanisms=WITH_TOY), solver="toy")
     state = engine.cycle(engine.initial_state(), DARK).state
     agents = {"ME": AgentRecord(state=state.to_dict()), "YOU": AgentRecord()}
-    summary = summary_sections(agents, WITH_TOY)
+    summary = summary_sections(agents, WITH_TOY_REPORT)
     assert list(summary) == ["learned", "bodies", "planner", "toy"]
     assert summary["toy"] == {"ME": {"impasses": 1}}
     assert summary["learned"] == summary["bodies"] == summary["planner"] == {}
-    assert summary_lines(summary, WITH_TOY) == ["  ME: toy impasses 1"]
+    assert summary_lines(summary, WITH_TOY_REPORT) == ["  ME: toy impasses 1"]
     assert "toy" not in summary_sections(agents)
 
 

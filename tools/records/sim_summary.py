@@ -11,8 +11,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from agents.lang.registry import AgentRecord, summary_sections
 from tools.records import goal_reports
+from tools.records.mechanism_reports import AgentRecord, summary_sections
 from tools.records.summary import episode_ended, finish_status, refused_events
 from tools.records.summary_agents import natural_sections
 from world.domain import get_domain

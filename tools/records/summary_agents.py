@@ -1,8 +1,9 @@
 """What each agent's mechanisms did, for the run summary (tools/records/summary.py): what a
 launch left of each agent in its run folder (the executive's state file `state-AGENT.json`,
 the learned skills `learned-AGENT.tlp`, its last memory as the world's trace recorded it),
-handed to every registered mechanism, which makes its own entry of it (agents/lang/registry.py:
-the means-ends learner's "learned", SCS's "bodies", ROGUE's "planner"); and how a summary of
+handed to every mechanism's report, which makes its own entry of it
+(tools/records/mechanism_reports.py: the means-ends learner's "learned", SCS's "bodies",
+ROGUE's "planner"); and how a summary of
 many agents stays readable: natural order (A2 before A10), alike lines folded, the cycle
 time's stages summed beyond the largest.
 """
@@ -22,7 +23,7 @@ import click
 def agent_sections(run_dir: Path, counters: dict[str, dict[str, int]],
                    memory: dict[str, Any]) -> dict[str, Any]:
     """The summary's entries of the mechanisms ("learned", "bodies", "planner")."""
-    from agents.lang.registry import AgentRecord, summary_sections
+    from tools.records.mechanism_reports import AgentRecord, summary_sections
 
     states = {path.stem.removeprefix("state-"): (read_json_file(path) or {}).get("state", {})
               for path in sorted(run_dir.glob("state-*.json"))}
@@ -59,7 +60,7 @@ def set_aside(run_dir: Path) -> dict[str, Any]:
 def echo_agents(summary: dict[str, Any]) -> None:
     """Print those entries for a person, many agents' like lines folded (fold_lines),
     and the files set aside."""
-    from agents.lang.registry import summary_lines
+    from tools.records.mechanism_reports import summary_lines
 
     for line in fold_lines(summary_lines(summary), summary_agents(summary)):
         click.echo(line)

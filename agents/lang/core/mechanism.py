@@ -21,10 +21,10 @@ nothing, so a mechanism overrides only what it needs:
   watch, agents/lang/execution/loops.py);
 - the executive process: ``memory`` / ``remember`` (what goes out with the actions and comes
   back with the world state, docs/bus.md "Agent memory"); ``carry`` (its state under a new
-  program, `teleo program load`: agents/lang/swap.py);
-- the run summary: ``summary_key`` (its entry of the summary), ``summary`` (that entry for one
-  agent, from what the run left of it: an AgentRecord) and ``summary_lines`` (the entry as the
-  summary prints it, in ``summary_rank`` order among the mechanisms).
+  program, `teleo program load`: agents/lang/swap.py).
+
+Its part of the run summary is not a hook: the summaries are the tools' (a Report in
+tools/records/mechanism_reports.py).
 
 Its part of the decision and the explanation is a Section (agents/lang/core/explanation.py) that
 its runner or handler appends to ``walk.sections``; ``teleo step --json`` shows a decision's
@@ -48,20 +48,6 @@ class SkillMap:
 
     numbers: Mapping[int, int] = field(default_factory=dict)
     names: Mapping[str, str] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class AgentRecord:
-    """What a run left of one agent, read by the mechanisms for the run summary: its engine
-    state as plain data (the state file's "state", or EngineState.to_dict()), its last agent
-    memory, the text of its learned skills (None: it kept no learned-skills file) and that
-    file's path, and the world's counters for it."""
-
-    state: Mapping[str, Any] = field(default_factory=dict)
-    memory: Mapping[str, Any] = field(default_factory=dict)
-    learned: str | None = None
-    learned_file: str = ""
-    counters: Mapping[str, int] = field(default_factory=dict)
 
 
 class Mechanism:
@@ -145,18 +131,6 @@ class Mechanism:
             return value, ()
         return self.state_type(), (f"the {self.name} state ({self.slot}): the new program "
                                    "starts it afresh",)
-
-    # -- the run summary -------------------------------------------------------------------
-    summary_key: str = ""      # its entry of the run summary ("" for none)
-    summary_rank: int = 0      # where its lines come among the mechanisms' (lower first)
-
-    def summary(self, agent: AgentRecord) -> dict[str, Any] | None:
-        """Its summary entry for one agent; None leaves the agent out."""
-        return None
-
-    def summary_lines(self, name: str, entry: dict[str, Any]) -> list[str]:
-        """The entry of agent ``name`` as the summary prints it."""
-        return []
 
 
 def slot_kinds(mechanisms: Iterable[Mechanism]) -> tuple[tuple[str, type], ...]:

@@ -12,7 +12,6 @@ from ..core.mechanism import Mechanism
 from .reader import PLANNING_SECTIONS
 from .rogue import RoguePlanner
 from .state import PlannerState
-from .summary import planner_entry, planner_lines
 
 
 @dataclass(frozen=True)
@@ -35,12 +34,3 @@ class Planning(Mechanism):
 
     def impasse_handlers(self) -> dict[str, Any]:
         return {"rogue": RoguePlanner}
-
-    summary_key: str = "planner"
-    summary_rank: int = 0
-
-    def summary(self, agent: Any) -> dict[str, Any] | None:
-        return planner_entry(agent)
-
-    def summary_lines(self, name: str, entry: dict[str, Any]) -> list[str]:
-        return planner_lines(name, entry)

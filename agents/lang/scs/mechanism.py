@@ -16,7 +16,6 @@ from .fitting import check_fits, check_model, model_arity
 from .reader import BodyReader
 from .runner import ScsBody
 from .state import ScsState, from_memory, model_of, to_memory
-from .summary import bodies_entry, bodies_lines
 from .syntax import Act, Atomic, walk_steps
 
 
@@ -72,12 +71,3 @@ class Scs(Mechanism):
 
     def remember(self, memory: dict[str, Any], program: Any) -> Any:
         return check_fits(from_memory(memory), program)
-
-    summary_key: str = "bodies"
-    summary_rank: int = 2
-
-    def summary(self, agent: Any) -> dict[str, Any] | None:
-        return bodies_entry(agent)
-
-    def summary_lines(self, name: str, entry: dict[str, Any]) -> list[str]:
-        return bodies_lines(name, entry)

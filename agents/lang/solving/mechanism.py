@@ -8,7 +8,6 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core.mechanism import Mechanism
-from .learned import clause_heads
 from .solver import MeansEndsSolver
 from .state import SolverState
 
@@ -23,18 +22,3 @@ class Solving(Mechanism):
 
     def impasse_handlers(self) -> dict[str, Any]:
         return {"means-ends": MeansEndsSolver}
-
-    summary_key: str = "learned"
-    summary_rank: int = 1
-
-    def summary(self, agent: Any) -> dict[str, Any] | None:
-        """The agent's learned-skills file and the head of each skill in it (seed 000)."""
-        if agent.learned is None:
-            return None
-        return {"file": agent.learned_file, "skills": clause_heads(agent.learned)}
-
-    def summary_lines(self, name: str, entry: dict[str, Any]) -> list[str]:
-        heads = entry["skills"]
-        where = entry["file"] or "not saved: --learned-out FILE saves them"
-        return [f"  {name}: learned skills {len(heads)} ({where})"
-                + "".join(f"\n    {h}" for h in heads)]
