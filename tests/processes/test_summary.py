@@ -11,7 +11,7 @@ import click
 from click.testing import CliRunner
 
 from bus.cycle import CycleReport
-from tools.records import summary
+from tools.records import run_status, summary
 from world.domain import get_domain
 from world.recorder import Recorder
 
@@ -52,7 +52,7 @@ def test_a_clean_run_completes(tmp_path):
     write_run(tmp_path, 50)
     goals(tmp_path, goal("g1", "achieved"))
     s = summary.build(tmp_path, BASE, {"goals": 0})
-    assert (s["status"], s["cycles"], s["failures"], summary.exit_code(s)) == (
+    assert (s["status"], s["cycles"], s["failures"], run_status.exit_code(s)) == (
         "completed", 50, [], 0)
 
 
@@ -60,7 +60,7 @@ def test_a_killed_world_still_counts_every_cycle_that_ran(tmp_path):
     write_run(tmp_path, 31, finish=False)  # no world-final.json, as after a SIGKILL
     s = summary.build(tmp_path, BASE, {"world": 3}, left_down=("world",),
                       ended="the world exited with code -9 and was not restarted")
-    assert s["cycles"] == 31 and s["status"] == "failed" and summary.exit_code(s) == 1
+    assert s["cycles"] == 31 and s["status"] == "failed" and run_status.exit_code(s) == 1
     assert "world gave up (left down after 3 restart(s))" in s["failures"]
     assert s["counters"]["ME"]["deliveries"] == 0  # the last cycle's counters, from the trace
 
@@ -98,7 +98,7 @@ def test_a_failed_goal_fails_the_run_and_an_impasse_does_not(tmp_path):
 def test_a_stop_asked_for_before_the_end_is_an_interruption(tmp_path):
     write_run(tmp_path, 20)
     stopped = summary.build(tmp_path, BASE, {}, requested_stop=True)
-    assert stopped["status"] == "interrupted" and summary.exit_code(stopped) == 130
+    assert stopped["status"] == "interrupted" and run_status.exit_code(stopped) == 130
     died = summary.build(tmp_path, BASE, {})
     assert died["status"] == "failed" and "the world stopped at cycle 20 of 50" in \
         died["failures"][0]

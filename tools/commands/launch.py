@@ -49,7 +49,7 @@ from tools.launching.run_plan import (
 from tools.launching.run_secrets import RunSecrets, host_of, make_secrets
 from tools.launching.supervision import Outcome, supervise
 from tools.paths import OutputPath, describe_os_error, picture_check
-from tools.records import summary
+from tools.records import run_status, summary
 from tools.runs import runfile
 from world.errors import WorldError
 from world.run_scenario import Scenario, ScenarioError
@@ -138,7 +138,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
         _unclaim(plan)
         stop_signals.stopping()
         click.echo("interrupted before the run started: no process was started", err=True)
-        raise SystemExit(summary.EXIT_CODES["interrupted"]) from None
+        raise SystemExit(run_status.EXIT_CODES["interrupted"]) from None
     base = {"run": plan.run, "scenario": str(scenario.path), "mode": plan.mode,
             "seed": plan.seed, "cycles_requested": plan.cycles,
             "secured": plan.secrets is not None, "overrides": list(scenario.overrides),
@@ -157,7 +157,7 @@ def launch(scenario_file: str, cycles: int | None, seed: int | None, mode: str |
                             plot_file, as_json)
     if as_json:
         click.echo(json.dumps(result, indent=1))
-    code = summary.exit_code(result)
+    code = run_status.exit_code(result)
     raise SystemExit(code if code or not unwritten else 1)
 
 

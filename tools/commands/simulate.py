@@ -30,7 +30,7 @@ from tools.commands.scenario_check import check_learned, load_checked, override_
 from tools.commands.sim_agents import AgentCycle, InProcessAgents, SimRun
 from tools.launching.progress import progress_cycles
 from tools.paths import OutputPath, picture_check
-from tools.records import sim_summary, summary
+from tools.records import run_status, sim_summary, summary
 from world.cycle import CycleRunner, CycleState
 from world.domain import get_domain
 from world.errors import WorldError
@@ -230,7 +230,7 @@ def _write_outputs(run: SimRun, sc: Scenario, out: _Outputs, seed: int | None,
         summary.echo(result)
         for note in notes:
             click.echo(note)
-    raise SystemExit(summary.exit_code(result))
+    raise SystemExit(run_status.exit_code(result))
 
 
 commands = [simulate_command]

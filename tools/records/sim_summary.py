@@ -13,7 +13,8 @@ from typing import Any
 
 from tools.records import goal_reports
 from tools.records.mechanism_reports import AgentRecord, summary_sections
-from tools.records.summary import episode_ended, finish_status, refused_events
+from tools.records.run_status import episode_ended, finish_status
+from tools.records.summary import refused_events
 from tools.records.summary_agents import natural_sections
 from world.domain import get_domain
 
