@@ -12,24 +12,9 @@ Pure standard library: the bus, the worlds and the processes all use it (docs/ar
 """
 
 from bus.schema.brief import brief
+from bus.schema.containers import AnyOf, ListOf, MapOf, Record, Tagged, TupleOf
 from bus.schema.plain import Plain
-from bus.schema.specs import (
-    INT64,
-    AnyOf,
-    Atom,
-    Bool,
-    FieldError,
-    Int,
-    ListOf,
-    MapOf,
-    Num,
-    OneOf,
-    Record,
-    Spec,
-    Str,
-    Tagged,
-    TupleOf,
-)
+from bus.schema.specs import INT64, Atom, Bool, FieldError, Int, Num, OneOf, Spec, Str
 
 __all__ = ["INT64", "AnyOf", "Atom", "Bool", "FieldError", "Int", "ListOf", "MapOf", "Num", "OneOf",
            "Plain", "Record", "Spec", "Str", "Tagged", "TupleOf", "brief"]
