@@ -18,6 +18,7 @@ before a pickup). The legs are each shortest, the whole need not be: the program
 from __future__ import annotations
 
 import argparse
+import re
 import statistics
 import sys
 import time
@@ -42,7 +43,11 @@ CORE_RATE, HARDER_RATE, RATIO = 0.99, 0.90, 1.5
 
 
 def env_id(name: str) -> str:
-    return name if name.startswith(("MiniGrid-", "BabyAI-")) else f"MiniGrid-{name}-v0"
+    """The registered id of a short name: `DoorKey-8x8` -> `MiniGrid-DoorKey-8x8-v0`; a name
+    with its own version (`ObstructedMaze-Full-v1`) keeps it; a full id stays as it is."""
+    if name.startswith(("MiniGrid-", "BabyAI-")):
+        return name
+    return f"MiniGrid-{name}" if re.search(r"-v\d+$", name) else f"MiniGrid-{name}-v0"
 
 
 def shortest_world(env_name: str, seed: int):

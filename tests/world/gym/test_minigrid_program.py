@@ -24,6 +24,7 @@ DOORKEY = ROOT / "scenarios" / "minigrid_doorkey.toml"
     ("MiniGrid-GoToDoor-8x8-v0", range(2)),
     ("MiniGrid-ObstructedMaze-1Dlh-v0", (45,)),        # the key's box carried aside first
     ("MiniGrid-RedBlueDoors-8x8-v0", (0,)),            # two doors in order
+    ("MiniGrid-ObstructedMaze-Full-v1", (2,)),         # two boxes hold a key for the door
 ])
 def test_the_program_wins_the_episode(env, seeds):
     scenario = load_scenario(DOORKEY, [f"world.env={env}"])
