@@ -66,6 +66,12 @@ def test_the_next_step_of_a_shortest_path_in_a_corridor():
     ("open the door", "open", "door", "any"),
     ("go to the red door", "goto", "door", "red"),
     ("put the blue ball near the red key", "putnear", "ball", "blue"),
+    # BabyAI's phrasings (minigrid.envs.babyai): "a", "next to", "object", "then open"
+    ("go to a grey door", "goto", "door", "grey"),
+    ("open a door in front of you", "open", "door", "any"),
+    ("pick up the green object", "pickup", "object", "green"),
+    ("put a grey key next to the red box", "putnext", "key", "grey"),
+    ("open the purple door, then open the red door", "open", "door", "purple"),
     ("", "unknown", "none", "any"),
 ])
 def test_the_mission_mapping(text, kind, typ, color):

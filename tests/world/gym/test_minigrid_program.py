@@ -25,6 +25,9 @@ DOORKEY = ROOT / "scenarios" / "minigrid_doorkey.toml"
     ("MiniGrid-ObstructedMaze-1Dlh-v0", (45,)),        # the key's box carried aside first
     ("MiniGrid-RedBlueDoors-8x8-v0", (0,)),            # two doors in order
     ("MiniGrid-ObstructedMaze-Full-v1", (2,)),         # two boxes hold a key for the door
+    ("BabyAI-PutNextLocal-v0", (0, 3)),                # next to: beside, not diagonal
+    ("BabyAI-PickupDist-v0", (4,)),                    # "the green object"
+    ("BabyAI-OpenTwoDoors-v0", (0,)),                  # "..., then open the red door"
 ])
 def test_the_program_wins_the_episode(env, seeds):
     scenario = load_scenario(DOORKEY, [f"world.env={env}"])

@@ -70,28 +70,40 @@ def _object(obj: Any, counts: dict[str, int], x: int, y: int, moving: bool) -> d
 
 
 # --- the mission ------------------------------------------------------------------------
-_OBJ = r"(?:(?P<color>red|green|blue|purple|yellow|grey) )?(?P<type>key|ball|box|door)"
+_OBJ = r"(?:(?P<color>red|green|blue|purple|yellow|grey) )?(?P<type>key|ball|box|door|object)"
+_OBJ2 = _OBJ.replace("<color>", "<color2>").replace("<type>", "<type2>")
+_PUT = ("putnear", "putnext")
 _MISSIONS = (
     ("goal", re.compile(r"\bgoal\b")),
-    ("open", re.compile(r"open the (?P<color>\w+) (?P<type>door) then the (?P<color2>\w+) "
-                        r"(?P<type2>door)")),
-    ("putnear", re.compile(r"put the (?P<color>\w+) (?P<type>\w+) near the (?P<color2>\w+) "
-                           r"(?P<type2>\w+)")),
+    ("open", re.compile(r"open the (?P<color>\w+) (?P<type>door),? then (?:open )?the "
+                        r"(?P<color2>\w+) (?P<type2>door)")),
+    ("putnear", re.compile(r"put (?:the|a) " + _OBJ + r" near (?:the|a) " + _OBJ2)),
+    ("putnext", re.compile(r"put (?:the|a) " + _OBJ + r" next to (?:the|a) " + _OBJ2)),
     ("pickup", re.compile(r"(?:pick up|fetch|get) (?:the|a) " + _OBJ)),
-    ("goto", re.compile(r"go to the " + _OBJ)),
-    ("open", re.compile(r"open the " + _OBJ)),
+    ("goto", re.compile(r"go to (?:the|a) " + _OBJ)),
+    ("open", re.compile(r"open (?:the|a) " + _OBJ)),
 )
 
 
 def mission(text: str) -> dict[str, str]:
     """The mission string as a goal (docs/minigrid.md, "Missions"): kind (goal, pickup,
-    goto, open, putnear, unknown), type and colour of the object (colour "any" when the
-    mission names none), and for putnear the second object.
+    goto, open, putnear, putnext, unknown), type and colour of the object (colour "any" when
+    the mission names none; type "object": a key, ball or box), and for putnear and putnext
+    the second object (near: the eight
+    cells around it, MiniGrid's PutNear; next to: the four beside it, BabyAI's PutNext).
 
     >>> mission("use the key to open the door and then get to the goal")["kind"]
     'goal'
     >>> mission("open the red door then the blue door")["color2"]
     'blue'
+    >>> mission("put a ball next to the purple door")["kind"]
+    'putnext'
+    >>> mission("open the purple door, then open the red door")["color2"]
+    'red'
+    >>> [mission(t)["type"] for t in ("go to a grey box", "pick up the green object")]
+    ['box', 'object']
+    >>> mission("put the red box next to a key")["color2"]
+    'any'
     >>> sorted(mission("you must fetch a blue key").items())
     [('color', 'blue'), ('color2', 'none'), ('kind', 'pickup'), ('type', 'key'), ('type2', 'none')]
     """
@@ -99,9 +111,10 @@ def mission(text: str) -> dict[str, str]:
         m = pattern.search(text)
         if m:
             found = m.groupdict()
+            type2 = found.get("type2") or "none"
             return {"kind": kind, "type": found.get("type") or "goal",
-                    "color": found.get("color") or "any",
-                    "type2": found.get("type2") or "none", "color2": found.get("color2") or "none"}
+                    "color": found.get("color") or "any", "type2": type2,
+                    "color2": found.get("color2") or ("none" if type2 == "none" else "any")}
     return {"kind": "unknown", "type": "none", "color": "any", "type2": "none", "color2": "none"}
 
 
@@ -170,8 +183,10 @@ def _thing(o: dict[str, Any], grid: Grid, search: Search, bare: Search,
                "dist", reach.steps if reach else -1, "next", _next(reach),
                "via", (reach.via or "none") if reach else "none",
                "free", "yes" if bare_reach is not None and bare_reach.reachable else "no"]
-    if goal["kind"] == "putnear" and o["type"] == goal["type2"] and o["color"] == goal["color2"]:
-        percept += ["place-next", _next(search.to_drop(_near_fits(grid, x, y)))]
+    if goal["kind"] in _PUT and goal["type2"] in (o["type"], "object") and \
+            goal["color2"] in ("any", o["color"]):
+        fits = _near_fits(grid, x, y, diagonal=goal["kind"] == "putnear")
+        percept += ["place-next", _next(search.to_drop(fits))]
     return percept
 
 
@@ -201,11 +216,13 @@ def _drop_fits(grid: Grid, me: tuple[int, int, int]):
     return fits
 
 
-def _near_fits(grid: Grid, tx: int, ty: int):
-    """An empty cell next to (tx, ty), diagonals included (MiniGrid's PutNear)."""
+def _near_fits(grid: Grid, tx: int, ty: int, diagonal: bool):
+    """An empty cell next to (tx, ty): one of the eight around it with ``diagonal`` (MiniGrid's
+    PutNear), else one of the four beside it (BabyAI's PutNext)."""
     def fits(x: int, y: int) -> int | None:
-        return 0 if grid.at(x, y).kind == "empty" and max(abs(x - tx), abs(y - ty)) == 1 \
-            else None
+        dx, dy = abs(x - tx), abs(y - ty)
+        beside = max(dx, dy) == 1 if diagonal else dx + dy == 1
+        return 0 if beside and grid.at(x, y).kind == "empty" else None
     return fits
 
 
