@@ -34,6 +34,7 @@ from ..core.terms import Literal, Test, Var
 from ..execution.effects import undone_by
 from .landmarks import key as _key
 from .landmarks import landmarks
+from .loose import loose
 from .state import condition, literal, pushable
 from .task import Task
 
@@ -67,7 +68,8 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     for g in unsat:
         threats = [(h, need, above) for h in unsat if h != g
                    for need, above in plans[h].items() if _threatens(task, g, need, above)
-                   and not (h in later and need == literal(h) and not above)]
+                   and not (h in later and need == literal(h) and not above)
+                   and need not in incidental(task, h)]
         if not threats:
             free.append(g)
         elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
@@ -97,13 +99,26 @@ def needs(task: Task, goal: str, above: tuple[str, ...] = ()) -> dict[Literal, s
     key = ("needs", goal, above)
     if key not in task.memo:
         out: dict[Literal, str] = {}
-        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above))
+        marks: tuple[set, set] = (set(), set())
+        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above), marks)
         task.memo[key] = out
+        task.memo[("incidental", goal, above)] = frozenset(marks[0] - marks[1])
     return task.memo[key]
 
 
+def incidental(task: Task, goal: str, above: tuple[str, ...] = ()) -> frozenset[Literal]:
+    """The needs of ``goal``'s plan (``needs``) that are only ever the incidental condition
+    of a skill: one with a variable that the skill's head leaves open and that no other of
+    its conditions but static ones names (elevators' ``(passengers ?lift ?n1)`` of boarding:
+    any count will do, and whatever another conjunct does to the count, boarding takes the
+    new one). Undoing such a need is no threat: the plan takes the value it finds."""
+    needs(task, goal, above)
+    return task.memo[("incidental", goal, above)]
+
+
 def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozenset,
-             out: dict[Literal, str], avoid: frozenset = frozenset()) -> None:
+             out: dict[Literal, str], avoid: frozenset,
+             marks: tuple[set, set]) -> None:
     out.setdefault(goal, above)
     if depth >= MAX_PLAN or goal in on_path:
         return
@@ -119,14 +134,18 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
     if not ways:
         return
     here = str(goal)
-    for c in ways[0].conditions:
+    free = loose(task, ways[0])
+    for i, c in enumerate(ways[0].conditions):
         cond = condition(c)
         if isinstance(cond, Test):
             continue
-        if cond.negated or cond.variables():
+        marks[0 if i in free else 1].add(cond)
+        if cond.negated or cond.variables() or i in free:   # (an incidental condition is
+            # not regressed: the plan takes the value it finds, e.g. the count its own
+            # boarding leaves)
             out.setdefault(cond, here)
         else:
-            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid)
+            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid, marks)
 
 
 def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
@@ -183,3 +202,16 @@ def one_step(task: Task, g: str) -> bool:
     return False
 
 
+def held_by(task: Task, stack) -> list[Literal]:
+    """The conditions of the ways chosen above the bottom of the goal stack ``stack`` that
+    hold now: what the work under way has achieved, or found, and still needs."""
+    return [literal(c) for e in stack.entries[1:] if e.decision is not None
+            for c in e.decision.conditions if pushable(condition(c)) and task.holds(c)]
+
+
+def undoes_any(task: Task, goal: str, held: list[Literal]) -> bool:
+    """Whether achieving ``goal`` makes one of ``held`` false (the program's effects)."""
+    if not held:
+        return False
+    patterns = task.effects.undoes(literal(goal))
+    return any(undone_by(h, patterns) for h in held)
