@@ -34,7 +34,6 @@ from ..core.terms import Literal, Test, Var
 from ..execution.effects import undone_by
 from .landmarks import key as _key
 from .landmarks import landmarks
-from .loose import loose
 from .state import condition, literal, pushable
 from .task import Task
 
@@ -68,8 +67,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     for g in unsat:
         threats = [(h, need, above) for h in unsat if h != g
                    for need, above in plans[h].items() if _threatens(task, g, need, above)
-                   and not (h in later and need == literal(h) and not above)
-                   and need not in incidental(task, h)]
+                   and not (h in later and need == literal(h) and not above)]
         if not threats:
             free.append(g)
         elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
@@ -99,26 +97,13 @@ def needs(task: Task, goal: str, above: tuple[str, ...] = ()) -> dict[Literal, s
     key = ("needs", goal, above)
     if key not in task.memo:
         out: dict[Literal, str] = {}
-        marks: tuple[set, set] = (set(), set())
-        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above), marks)
+        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above))
         task.memo[key] = out
-        task.memo[("incidental", goal, above)] = frozenset(marks[0] - marks[1])
     return task.memo[key]
 
 
-def incidental(task: Task, goal: str, above: tuple[str, ...] = ()) -> frozenset[Literal]:
-    """The needs of ``goal``'s plan (``needs``) that are only ever the incidental condition
-    of a skill: one with a variable that the skill's head leaves open and that no other of
-    its conditions but static ones names (elevators' ``(passengers ?lift ?n1)`` of boarding:
-    any count will do, and whatever another conjunct does to the count, boarding takes the
-    new one). Undoing such a need is no threat: the plan takes the value it finds."""
-    needs(task, goal, above)
-    return task.memo[("incidental", goal, above)]
-
-
 def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozenset,
-             out: dict[Literal, str], avoid: frozenset,
-             marks: tuple[set, set]) -> None:
+             out: dict[Literal, str], avoid: frozenset = frozenset()) -> None:
     out.setdefault(goal, above)
     if depth >= MAX_PLAN or goal in on_path:
         return
@@ -134,18 +119,14 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
     if not ways:
         return
     here = str(goal)
-    free = loose(task, ways[0])
-    for i, c in enumerate(ways[0].conditions):
+    for c in ways[0].conditions:
         cond = condition(c)
         if isinstance(cond, Test):
             continue
-        marks[0 if i in free else 1].add(cond)
-        if cond.negated or cond.variables() or i in free:   # (an incidental condition is
-            # not regressed: the plan takes the value it finds, e.g. the count its own
-            # boarding leaves)
+        if cond.negated or cond.variables():
             out.setdefault(cond, here)
         else:
-            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid, marks)
+            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid)
 
 
 def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
