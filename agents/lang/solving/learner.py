@@ -156,11 +156,19 @@ def _consistent(task: Task, start: list[str]) -> list[str]:
     for c in start:
         cond = condition(c)
         if isinstance(cond, Literal) and not cond.negated and not cond.variables() and any(
-                undone_by(cond, task.effects.undoes(x)) for x in map(condition, out)
+                _excludes(task, x, cond) for x in map(condition, out)
                 if isinstance(x, Literal) and not x.negated and not x.variables()):
             continue
         out.append(c)
     return out
+
+
+def _excludes(task: Task, a: Literal, b: Literal) -> bool:
+    """Whether the ground literals ``a`` and ``b`` exclude each other: achieving either undoes
+    the other (``(handempty)`` and ``(holding b1)``). One way is not enough: what the skill
+    that achieves ``a`` happens to delete may well hold beside ``a`` (elevators: a passenger
+    left at a floor, and a lift's passenger count, which every leave changes)."""
+    return undone_by(b, task.effects.undoes(a)) and undone_by(a, task.effects.undoes(b))
 
 
 def _objects(text: str) -> set:

@@ -183,3 +183,16 @@ def one_step(task: Task, g: str) -> bool:
     return False
 
 
+def held_by(task: Task, stack) -> list[Literal]:
+    """The conditions of the ways chosen above the bottom of the goal stack ``stack`` that
+    hold now: what the work under way has achieved, or found, and still needs."""
+    return [literal(c) for e in stack.entries[1:] if e.decision is not None
+            for c in e.decision.conditions if pushable(condition(c)) and task.holds(c)]
+
+
+def undoes_any(task: Task, goal: str, held: list[Literal]) -> bool:
+    """Whether achieving ``goal`` makes one of ``held`` false (the program's effects)."""
+    if not held:
+        return False
+    patterns = task.effects.undoes(literal(goal))
+    return any(undone_by(h, patterns) for h in held)

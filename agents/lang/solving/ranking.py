@@ -38,6 +38,12 @@ class Ranking:
         h = self.estimate(conds)
         return base if h is None else (h, *base)
 
+    def estimated(self) -> bool:
+        """Whether the program admits the relaxed estimate (agents/lang/solving/relaxed.py)."""
+        if self._relaxed is None:
+            self._relaxed = self._situation_relaxed()
+        return self._relaxed.available
+
     def estimate(self, conds: list) -> float | None:
         """The relaxed distance of ``conds`` (agents/lang/solving/relaxed.py): the sum of the
         levels of the positive ground literals that do not hold, infinite when one never

@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 
 from ..core.terms import Literal
 from ..execution.paths import Found
+from .loose import rebind
 from .ordering import agenda
 from .state import (
     CONCEPT,
@@ -113,6 +114,7 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
             way = entry.alternatives[entry.tried]
             entry = entry.choose(entry.tried, tuple(c for c in way.conditions
                                                      if task.holds(c)))
+        entry = rebind(task, entry)
         if ready and all(task.holds(c) for c in entry.decision.conditions):
             return entry, None, ""
         child, why = _push(task, entry, entry.decision, on_stack, not ready)

@@ -28,7 +28,7 @@ from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
-from .ordering import agenda, one_step
+from .ordering import agenda, held_by, one_step, undoes_any
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
@@ -95,9 +95,11 @@ class MeansEndsSolver(ImpasseHandler):
         items = agenda(task, conds, current)
         if current and current in items:   # in passing: a conjunct one action achieves (a
             # block in the hand to its place); not a part of another's plan, which would
-            # take the hand from the work under way
-            items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)]
-                                       + [current]))
+            # take the hand from the work under way, nor one that undoes what the way under
+            # way has already achieved (a car rotated back off the segment it was brought to)
+            held = held_by(task, stack) if mine else []
+            items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)
+                                        and not undoes_any(task, c, held)] + [current]))
         elif current and mine and (current in conds or not items):
             self._refocus(walk, stack, current)   # (a part of a plan done first stays: the
             #                                        plan still needs it)

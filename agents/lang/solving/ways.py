@@ -84,14 +84,20 @@ class Ways:
             return []
         conds = [*s.start, *s.requires]
         ranked: list = []
-        for shared in (False, True):   # objects shared only when no binding keeps them apart
+        fixed = set(b0.values())
+        # objects shared only when no binding keeps them apart, or where the relaxed
+        # estimate judges every binding (it ranks (unstack B B) never; elevators' passenger
+        # count n1 may well be the floor n1): then, all else equal, objects kept apart first
+        for shared in (True,) if self.estimated() else (False, True):
             for b in self._candidates(list(s.percepts), conds, b0, shared=shared):
                 ground = grounded(conds, b)
                 if ground is not None and self._chainable(ground, applicable) \
                         and self.admits(s, b, goal) and not self.undoes_skill(s, b) and \
                         (applicable or not self._circular(goal, ground)):
                     ready = applicable and all(self.holds(c) for c in ground)
-                    ranked.append(((not ready,), binding_key(b), b, ground))
+                    extra = [v for k, v in b.items() if k not in b0]
+                    apart = len(set(extra)) == len(extra) and not fixed & set(extra)
+                    ranked.append(((not ready,), (not apart, binding_key(b)), b, ground))
             if ranked:
                 break
         return [Alternative(SKILL, s.number, s.name, btuple(b), tuple(map(str, ground)),
