@@ -1,7 +1,7 @@
-"""Which instances of a literal some skill or concept can make true (issue 31, "Goals with
-variables"): the solver binds a conjunction's or a concept's free variables only to objects
-that can make its literals true, and the executive leaves out a goal's instances that nothing
-can (``(on D D)`` among ``(on D ?x)``'s).
+"""Which instances of a literal some skill or concept can make true (docs/language.md, "Goals
+with variables: which instances"): the solver binds a conjunction's or a concept's free
+variables only to objects that can make its literals true, and the executive leaves out a
+goal's instances that nothing can (``(on D D)`` among ``(on D ?x)``'s).
 
 An instance is **impossible** when its predicate has ways to be made true (primitive skills,
 or concept clauses with :relations) and none of them can for this instance: no skill whose

@@ -1,4 +1,4 @@
-"""Landmarks (issue 22): the conditions that every way of achieving a literal from the current
+"""Landmarks: the conditions that every way of achieving a literal from the current
 situation passes through, by goal regression over the program: each way (a primitive skill
 whose head matches, a concept clause with :relations) counts with its conditions and what their
 definitions consist of; the landmarks are what all ways share, and, for those that do not hold,

@@ -7,7 +7,7 @@ an entry of a goal stack is achieved, a new skill is made from the decision reco
   pattern of that percept's type. An object the body names and the goal does not becomes a
   variable only when a positive :start literal ties it to one that is (``(clear ?b1)`` with
   ``:start ((on ?b2 ?b1))``: ?b2 is the block on ?b1, whichever it is); otherwise it stays a
-  constant, so the skill never applies to objects its start does not determine (issue 22: a
+  constant, so the skill never applies to objects its start does not determine (a
   variable bound by a type pattern alone would make the skill "apply" to any block). Other
   constants (numbers, names no percept carries) stay as written.
 * Skill chaining (off skill S, whose start was false): the subgoals are the start conditions

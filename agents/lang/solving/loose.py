@@ -1,4 +1,4 @@
-"""Loose variables (issue 35): a skill's variable that its head leaves open and that one
+"""Loose variables: a skill's variable that its head leaves open and that one
 condition of its start names beside static ones, which name it too, such as elevators' count of
 passengers ``?n1`` of boarding, in ``(passengers ?lift ?n1)`` and ``(next ?n1 ?n2)``. Any value
 that makes that condition hold will do, so the condition is *incidental*: a chosen way whose

@@ -1,4 +1,4 @@
-"""The order in which a conjunctive goal's conjuncts are pursued (issue 22), by goal regression
+"""The order in which a conjunctive goal's conjuncts are pursued, by goal regression
 over the program: achieve first what achieving another conjunct would not undo.
 
 For each unsatisfied conjunct h, ``needs`` regresses the solver's own plan from the current
@@ -55,7 +55,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
     plans = {h: needs(task, h, above) for h in unsat}
     if current and current not in conds:   # a part of a conjunct's plan, done first: that
-        # conjunct's plan goes on (issue 31: not another's, which would move again what the
+        # conjunct's plan goes on (not another's, which would move again what the
         # first would have put in its place)
         current = next((h for h in unsat if literal(current) in plans[h]), current)
     free, promote = [], []

@@ -1,4 +1,4 @@
-"""A delete-relaxed estimate of how far a literal is from the current situation (issue 35), to
+"""A delete-relaxed estimate of how far a literal is from the current situation, to
 order the solver's choices among bindings of a skill (which truck, which airport): the
 primitive skills of the program applied forward from what holds now, each as soon as its start
 holds, their undoing ignored; a literal's level is the number of such rounds before it first

@@ -132,7 +132,7 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
     skill's start."""
     if way.kind == CONJUNCTION or (way.kind == CONCEPT and len(on_stack) == 1):
         # a conjunct given up after a circle is not pushed again; a user's goal written as a
-        # concept is ordered as its relations written as (and ...) would be (issue 31)
+        # concept is ordered as its relations written as (and ...) would be
         items = [c for c in agenda(task, way.conditions) if c not in on_stack
                  and entry.pushes.count(c) < MAX_PUSHES]
         cond = items[0] if items else next((c for c in way.conditions

@@ -106,8 +106,8 @@ class MeansEndsSolver(ImpasseHandler):
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
-        """False when no skill or concept can make the goal instance ``inst`` true (issue 31:
-        ``(on D D)`` among ``(on D ?x)``'s; agents/lang/solving/bindings.py): the executive
+        """False when no skill or concept can make the goal instance ``inst`` true
+        (``(on D D)`` among ``(on D ?x)``'s; agents/lang/solving/bindings.py): the executive
         leaves it out of the goal's instances."""
         return self.task(finder, walk).reach.possible(inst)
 
@@ -187,7 +187,7 @@ class MeansEndsSolver(ImpasseHandler):
         elif len(stack.entries) > 1 and stack.entries[0].decision is not None and \
                 stack.entries[0].decision.kind == CONCEPT:   # a goal written as a concept:
             self.agenda(finder, walk, entry, unsatisfied[0], "")   # its relations as (and)'s
-            stack = walk.current("solver").stack_of(entry.id) or stack   # (issue 31)
+            stack = walk.current("solver").stack_of(entry.id) or stack
         prev = walk.state.path_of(entry.id)
 
         def probe(goal: Literal):

@@ -1,4 +1,4 @@
-"""The effect model the solver orders its choices by, with the objects' types (issue 35): what
+"""The effect model the solver orders its choices by, with the objects' types: what
 achieving a literal undoes is what every primitive skill that *can* achieve it deletes, and a
 skill whose typed :percepts do not admit the literal's objects cannot. In logistics,
 ``(at tru1 apt1)`` is achieved by driving, not by unloading (tru1 is no package), so it undoes

@@ -2,7 +2,7 @@
 chaining (a primitive skill whose head matches the goal and whose start does not hold yet)
 before concept chaining (the goal's concept definition, decomposed into its subconcepts), and
 a conjunction's bindings; within a clause the best-ranked bindings; and the ways left out
-(issue 22: ``WayFilters``): a skill whose actions would undo a protected goal, a higher one
+(``WayFilters``): a skill whose actions would undo a protected goal, a higher one
 that holds (seed 000, "Adding Goal Priorities"), and a way whose own condition can only be
 reached through the goal it is for (a landmark of the condition; landmarks.py). Mixins of Task
 (agents/lang/solving/task.py), which holds the cycle's percepts and beliefs."""
