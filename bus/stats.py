@@ -24,6 +24,16 @@ from bus.messages import Envelope, Message, ProcessStats
 STATS_FIELD = "stats"
 
 
+def figures_of(msg: Message) -> Iterator[tuple[str, float, int]]:
+    """(process, compute_ms, late) of every stats in `msg`, as `stats_of` finds them, without
+    a ProcessStats made for each (the clock reads those of every Actions it waits for)."""
+    if isinstance(msg, ProcessStats):
+        yield msg.process, msg.compute_ms, msg.late
+        return
+    for process, (ms, late) in (getattr(msg, STATS_FIELD, None) or {}).items():
+        yield process, float(ms), int(late)
+
+
 def stats_of(msg: Message, own: bool = False) -> tuple[ProcessStats, ...]:
     """The ProcessStats in `msg`: itself if it is one, else one per process whose stats it
     carries (none for a kind without them); `own`: only its sender's (a reader that sees

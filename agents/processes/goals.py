@@ -7,8 +7,8 @@ any time, validating a post against the agent's program (Engine.add_goal: an unk
 or a wrong arity is refused with the engine's reason). When it sees the world state of cycle
 t it applies the scenario's scripted requests of cycle t and publishes each agent's goal list
 of t, the executive's goal input (a request received while running takes effect at the next
-cycle it publishes). It reads the executives' intentions to keep each goal's status
-(ROGUE, seed 003: asynchronous requests with priorities).
+cycle it publishes). It reads the executives' intentions, in a batch at each world state
+(goal_inputs.py), to keep each goal's status (ROGUE, seed 003: asynchronous requests).
 
 Requests are bounded (docs/bus.md, "Goal requests"): each client (the request envelope's
 sender) and all clients together are rate-limited (request_limits.py), and the store bounds a
@@ -31,18 +31,15 @@ import click
 from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_store import (
-    MAX_ID_CHARS,
-    GoalStore,
-    GoalStoreError,
-)
+from agents.processes.goal_inputs import GoalInputs
+from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError
 from agents.processes.goal_texts import rank_problem, refused_text
 from agents.processes.goal_warnings import Warner, engine_warner
 from agents.processes.request_limits import RequestLimiter
 from agents.processes.swapping import ProgramWatch
 from bus import keys
 from bus.config import BusConfig, bus_options
-from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
+from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats
 from bus.node import Node, open_node
 from bus.stage import QUIET_S
 from world.run_scenario import Scenario, ScriptedGoal, load_scenario
@@ -195,11 +192,10 @@ class GoalEntry:
         return f"; forced: {problem.split(': the agent')[0]}" if problem else ""
 
     def on_world_state(self, node: Node, cycle: int) -> ProcessStats:
-        """Apply the scripted requests due, then publish every agent's goal list of `cycle`,
-        each carrying this process's stats of the cycle (bus/stats.py: the executive hands
-        them on in its Actions, where the clock reads them); returns those stats, for `serve`
-        to send alone once idle. A repeated cycle (the clock re-sends it after a restart)
-        gets the same lists again."""
+        """Apply the scripted requests due, then publish every agent's goal list of `cycle`
+        with this process's stats (bus/stats.py; the executive's Actions carry them on);
+        returns the stats, which `serve` sends alone once idle. A repeated cycle (re-sent
+        after a restart) gets the same lists again."""
         t0 = time.perf_counter()
         with self.lock:
             if cycle != self.cycle:
@@ -255,36 +251,31 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
                       standing=programs.standing, warn=engine_warner(scenario))
     with open_node(cfg, run, PROCESS) as node:
         entry.node = node
-        inbox = node.subscribe(keys.world_state(run))
+        inputs = GoalInputs(node, run, scenario.agent_ids, log)   # intentions in batches
         for agent in scenario.agent_ids:
-            node.subscribe(keys.intention(run, agent), inbox)
             node.serve(keys.goals(run, agent), entry.handle)
         node.declare([keys.stats(run, PROCESS), *(keys.goal_list(run, a)
                                                    for a in scenario.agent_ids)])
         node.announce()
         log.info("serving goals of %s from %s", scenario.agent_ids, store_path)
-        # the last cycle's stats and when to send them alone: idle QUIET_S after a cycle, as
-        # a stage does (bus/stage.py), so the clock tells a stalled goal entry from one done
+        # the last cycle's stats, sent alone once idle QUIET_S after it (as bus/stage.py)
         quiet: ProcessStats | None = None
         quiet_at = 0.0
         while not stop.is_set():
             wait = 0.1 if quiet is None else max(0.0, min(0.1, quiet_at - time.monotonic()))
-            msg = inbox.get(timeout=wait)
-            if isinstance(msg, WorldState):
-                programs.follow(msg.control, log)
-                quiet = entry.on_world_state(node, msg.env.cycle)
+            state = inputs.state(wait)
+            for intention in inputs.intentions():   # those sent before the state first
+                entry.on_intention(intention)
+            if state is not None:
+                programs.follow(state.control, log)
+                quiet = entry.on_world_state(node, state.env.cycle)
                 quiet_at = time.monotonic() + QUIET_S
-            elif isinstance(msg, Intention):
-                entry.on_intention(msg)
             if quiet is not None and time.monotonic() >= quiet_at:
                 node.publish(keys.stats(run, PROCESS), quiet)
                 quiet = None
             entry.flush()
-        # the statuses of intentions still queued, saved before the session closes: a
-        # close can take long on a busy machine, and the launcher kills a slow stopper
-        while (msg := inbox.get(timeout=0)) is not None:
-            if isinstance(msg, Intention):
-                entry.on_intention(msg)
+        for intention in inputs.intentions():   # saved before the session closes: a close
+            entry.on_intention(intention)       # can be slow, and a slow stopper is killed
         entry.flush(force=True)
         log.info("stopped; %d goals saved in %s", len(entry.store.goals), store_path)
 

@@ -112,7 +112,17 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     chains = [Chain(run, spec, log, static) for spec in specs]
     state_key = keys.world_state(run)
 
+    made: list = [None, None]   # the last world state and its copy with the static part
+
+    def whole(state: Message) -> Message:
+        """`state` with its snapshot whole, made once for every agent here: their perception
+        reads one dict, and the world checks it once (perception.with_static)."""
+        if made[0] is not state:
+            made[:] = [state, perception.with_static(state, static, state_key)]
+        return made[1]
+
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        inputs = {**inputs, state_key: whole(inputs[state_key])}
         return [out for chain in chains for out in chain.step(cycle, inputs)]
 
     begun = [0, -1]   # cycles whose perception and inference ran before their goal lists,
@@ -120,10 +130,14 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
 
     def early(key: str, msg: Message) -> None:
         if key == state_key:
+            try:
+                state = whole(msg)
+            except Refused:   # the step, run again on the complete cycle, refuses it
+                return
             if msg.env.cycle > begun[1]:
                 begun[:] = [begun[0] + 1, msg.env.cycle]
             for chain in chains:
-                chain.early(msg.env.cycle, key, msg)
+                chain.early(msg.env.cycle, key, state)
 
     agents = [spec["agent"] for spec in specs]
     inputs = [state_key, *(keys.goal_list(run, a) for a in agents)]
