@@ -7,8 +7,8 @@ any time, validating a post against the agent's program (Engine.add_goal: an unk
 or a wrong arity is refused with the engine's reason). When it sees the world state of cycle
 t it applies the scenario's scripted requests of cycle t and publishes each agent's goal list
 of t, the executive's goal input (a request received while running takes effect at the next
-cycle it publishes). It reads the executives' intentions, in a batch at each world state
-(goal_inputs.py), to keep each goal's status (ROGUE, seed 003: asynchronous requests).
+cycle it publishes). It reads the executives' intentions to keep each goal's status
+(ROGUE, seed 003: asynchronous requests with priorities).
 
 Requests are bounded (docs/bus.md, "Goal requests"): each client (the request envelope's
 sender) and all clients together are rate-limited (request_limits.py), and the store bounds a
@@ -31,7 +31,6 @@ import click
 from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_inputs import GoalInputs
 from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError
 from agents.processes.goal_texts import rank_problem, refused_text
 from agents.processes.goal_warnings import Warner, engine_warner
@@ -39,7 +38,7 @@ from agents.processes.request_limits import RequestLimiter
 from agents.processes.swapping import ProgramWatch
 from bus import keys
 from bus.config import BusConfig, bus_options
-from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats
+from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
 from bus.node import Node, open_node
 from bus.stage import QUIET_S
 from world.run_scenario import Scenario, ScriptedGoal, load_scenario
@@ -251,8 +250,9 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
                       standing=programs.standing, warn=engine_warner(scenario))
     with open_node(cfg, run, PROCESS) as node:
         entry.node = node
-        inputs = GoalInputs(node, run, scenario.agent_ids, log)   # intentions in batches
+        inbox = node.subscribe(keys.world_state(run))
         for agent in scenario.agent_ids:
+            node.subscribe(keys.intention(run, agent), inbox)
             node.serve(keys.goals(run, agent), entry.handle)
         node.declare([keys.stats(run, PROCESS), *(keys.goal_list(run, a)
                                                    for a in scenario.agent_ids)])
@@ -263,19 +263,20 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
         quiet_at = 0.0
         while not stop.is_set():
             wait = 0.1 if quiet is None else max(0.0, min(0.1, quiet_at - time.monotonic()))
-            state = inputs.state(wait)
-            for intention in inputs.intentions():   # those sent before the state first
-                entry.on_intention(intention)
-            if state is not None:
-                programs.follow(state.control, log)
-                quiet = entry.on_world_state(node, state.env.cycle)
+            msg = inbox.get(timeout=wait)
+            if isinstance(msg, WorldState):
+                programs.follow(msg.control, log)
+                quiet = entry.on_world_state(node, msg.env.cycle)
                 quiet_at = time.monotonic() + QUIET_S
+            elif isinstance(msg, Intention):
+                entry.on_intention(msg)
             if quiet is not None and time.monotonic() >= quiet_at:
                 node.publish(keys.stats(run, PROCESS), quiet)
                 quiet = None
             entry.flush()
-        for intention in inputs.intentions():   # saved before the session closes: a close
-            entry.on_intention(intention)       # can be slow, and a slow stopper is killed
+        while (msg := inbox.get(timeout=0)) is not None:   # saved before the session
+            if isinstance(msg, Intention):                  # closes: a close can be slow,
+                entry.on_intention(msg)                     # and a slow stopper is killed
         entry.flush(force=True)
         log.info("stopped; %d goals saved in %s", len(entry.store.goals), store_path)
 
