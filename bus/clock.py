@@ -239,6 +239,7 @@ class _CycleRun:
         self.stopped = False
         self.start = start
         self.sent = start  # when state t was last (re)published
+        self.checked = float("-inf")  # when `_check` last ran (monotonic [s])
         self.end = start + clock.period_s \
             if clock.mode is CycleMode.REALTIME and not handshake else None
 
@@ -249,7 +250,12 @@ class _CycleRun:
                 if not self.stalled and self.end is None and waited > self.c.stall_s:
                     self._note_stall(self.c.node.presence.snapshot())
                 raise CycleInterrupted(self.cycle, self.waiting, self.stalled, waited)
-            self._check(time.monotonic())
+            now = time.monotonic()
+            # liveliness, deadlines and re-sends are looked at every poll, not again at each
+            # message that woke the loop (several agents' actions come in several wake-ups)
+            if now - self.checked >= _POLL_S or self.end is not None and now >= self.end:
+                self.checked = now
+                self._check(now)
             if self.stopped or not self.waiting:
                 return
             timeout = _POLL_S

@@ -8,7 +8,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 from bus.messages import Actions, Message
-from bus.stats import stats_of
+from bus.stats import figures_of
 
 MAX_PENDING = 64
 """Incomplete cycles a stage keeps at most (older ones are dropped as stale)."""
@@ -107,11 +107,10 @@ class CycleBook:
         """Note `msg`; the stats it is or carries (bus/stats.py: a ProcessStats, an agent's
         Actions with its pipeline's), of any cycle, also update `last_seen[process]`."""
         cycle = msg.env.cycle
-        for s in stats_of(msg):
-            prev = last_seen.get(s.process, -1)
-            last_seen[s.process] = max(prev, cycle)
+        for process, ms, _ in figures_of(msg):
+            last_seen[process] = max(last_seen.get(process, -1), cycle)
             if cycle == self.cycle:
-                self.stage_ms[s.process] = s.compute_ms
+                self.stage_ms[process] = ms
         if isinstance(msg, Actions) and cycle == self.cycle and msg.agent in self.agents:
             self.actions.setdefault(msg.agent, msg.actions)
             self.memory.setdefault(msg.agent, msg.memory)

@@ -200,22 +200,24 @@ class GoalReply(MessageKind):
 
 @message
 class GoalList(MessageKind):
-    """An agent's goal list for one cycle (the executive's goal input of that cycle)."""
+    """An agent's goal list for one cycle (the executive's goal input of that cycle), with
+    the goal-entry process's stats of that cycle (bus/stats.py; absent in older records)."""
 
     KIND = "GoalList"
     KEYS = ("agent/*/goal-list",)
     env: Envelope
     agent: str = spec(NAME)
     goals: tuple = spec(Tuple(ListOf(GOAL_ENTRY)), default=())  # {"id", "goal", ...} dicts
+    stats: dict = spec(STATS, default_factory=dict)  # the goal entry's stats (bus/stats.py)
 
 
 @message
 class ProcessStats(MessageKind):
     """Per-cycle figures of one process, for the clock (which stage is late) and the inspector.
-    A stage carries them in its output instead (the ``stats`` field of Percepts, Beliefs and
-    Actions; bus/stats.py) and sends them alone only when it has no such output or has been
-    idle a while after a cycle (docs/bus.md, "Stage stats"); the world and the recorder send
-    them alone.
+    A stage carries them in its output instead (the ``stats`` field of Percepts, Beliefs,
+    Actions and GoalList; bus/stats.py) and sends them alone only when it has no such output
+    or has been idle a while after a cycle (docs/bus.md, "Stage stats"); the world and the
+    recorder send them alone.
 
     compute_ms: time spent computing this cycle [ms]; late: cycles this process has
     skipped so far because a newer cycle had already arrived (it fell behind) [count].

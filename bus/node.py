@@ -81,10 +81,14 @@ class Node:
     def publish_many(self, items: Iterable[tuple[str, Message]]) -> None:
         """Publish several messages in order: all are encoded first, then put back to back,
         so the first put's wake-up of zenoh's sending thread also carries the others (a put
-        into an idle session pays for that wake-up, one right after another hardly at all)."""
-        encoded = [(key, self._encoding(msg), encode(msg)) for key, msg in items]
-        for key, enc, payload in encoded:
-            self._publisher(key).put(payload, encoding=enc)
+        into an idle session pays for that wake-up, one right after another hardly at all).
+        A message on a key no subscriber matches now is left out unencoded: zenoh, whose
+        routing the matching status is, would send it nowhere (a shared process's percepts
+        and beliefs in a run without a record)."""
+        encoded = [(pub, self._encoding(msg), encode(msg)) for key, msg in items
+                   if (pub := self._publisher(key)).matching_status.matching]
+        for pub, enc, payload in encoded:
+            pub.put(payload, encoding=enc)
 
     def _encoding(self, msg: Message) -> zenoh.Encoding:
         enc = self._encodings.get(msg.KIND)

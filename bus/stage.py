@@ -35,7 +35,7 @@ from bus.errors import Refused
 from bus.lifeline import hold_on_to_parent
 from bus.messages import Message, ProcessStats
 from bus.node import Inbox, Node
-from bus.stats import STATS_FIELD
+from bus.stats import STATS_FIELD, stats_of
 
 log = logging.getLogger(__name__)
 
@@ -75,7 +75,9 @@ class Stage:
     start-up barrier); other keys returned by `step_fn` are declared on first use.
     stages: the stage processes this Stage runs the steps of, when it runs several (a shared
     process: agents/processes/shared.py); they are announced with the node, and `step_fn`
-    returns their ProcessStats itself.
+    returns their stats carried in its outputs, each stage's in the output it sent (the
+    ``stats`` field, as a stage of its own carries them; bus/stats.py), which the Stage
+    sends alone, one ProcessStats per stage, once idle after a cycle.
     early: called with an input message of a cycle still incomplete when the stage would
     otherwise wait for the rest of it (a shared process starts its agents' perception and
     inference on the world state while their goal lists are on the way); what it computes
@@ -105,7 +107,9 @@ class Stage:
         self._inbox: Inbox | None = None
         self.stages = tuple(stages)
         self.quiet_s = quiet_s
-        self._quiet: ProcessStats | None = None  # the last cycle's stats, not yet sent alone
+        # the last cycle's stats, not yet sent alone: its ProcessStats, or (stages) the
+        # outputs that carry each stage's
+        self._quiet: list[tuple[str, Message]] | None = None
 
     @property
     def inbox(self) -> Inbox:
@@ -145,7 +149,7 @@ class Stage:
         first = self.inbox.receive(self.quiet_s if quiet else timeout)
         if first is None:
             if self._quiet is not None and (quiet or timeout >= self.quiet_s):
-                self.node.publish(self._stats_key, self._quiet)  # idle: say it is done
+                self.node.publish_many(self._alone(self._quiet))  # idle: say it is done
                 self._quiet = None
             return None
         batch = [self.joiner.add(first.key, first.msg)]
@@ -193,6 +197,7 @@ class Stage:
             self.cycles_done += 1
         self.joiner.done(joined.cycle)
         if self.stages:
+            self._quiet = outs
             self.node.publish_many(outs)
             return
         stats = ProcessStats(self.node.envelope(joined.cycle), self.process, compute_ms,
@@ -204,8 +209,15 @@ class Stage:
         if carried is None:  # no output can carry them: on their own, before the outputs
             self.node.publish_many([(self._stats_key, stats), *outs])
             return
-        self._cache, self._quiet = carried, stats
+        self._cache, self._quiet = carried, [(self._stats_key, stats)]
         self.node.publish_many(carried)
+
+    def _alone(self, quiet: list[tuple[str, Message]]) -> list[tuple[str, Message]]:
+        """The ProcessStats that say the last cycle is done (see `_quiet`)."""
+        if not self.stages:
+            return quiet
+        return [(keys.stats(self.node.run, s.process), s) for _, m in quiet
+                for s in stats_of(m, own=True)]
 
     def _carry(self, outs: list[tuple[str, Message]], inputs: dict[str, Message],
                stats: ProcessStats) -> list[tuple[str, Message]] | None:

@@ -1,11 +1,12 @@
 """The stats of a message, whichever way they travel (docs/bus.md, "Stage stats").
 
 A stage carries its per-cycle figures (ProcessStats' compute_ms and late) in its output, in the
-``stats`` field of Percepts, Beliefs and Actions, together with those its inputs carried: an
-agent's Actions hold every stage of its pipeline, all of the message's cycle. A ProcessStats of
-its own is still sent by a process with no such output (the world, the recorder, the goals
-stage, a shared process), by a stage idle a while after a cycle (bus/stage.py), and is what
-records written before 2026-12-06 hold. Readers take both through these two functions:
+``stats`` field of Percepts, Beliefs, Actions and GoalList (the goal entry's), together with
+those its inputs carried: an agent's Actions hold every stage of its pipeline, the goal
+entry's included, all of the message's cycle. A ProcessStats of its own is still sent by a
+process with no such output (the world, the recorder), by a stage, the goal entry or a shared
+process idle a while after a cycle (bus/stage.py), and is what records written before
+2026-12-06 hold. Readers take both through these two functions:
 
     for s in stats_of(msg):          # ProcessStats objects, one per process
         seen[s.process] = s.env.cycle
@@ -21,6 +22,16 @@ from typing import Any
 from bus.messages import Envelope, Message, ProcessStats
 
 STATS_FIELD = "stats"
+
+
+def figures_of(msg: Message) -> Iterator[tuple[str, float, int]]:
+    """(process, compute_ms, late) of every stats in `msg`, as `stats_of` finds them, without
+    a ProcessStats made for each (the clock reads those of every Actions it waits for)."""
+    if isinstance(msg, ProcessStats):
+        yield msg.process, msg.compute_ms, msg.late
+        return
+    for process, (ms, late) in (getattr(msg, STATS_FIELD, None) or {}).items():
+        yield process, float(ms), int(late)
 
 
 def stats_of(msg: Message, own: bool = False) -> tuple[ProcessStats, ...]:

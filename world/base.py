@@ -61,14 +61,22 @@ def record(kind: type[T], d: dict[str, Any]) -> T:
     return kind(**d)
 
 
+_passed: dict[int, Any] = {}
+"""id(schema) -> the last dict that passed it, kept (so its id is its own): several agents
+perceiving one snapshot in one process (a shared process, `teleo simulate`) check it once.
+Snapshot dicts are not changed once made (they are read from the bus, or a world's copy)."""
+
+
 def rebuild(cls: type, schema: Any, d: Any, build: Callable[[], T]) -> T:
     """A snapshot's ``from_dict``: ``d`` checked against ``schema`` (WorldError "snapshot:
-    <field>: ..."), then ``build()``; a malformed dict the schema let through is a WorldError
-    naming the class."""
-    try:
-        schema.check(d)
-    except FieldError as exc:
-        raise WorldError(f"snapshot: {exc}") from None
+    <field>: ..."; not again for the dict that passed last), then ``build()``; a malformed
+    dict the schema let through is a WorldError naming the class."""
+    if _passed.get(id(schema)) is not d:
+        try:
+            schema.check(d)
+        except FieldError as exc:
+            raise WorldError(f"snapshot: {exc}") from None
+        _passed[id(schema)] = d
     try:
         return build()
     except MALFORMED as exc:

@@ -31,11 +31,7 @@ import click
 from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
-from agents.processes.goal_store import (
-    MAX_ID_CHARS,
-    GoalStore,
-    GoalStoreError,
-)
+from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError
 from agents.processes.goal_texts import rank_problem, refused_text
 from agents.processes.goal_warnings import Warner, engine_warner
 from agents.processes.request_limits import RequestLimiter
@@ -44,6 +40,7 @@ from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.messages import GoalList, GoalReply, GoalRequest, Intention, ProcessStats, WorldState
 from bus.node import Node, open_node
+from bus.stage import QUIET_S
 from world.run_scenario import Scenario, ScriptedGoal, load_scenario
 
 PROCESS = "goals"
@@ -193,9 +190,11 @@ class GoalEntry:
             raise GoalStoreError(f"{problem} (teleo goal ... --force)")
         return f"; forced: {problem.split(': the agent')[0]}" if problem else ""
 
-    def on_world_state(self, node: Node, cycle: int) -> None:
-        """Apply the scripted requests due, then publish every agent's goal list of `cycle`.
-        A repeated cycle (the clock re-sends it after a restart) gets the same lists again."""
+    def on_world_state(self, node: Node, cycle: int) -> ProcessStats:
+        """Apply the scripted requests due, then publish every agent's goal list of `cycle`
+        with this process's stats (bus/stats.py; the executive's Actions carry them on);
+        returns the stats, which `serve` sends alone once idle. A repeated cycle (re-sent
+        after a restart) gets the same lists again."""
         t0 = time.perf_counter()
         with self.lock:
             if cycle != self.cycle:
@@ -203,12 +202,12 @@ class GoalEntry:
                 self._scripted(cycle)
                 self.published = {a: self.store.goal_list(a) for a in self.scenario.agent_ids}
             lists = dict(self.published)
-        # stats first: the clock names the first stage of a pipeline that has not reported
-        node.publish(keys.stats(node.run, PROCESS), ProcessStats(
-            node.envelope(cycle), PROCESS, (time.perf_counter() - t0) * 1e3, 0))
-        for agent, goals in lists.items():
-            node.publish(keys.goal_list(node.run, agent),
-                         GoalList(node.envelope(cycle), agent, goals))
+        env = node.envelope(cycle)
+        ms = (time.perf_counter() - t0) * 1e3
+        carried = {PROCESS: [ms, 0]}
+        node.publish_many([(keys.goal_list(node.run, agent), GoalList(env, agent, goals, carried))
+                           for agent, goals in lists.items()])
+        return ProcessStats(env, PROCESS, ms, 0)
 
     def _scripted(self, cycle: int) -> None:
         due = [(i, g) for i, g in enumerate(self.scenario.goals)
@@ -259,19 +258,25 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
                                                    for a in scenario.agent_ids)])
         node.announce()
         log.info("serving goals of %s from %s", scenario.agent_ids, store_path)
+        # the last cycle's stats, sent alone once idle QUIET_S after it (as bus/stage.py)
+        quiet: ProcessStats | None = None
+        quiet_at = 0.0
         while not stop.is_set():
-            msg = inbox.get(timeout=0.1)
+            wait = 0.1 if quiet is None else max(0.0, min(0.1, quiet_at - time.monotonic()))
+            msg = inbox.get(timeout=wait)
             if isinstance(msg, WorldState):
                 programs.follow(msg.control, log)
-                entry.on_world_state(node, msg.env.cycle)
+                quiet = entry.on_world_state(node, msg.env.cycle)
+                quiet_at = time.monotonic() + QUIET_S
             elif isinstance(msg, Intention):
                 entry.on_intention(msg)
+            if quiet is not None and time.monotonic() >= quiet_at:
+                node.publish(keys.stats(run, PROCESS), quiet)
+                quiet = None
             entry.flush()
-        # the statuses of intentions still queued, saved before the session closes: a
-        # close can take long on a busy machine, and the launcher kills a slow stopper
-        while (msg := inbox.get(timeout=0)) is not None:
-            if isinstance(msg, Intention):
-                entry.on_intention(msg)
+        while (msg := inbox.get(timeout=0)) is not None:   # saved before the session
+            if isinstance(msg, Intention):                  # closes: a close can be slow,
+                entry.on_intention(msg)                     # and a slow stopper is killed
         entry.flush(force=True)
         log.info("stopped; %d goals saved in %s", len(entry.store.goals), store_path)
 

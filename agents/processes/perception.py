@@ -12,6 +12,7 @@ agents/processes/swapping.py).
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 from agents.processes.common import agent_options, run_stage, setup_logging
@@ -19,7 +20,7 @@ from bus import keys
 from bus.config import BusConfig
 from bus.errors import BusError, Refused
 from bus.fields import MEMORY, PROGRAM
-from bus.messages import Envelope, Message, Percepts, WorldStatic
+from bus.messages import Envelope, Message, Percepts, WorldState, WorldStatic
 from bus.schema import FieldError, brief
 
 STATIC_ASK_S = 5.0   # [s] the wait for the world's answer about its static configuration
@@ -52,6 +53,25 @@ class StaticSource:
         return self.static or {}
 
 
+def with_static(state: WorldState, static: Callable[[str], dict[str, Any]] | None,
+                state_key: str) -> WorldState:
+    """``state`` with its snapshot whole: the run's static part, from ``static`` (a
+    StaticSource), put back when it lacks it. A shared process makes it once for all its
+    agents, whose perception then reads one dict (and the world checks it once: world/base.py
+    `rebuild`). Refused when the static part cannot be had."""
+    from world.errors import WorldError
+    from world.static import has_static, whole
+
+    snap = state.snapshot
+    if static is None or has_static(snap):
+        return state
+    try:
+        return replace(state, snapshot=whole(static(str(snap.get("domain", ""))), snap))
+    except WorldError as exc:
+        raise Refused(f"{state_key}: the world state of cycle {state.env.cycle} from "
+                      f"{brief(state.env.sender)}: {exc}") from None
+
+
 def make_step(run: str, agent: str, process: str,
               static: Callable[[str], dict[str, Any]] | None = None):
     """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]. A snapshot that is
@@ -60,17 +80,13 @@ def make_step(run: str, agent: str, process: str,
     gets it from ``static`` (a StaticSource; issue 35) before the world perceives it."""
     from world.domain import domain_of
     from world.errors import WorldError
-    from world.static import has_static, whole
 
     state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        state = inputs[state_key]
+        state = with_static(inputs[state_key], static, state_key)
         try:
-            snap = state.snapshot
-            if static is not None and not has_static(snap):
-                snap = whole(static(str(snap.get("domain", ""))), snap)
-            seen = domain_of(snap).perceive(snap, agent)
+            seen = domain_of(state.snapshot).perceive(state.snapshot, agent)
         except WorldError as exc:
             raise Refused(f"{state_key}: the world state of cycle {cycle} from "
                           f"{brief(state.env.sender)}: {exc}") from None

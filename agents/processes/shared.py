@@ -10,8 +10,9 @@ other, handing each step's message to the next in memory: no hop, no decode betw
 agent's stages. Perception and inference need only the world state: when it arrives before the
 goal lists (the goal-entry process sends them once it has the state), they run at once, so
 the goal-entry process's work and hop overlap the agents' (bus/stage.py `early`).
-It still publishes every message (percepts, beliefs, intention, actions) and
-each stage's ProcessStats under the stage's own name, and announces each stage, so the clock,
+It still publishes every message (percepts, beliefs, intention, actions), each stage's stats
+carried in its outputs as a separate stage's are (bus/stats.py; sent alone by the Stage once
+idle after a cycle, under each stage's own name), and announces each stage, so the clock,
 the recorder and the inspector see the usual processes. Two or more cores then serve fewer
 processes: fewer wake-ups per cycle and one interpreter's memory for several agents.
 """
@@ -30,7 +31,7 @@ from agents.processes.common import setup_logging, stop_on_signals
 from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.errors import Refused
-from bus.messages import Envelope, Message, ProcessStats
+from bus.messages import Actions, Message
 from bus.rows import shared_rows
 
 STAGE_NAMES = ("perception", "inference", "executive")
@@ -56,19 +57,23 @@ class Chain:
                                           spec.get("swapped"))
         self.keys = (keys.percepts(run, agent), keys.beliefs(run, agent),
                      keys.goal_list(run, agent))
-        self.stats_keys = [keys.stats(run, n) for n in self.names]
-        self.ahead: tuple[int, list, list, list[float]] | None = None  # front, done early
+        self.ahead: tuple[int, list, list, dict] | None = None  # front, done early
 
-    def front(self, cycle: int, inputs: dict[str, Message]) -> tuple[list, list, list[float]]:
-        """Percepts and beliefs of `cycle` and their compute times [ms]."""
+    def front(self, cycle: int, inputs: dict[str, Message]) -> tuple[list, list, dict]:
+        """Percepts and beliefs of `cycle`, each carrying its stage's stats as a stage's
+        output does (bus/stats.py), and those stats (process -> [compute_ms, late])."""
         t0 = time.perf_counter()
         p_out = self.perceive(cycle, inputs)
         seen = p_out[0][1]  # rows as a receiver on the bus would get them (bus/rows.py)
-        p_out[0] = (p_out[0][0], replace(seen, percepts=shared_rows("Percepts", self.agent,
-                                                                     seen.percepts)))
+        rows = shared_rows("Percepts", self.agent, seen.percepts)
+        t1 = time.perf_counter()
+        stats = {self.names[0]: [(t1 - t0) * 1e3, 0]}
+        p_out[0] = (p_out[0][0], replace(seen, percepts=rows, stats=dict(stats)))
         t1 = time.perf_counter()
         b_out = self.infer(cycle, {self.keys[0]: p_out[0][1]})
-        return p_out, b_out, [(t1 - t0) * 1e3, (time.perf_counter() - t1) * 1e3]
+        stats[self.names[1]] = [(time.perf_counter() - t1) * 1e3, 0]
+        b_out[0] = (b_out[0][0], replace(b_out[0][1], stats=dict(stats)))
+        return p_out, b_out, stats
 
     def early(self, cycle: int, state_key: str, state: Message) -> None:
         """`front` of `cycle` now, while the goal lists are on the way (once a cycle)."""
@@ -79,22 +84,22 @@ class Chain:
                 self.ahead = None
 
     def step(self, cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
-        """Every output of `cycle`: the three ProcessStats, percepts, beliefs, intention,
-        actions."""
+        """Every output of `cycle`: percepts, beliefs, intention, actions; the actions carry
+        the stats of the agent's whole pipeline, the goal entry's included (from its list)."""
         if self.ahead is not None and self.ahead[0] == cycle:
-            p_out, b_out, ms = self.ahead[1:]
+            p_out, b_out, stats = self.ahead[1:]
         else:
-            p_out, b_out, ms = self.front(cycle, inputs)
+            p_out, b_out, stats = self.front(cycle, inputs)
         if self.ahead is not None and self.ahead[0] <= cycle:
             self.ahead = None
         p_key, b_key, g_key = self.keys
+        goals = inputs[g_key]
         t2 = time.perf_counter()
-        e_out = self.decide(cycle, {p_key: p_out[0][1], b_key: b_out[0][1],
-                                    g_key: inputs[g_key]})
-        ms = [*ms, (time.perf_counter() - t2) * 1e3]
-        stats = [(k, ProcessStats(Envelope.now(self.run, cycle, n), n, m, 0))
-                 for k, n, m in zip(self.stats_keys, self.names, ms, strict=True)]
-        return [*stats, *p_out, *b_out, *e_out]
+        e_out = self.decide(cycle, {p_key: p_out[0][1], b_key: b_out[0][1], g_key: goals})
+        ms = (time.perf_counter() - t2) * 1e3
+        carried = {**goals.stats, **stats, self.names[2]: [ms, 0]}
+        return [*p_out, *b_out, *((k, replace(m, stats=carried) if isinstance(m, Actions) else m)
+                                  for k, m in e_out)]
 
 
 def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
@@ -107,7 +112,17 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
     chains = [Chain(run, spec, log, static) for spec in specs]
     state_key = keys.world_state(run)
 
+    made: list = [None, None]   # the last world state and its copy with the static part
+
+    def whole(state: Message) -> Message:
+        """`state` with its snapshot whole, made once for every agent here: their perception
+        reads one dict, and the world checks it once (perception.with_static)."""
+        if made[0] is not state:
+            made[:] = [state, perception.with_static(state, static, state_key)]
+        return made[1]
+
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
+        inputs = {**inputs, state_key: whole(inputs[state_key])}
         return [out for chain in chains for out in chain.step(cycle, inputs)]
 
     begun = [0, -1]   # cycles whose perception and inference ran before their goal lists,
@@ -115,10 +130,14 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
 
     def early(key: str, msg: Message) -> None:
         if key == state_key:
+            try:
+                state = whole(msg)
+            except Refused:   # the step, run again on the complete cycle, refuses it
+                return
             if msg.env.cycle > begun[1]:
                 begun[:] = [begun[0] + 1, msg.env.cycle]
             for chain in chains:
-                chain.early(msg.env.cycle, key, msg)
+                chain.early(msg.env.cycle, key, state)
 
     agents = [spec["agent"] for spec in specs]
     inputs = [state_key, *(keys.goal_list(run, a) for a in agents)]

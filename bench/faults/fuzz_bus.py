@@ -67,6 +67,9 @@ class _Desk:
     def publish(self, key: str, msg: Any) -> None:
         self.sent.append((key, msg))
 
+    def publish_many(self, items: Any) -> None:
+        self.sent.extend(items)
+
 
 @dataclass
 class Pipeline:

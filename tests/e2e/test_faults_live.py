@@ -190,6 +190,21 @@ def test_a_lockstep_stall_is_reported_and_changes_nothing(teleo, reference):
     assert [e["event"] for e in journal(info)][:1] == ["ready"]
 
 
+def test_a_stalled_goal_entry_is_named_in_the_stall_and_changes_nothing(teleo, reference):
+    """Issue 36: the goal entry's stats travel in its goal lists; a stopped one sends none,
+    and the clock, reading them from ME's Actions or the stats sent alone by a process gone
+    idle, names it, not the stages after it."""
+    launcher, info = start(teleo, "--cycles", CYCLES)
+    wait_cycles(info, 80)
+    os.kill(info["pids"]["goals"], signal.SIGSTOP)
+    wait_for(lambda: False, 2.0)
+    os.kill(info["pids"]["goals"], signal.SIGCONT)
+    assert launcher.wait(180) == 0, teleo.launch_output()
+    s = summary(teleo)
+    assert s["stalls"] and s["stalls"][0]["stages"] == ["goals"], s["stalls"]
+    assert s["status"] == "completed" and trace(info) == reference
+
+
 def test_the_launcher_drill_runs_as_a_user_would_run_it(tmp_path):
     """bench/faults/drills.py stays runnable: its launcher drill, on the small scenario."""
     done = subprocess.run([sys.executable, "bench/faults/drills.py", "launcher", "--scenario",
@@ -217,13 +232,13 @@ def test_a_killed_router_costs_the_run_record_nothing(teleo, reference):
     for key, rec in RunRecord(Path(s["record"])).records():
         held.setdefault(key.split("/", 2)[2], set()).add(rec["env"]["cycle"])
     assert held.pop("world/static") == {-1}   # once a run, outside the cycles (issue 35)
-    # issue 36: ME's stages' stats travel in their outputs, alone only from a stage gone
-    # idle after a cycle (some cycles, or none)
-    for stage in ("perception", "inference", "executive"):
-        assert held.pop(f"stats/ME.{stage}", set()) <= set(range(int(CYCLES)))
+    # issue 36: ME's stages' stats travel in their outputs, the goal entry's in its goal
+    # lists, alone only from one gone idle after a cycle (some cycles, or none)
+    for process in ("goals", "ME.perception", "ME.inference", "ME.executive"):
+        assert held.pop(f"stats/{process}", set()) <= set(range(int(CYCLES)))
     assert {k for k, cycles in held.items() if cycles != set(range(int(CYCLES)))} == set()
-    assert len(held) == 8  # the world state, ME's percepts, beliefs, intention, actions and
-    #                        goal list, the stats of the world and goals
+    assert len(held) == 7  # the world state, ME's percepts, beliefs, intention, actions and
+    #                        goal list, the world's stats
     assert all("after" not in h for g in s["goals"] for h in g["history"])
 
 

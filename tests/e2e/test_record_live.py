@@ -79,12 +79,16 @@ def test_record_seconds_stops_in_time_with_about_that_much_of_the_run(live, tmp_
     rate = ran / took_s  # [cycles/s] over the whole command, start-up included
     assert 0 < spanned <= ran + 1, (spanned, ran)
     assert spanned <= 4.0 * rate + 5, (spanned, rate)
-    # every message of the cycles in between was recorded: each key as often as the next
-    counts = {}
+    # every message of the cycles in between was recorded: each key as often as the next;
+    # the stats a process sends alone only once idle after a cycle (issue 36: a stage's, the
+    # goal entry's) come in some cycles, not in each, and at most once a cycle
+    counts, alone = {}, {}
     for key, r in rec.records():
         if cycles[0] < r["env"]["cycle"] < cycles[-1]:
-            counts[key] = counts.get(key, 0) + 1
+            box = alone if "/stats/" in key and not key.endswith("/stats/world") else counts
+            box[key] = box.get(key, 0) + 1
     assert set(counts.values()) == {spanned - 2}, counts
+    assert all(n <= spanned - 2 for n in alone.values()), alone
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])

@@ -86,17 +86,22 @@ def test_the_mcap_holds_every_key_of_every_cycle_from_cycle_0(demo):
     run = summary["run"]
     expected = {keys.world_state(run), keys.percepts(run, "ME"), keys.beliefs(run, "ME"),
                 keys.actions(run, "ME"), keys.intention(run, "ME"), keys.goal_list(run, "ME"),
-                keys.stats(run, "goals"), keys.stats(run, "world")}
-    # issue 36: the stages' stats travel in their outputs; alone only from a stage that was
-    # idle a while after a cycle (a slow cycle on a loaded machine): some cycles, or none
-    pipeline = [f"ME.{s}" for s in ("perception", "inference", "executive")]
+                keys.stats(run, "world")}
+    # issue 36: the stages' stats travel in their outputs, the goal entry's in its goal
+    # lists; alone only from one that was idle a while after a cycle (a slow cycle on a
+    # loaded machine): some cycles, or none
+    pipeline = ["goals", *(f"ME.{s}" for s in ("perception", "inference", "executive"))]
     idle = {keys.stats(run, p) for p in pipeline}
     assert expected | {keys.world_static(run)} <= set(counts) <= \
         expected | idle | {keys.world_static(run)}
     for key in idle & set(cycles):
         assert set(cycles.pop(key)) <= set(range(CYCLES)), key
-    carried = [sorted(r.get("stats", {})) for _, r in RunRecord(path).kinds("actions")]
+    record = RunRecord(path)
+    carried = [sorted(r.get("stats", {})) for _, r in record.kinds("actions")]
     assert carried == [sorted(pipeline)] * len(carried) and len(carried) >= CYCLES
+    listed = [r["stats"] for _, r in record.kinds("goal-list")]
+    assert len(listed) >= CYCLES and all(list(s) == ["goals"] and s["goals"][0] >= 0
+                                         and s["goals"][1] == 0 for s in listed)
     # the world's static part outside the cycles (issue 35): as put, and as the recorder
     # asked for it
     assert set(cycles.pop(keys.world_static(run))) == {-1}
@@ -216,10 +221,11 @@ def test_a_replayed_record_shows_in_the_view(demo, tmp_path):
             played = teleo("replay", str(path), "--connect", router.endpoint, "--speed", "0",
                            "--wait", "30", timeout=300)
             assert played.returncode == 0, played.stderr
-            # 8 a cycle (the stages' stats travel in their outputs, issue 36), any re-sent (a
-            # stall) and a stage's stats sent alone when it went idle; the static part is asked
+            # 7 a cycle (the stages' stats travel in their outputs, the goal entry's in its
+            # goal lists, issue 36), any re-sent (a stall) and the stats of one that went idle
+            # sent alone; the static part is asked
             sent = sum(r["kind"] != "WorldStatic" for _, r in RunRecord(path).records())
-            assert sent >= CYCLES * 8
+            assert sent >= CYCLES * 7
             assert f"replayed {sent} messages ({CYCLES} cycles) of run {summary['run']} to " \
                    f"router {router.endpoint}" in played.stderr
 

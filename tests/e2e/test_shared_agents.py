@@ -7,18 +7,19 @@ from __future__ import annotations
 import importlib.util
 import json
 import re
+from pathlib import Path
 
 import pytest
 from e2e_helpers import ROOT, two_cars
 
 from tools.launching.cpus import usable_cores
+from tools.records.run_record import RunRecord
 
 
 def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):
     scenario = two_cars(tmp_path)
     apart = teleo("launch", scenario, "--no-record", "--json", timeout=300)
-    shared = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "2",
-                   timeout=300)
+    shared = teleo("launch", scenario, "--json", "--agents-per-process", "2", timeout=300)
     spread = teleo("launch", scenario, "--no-record", "--json", "--agents-per-process", "auto",
                    timeout=300)
     for done in (apart, shared, spread):
@@ -41,6 +42,15 @@ def test_two_agents_in_one_process_run_exactly_as_in_six(teleo, tmp_path):
         assert any(line["actions"][agent] for line in lines), agent
     summary = json.loads(shared.stdout)
     assert summary["late_stages"] == {} and summary["dead_stages"] == {}
+    # issue 36: each stage's stats carried in its output, as separate stages carry them;
+    # an agent's actions hold its whole pipeline's, the goal entry's included
+    record = RunRecord(Path(summary["record"]))
+    for agent in ("A1", "A2"):
+        stages = [f"{agent}.{s}" for s in ("perception", "inference", "executive")]
+        for kind, held in (("percepts", stages[:1]), ("beliefs", stages[:2]),
+                           ("actions", ["goals", *stages])):
+            carried = [sorted(r["stats"]) for _, r in record.kinds_of((kind,), agent)]
+            assert carried == [sorted(held)] * len(carried) and len(carried) >= 25, kind
 
 
 def test_agents_per_process_is_refused_for_a_secured_run(teleo, tmp_path):

@@ -5,6 +5,7 @@ definitions give: every corner's polar sorted, and navigation.guide."""
 
 from __future__ import annotations
 
+import copy
 import re
 
 import pytest
@@ -102,3 +103,17 @@ def test_an_agent_without_a_car_is_refused_naming_the_cars() -> None:
     d = snapshot(car(50.0, -2.0, 0.0)).to_dict()
     with pytest.raises(WorldError, match=r"snapshot of cycle 7: no car 'YOU'; cars: \['ME'\]"):
         perceive_dict(d, "YOU")
+
+
+def test_one_snapshot_read_by_several_agents_gives_each_its_own_and_a_spoilt_copy_fails() -> None:
+    """A shared process hands one snapshot dict to each of its agents' perception (the
+    schema is checked once for it, world/base.py `rebuild`): each agent still gets the
+    percepts a fresh copy gives it, and a spoilt copy read right after is refused."""
+    d = snapshot(car(50.0, -2.0, 0.0), car(80.0, -2.0, 180.0, ident="YOU")).to_dict()
+    seen = [perceive_dict(d, agent) for agent in ("ME", "YOU", "ME")]
+    fresh = [perceive_dict(copy.deepcopy(d), agent) for agent in ("ME", "YOU")]
+    assert seen == [fresh[0], fresh[1], fresh[0]] and fresh[0] != fresh[1]
+    spoilt = copy.deepcopy(d)
+    spoilt["cars"][1]["speed"] = "fast"
+    with pytest.raises(WorldError, match=re.escape("snapshot: cars[1].speed")):
+        perceive_dict(spoilt, "ME")
