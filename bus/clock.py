@@ -1,5 +1,5 @@
-"""The world side of the cognitive cycle: the world is the clock (shared/DESIGN.md,
-"One cognitive cycle").
+"""The world side of the cognitive cycle: the world is the clock (docs/bus.md,
+"The cycle").
 
     clock = Clock(node, {"ME": ["ME.perception", "ME.inference", "ME.executive"]})
     clock.wait_ready({"ME.perception", "ME.inference", "ME.executive"}, timeout=30)
@@ -52,7 +52,7 @@ class CycleInterrupted(BusError):
         super().__init__(f"cycle {cycle}: interrupted while {what}")
         self.cycle = cycle
         self.stalled = tuple(stalled)  # a stall in progress at the stop: the stages it waited
-        self.waited_s = waited_s       # on, and how long [s] (drill d2b: it went unlisted)
+        self.waited_s = waited_s       # on, and how long [s] (listed at the stop)
 
 
 class Clock:
@@ -124,7 +124,7 @@ class Clock:
             meanwhile()
         # the first cycle after start-up waits for every stage as lockstep does, sending its
         # state again until each answers: a token is up before its subscriptions reach every
-        # publisher, and a realtime run lost cycle 0 to that race (trial 2026-12-04 N3)
+        # publisher, and a realtime run would lose cycle 0 to that race
         run = _CycleRun(self, cycle, state_msg, start, handshake=self._first)
         self._first = False
         run.wait()
@@ -145,8 +145,8 @@ class Clock:
 
         Not `required_s` (None): no wait while its token is absent (no recorder, or it
         died), nor once it has made no progress for `stuck_s` [s] (until it moves again).
-        `required_s` [s]: the run must not outrun it (a launch that records: drills
-        2026-12-04 D9, a world that ran on while its record lost 64,734 cycles): it is
+        `required_s` [s]: the run must not outrun it (a launch that records: a world
+        that ran on would lose cycles from its record): it is
         waited for as a stage is, while it is absent or not moving, and when it has been
         absent or still for `required_s` (stretched by the machine's load, bus/load.py)
         PaceLost is raised: the run stops rather than run cycles it would not record.

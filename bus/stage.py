@@ -62,7 +62,7 @@ def stop_on_signals(child: bool = False) -> threading.Event:
 
 
 QUIET_S = 0.02
-"""Stage.quiet_s's default [s]: above a lockstep cycle of the demo (~6 ms here), far below
+"""Stage.quiet_s's default [s]: above a lockstep cycle of the demo, far below
 the clock's deadline (2 s), stall threshold (1 s) and a realtime period (50 ms and up)."""
 
 StepFn = Callable[[int, dict[str, Message]], list[tuple[str, Message]]]

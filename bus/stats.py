@@ -5,8 +5,8 @@ A stage carries its per-cycle figures (ProcessStats' compute_ms and late) in its
 those its inputs carried: an agent's Actions hold every stage of its pipeline, the goal
 entry's included, all of the message's cycle. A ProcessStats of its own is still sent by a
 process with no such output (the world, the recorder), by a stage, the goal entry or a shared
-process idle a while after a cycle (bus/stage.py), and is what records written before
-2026-12-06 hold. Readers take both through these two functions:
+process idle a while after a cycle (bus/stage.py), and is what older records hold. Readers
+take both through these two functions:
 
     for s in stats_of(msg):          # ProcessStats objects, one per process
         seen[s.process] = s.env.cycle

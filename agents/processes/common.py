@@ -1,6 +1,6 @@
 """What every process module shares: logging, the stop signal, and the stage loop.
 
-A process module reads as: subscribe, call the pure core, publish (DESIGN.md). The
+A process module reads as: subscribe, call the pure core, publish. The
 boilerplate around that loop lives here.
 """
 
@@ -25,7 +25,7 @@ def setup_logging(process: str, verbose: bool = False) -> logging.Logger:
 
 def stop_on_signals() -> threading.Event:
     """An Event set by SIGINT or SIGTERM, so the main loop ends and the node closes cleanly
-    (an unclosed zenoh session keeps the process alive: notes/zenoh.md, pitfall 1); the
+    (an unclosed zenoh session keeps the process alive: docs/bus.md, "Zenoh in Python", item 1); the
     process also stops when its launcher dies (bus/lifeline.py)."""
     from bus.stage import stop_on_signals as bus_stop_on_signals
 

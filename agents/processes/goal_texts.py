@@ -9,7 +9,7 @@ from agents.lang.core.limits import shorten
 
 def refused_text(op: str, goal_id: str, goal: str, cycle: int, reason: object) -> str:
     """How a run's summary tells a scripted request that was refused: `scripted cancel of
-    g1 at cycle 300 refused: ...` (issue 31, N13: it was one line in a log)."""
+    g1 at cycle 300 refused: ...` (said in the summary, not only in a log)."""
     what = f"{op} of {goal_id}" if goal_id else f"{op} of {shorten(goal)}"
     return f"scripted {what} at cycle {cycle} refused: {reason}"
 

@@ -1,4 +1,4 @@
-"""Warnings about a goal that is accepted (issue 31): a goal with variables means every instance
+"""Warnings about a goal that is accepted: a goal with variables means every instance
 (docs/language.md, "Goals with variables"), and when the world's objects give it an instance
 that no skill or concept can make true, such as ``(on D D)`` among ``(on D ?x)``'s, the user
 is told so, and pointed to the conjunction form ``(and ...)`` for "some instance". Judged on

@@ -4,7 +4,7 @@ A goal such as `(package-delivered PACKET9)` for a package that does not exist s
 ("no path with free resources") and then fails in the problem solver ("no primitive skill
 ... applies here"): both true, neither says why. The executive adds to such a goal's note
 the names in it that no percept of the cycle mentions, so `teleo goal list`, the summary and
-the intention say "no percept mentions PACKET9" (issue 12, item 7).
+the intention say "no percept mentions PACKET9".
 """
 
 from __future__ import annotations
@@ -85,8 +85,8 @@ def unmatched(goal: str, program: Program, percepts: list[Iterable[Any]],
               told: set[str] = frozenset()) -> str:
     """A hint for a goal whose concept can hold only with a percept that is not there: each
     clause of the concept has a percept pattern that, with the goal's arguments put for the
-    head's variables, matches no percept of the cycle (issue 31, N16: `(at-address ME 12
-    A)` was blamed on the skills, where no package has address 12 on A); "" otherwise, and
+    head's variables, matches no percept of the cycle (`(at-address ME 12 A)` is not
+    the skills' fault where no package has address 12 on A); "" otherwise, and
     when the pattern names only names ``told`` (no percept mentions them: said already)."""
     forms, diags = read(goal, "<goal>")
     if diags or len(forms) != 1 or not isinstance(forms[0], SList) or not forms[0].items:

@@ -77,7 +77,7 @@ def make_step(run: str, agent: str, process: str,
     """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]. A snapshot that is
     not its world's (checked against the world's snapshot schema) is refused (bus Refused:
     the cycle waits for a good copy), naming the field. A snapshot without its static part
-    gets it from ``static`` (a StaticSource; issue 35) before the world perceives it."""
+    gets it from ``static`` (a StaticSource) before the world perceives it."""
     from world.domain import domain_of
     from world.errors import WorldError
 

@@ -1,6 +1,6 @@
-"""What the executive process keeps on disk so a restart loses nothing (DESIGN.md: "the goal
+"""What the executive process keeps on disk so a restart loses nothing (the goal
 stack, SCS threads, discount factors, learned skills and plans all live in EngineState,
-serialisable, so a restarted executive loses none of them"): the engine state as JSON, and the
+serialisable, so a restarted executive loses none of them): the engine state as JSON, and the
 learned skills in program syntax (agents/lang/solving/learned.py).
 
 The state is written only when a cycle's decision changed it (its cycle number aside,
