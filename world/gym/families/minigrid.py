@@ -15,6 +15,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from world.gym.families.instructions import current_step
 from world.gym.paths import DIRS, Cell, Grid, Search, ahead, cut_cells, walkable_region
 
 NAME = "minigrid"
@@ -27,7 +28,8 @@ TYPES = ("key", "ball", "box", "door", "goal")
 
 def capture(env: Any) -> dict[str, Any]:
     """The state of a MiniGrid env (its `unwrapped`) as plain data: rows of the static cells,
-    the named objects, the agent and the mission. Unnamed objects get a name here (KEY1,
+    the named objects, the agent, the mission and, for a compound BabyAI mission, the step
+    the agent is on (instructions.py). Unnamed objects get a name here (KEY1,
     DOOR2, ...: by type, in the order first seen, kept on the object so a pickled env keeps
     them)."""
     grid = env.grid
@@ -50,7 +52,8 @@ def capture(env: Any) -> dict[str, Any]:
             "objects": objects, "carrying": carrying,
             "agent": {"x": int(env.agent_pos[0]), "y": int(env.agent_pos[1]),
                       "dir": int(env.agent_dir)},
-            "mission": str(env.mission), "step_count": int(env.step_count),
+            "mission": str(env.mission), "step": current_step(env) or "",
+            "step_count": int(env.step_count),
             "max_steps": int(env.max_steps)}
 
 
@@ -147,7 +150,7 @@ def perceive(state: dict[str, Any], agent: str, episode: dict[str, Any]) -> list
     key_color = carried["color"] if carried and carried["type"] == "key" else ""
     search = Search(grid, me, key_color)
     bare = Search(grid, me, "") if carried else search   # with empty hands
-    goal = mission(state["mission"])
+    goal = mission(state.get("step") or state["mission"])   # a BabyAI mission's step
     front = grid.at(*ahead(me))
     out: list[list[Any]] = [
         ["agent", agent, "x", me[0], "y", me[1], "dir", me[2],
