@@ -12,13 +12,31 @@ from typing import Any
 _SUCCESS = "success"
 
 
-def current_step(env: Any) -> str | None:
-    """The words of the first action of the env's instructions not done yet; None for an
-    env without instructions (MiniGrid's own tasks) or with every action done."""
+def current_step(env: Any) -> tuple[str, dict[str, list[str]]] | None:
+    """The first action of the env's instructions not done yet: its words, and the names of
+    the objects its descriptions pick ("wanted": the one to act on, "anchor": the one to put
+    it next to), as the verifier picked them when the level was made, "on your left" and
+    "behind you" included (from where the agent then stood); {} for the names when one of
+    them picks no object perception named. None for an env without instructions (MiniGrid's
+    own tasks) or with every action done."""
     instrs = getattr(env, "instrs", None)
     if instrs is None:
         return None
-    return next((_words(leaf) for leaf, done in _steps(instrs, False) if not done), None)
+    leaf = next((leaf for leaf, done in _steps(instrs, False) if not done), None)
+    if leaf is None:
+        return None
+    descs = {"wanted": getattr(leaf, "desc", None) or getattr(leaf, "desc_move", None),
+             "anchor": getattr(leaf, "desc_fixed", None)}
+    named = {role: _names(desc) for role, desc in descs.items() if desc is not None}
+    # an object perception has not named (none on the grid): the words alone pick them
+    return _words(leaf), named if all(named.values()) else {}
+
+
+def _names(desc: Any) -> list[str]:
+    """The names perception gave the objects a description picks (world/gym/families/
+    minigrid.py names each object it captures)."""
+    names = (getattr(obj, "_teleo_name", None) for obj in getattr(desc, "obj_set", ()) or ())
+    return sorted(n for n in names if n)
 
 
 _VERBS = {"GoToInstr": "go to", "PickupInstr": "pick up", "OpenInstr": "open"}

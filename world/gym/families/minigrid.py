@@ -48,12 +48,13 @@ def capture(env: Any) -> dict[str, Any]:
     if env.carrying is not None:
         carrying = _object(env.carrying, counts, int(env.agent_pos[0]), int(env.agent_pos[1]),
                            False)
+    step = current_step(env)   # after the objects: it reads their names
     return {"family": NAME, "width": grid.width, "height": grid.height, "rows": rows,
             "objects": objects, "carrying": carrying,
             "agent": {"x": int(env.agent_pos[0]), "y": int(env.agent_pos[1]),
                       "dir": int(env.agent_dir)},
-            "mission": str(env.mission), "step": current_step(env) or "",
-            "step_count": int(env.step_count),
+            "mission": str(env.mission), "step": step[0] if step else "",
+            "named": step[1] if step else {}, "step_count": int(env.step_count),
             "max_steps": int(env.max_steps)}
 
 
@@ -157,20 +158,27 @@ def perceive(state: dict[str, Any], agent: str, episode: dict[str, Any]) -> list
          "carrying", carried["name"] if carried else "none", "ahead", front.kind,
          "drop-next", _next(search.to_drop(_drop_fits(grid, me))) if carried else "none"],
         ["mission", "M", "kind", goal["kind"], "type", goal["type"], "color", goal["color"],
-         "type2", goal["type2"], "color2", goal["color2"]],
+         "type2", goal["type2"], "color2", goal["color2"],
+         "named", "yes" if state.get("named") else "no"],
         ["episode", "E", "won", "yes" if episode.get("terminated") and
          float(episode.get("reward", 0)) > 0 else "no",
          "over", "yes" if episode.get("terminated") or episode.get("truncated") else "no"],
     ]
+    named = state.get("named") or {}
+    anchors = set(named["anchor"]) if "anchor" in named else None
     for o in state["objects"]:
-        out.append(_thing(o, grid, search, bare, goal, False))
+        out.append(_thing(o, grid, search, bare, goal, False, anchors))
     if carried:
-        out.append(_thing(carried, grid, search, bare, goal, True))
+        out.append(_thing(carried, grid, search, bare, goal, True, anchors))
+    out += [["named", name, "as", role] for role, names in sorted(named.items())
+            for name in names]
     return out
 
 
 def _thing(o: dict[str, Any], grid: Grid, search: Search, bare: Search,
-           goal: dict[str, str], carried: bool) -> list[Any]:
+           goal: dict[str, str], carried: bool, anchors: set[str] | None) -> list[Any]:
+    """A thing's percept; ``anchors``: the names of the objects a put's step picks (BabyAI),
+    None where the mission's words alone pick them."""
     x, y = int(o["x"]), int(o["y"])
     if carried:
         reach = bare_reach = None
@@ -186,8 +194,9 @@ def _thing(o: dict[str, Any], grid: Grid, search: Search, bare: Search,
                "dist", reach.steps if reach else -1, "next", _next(reach),
                "via", (reach.via or "none") if reach else "none",
                "free", "yes" if bare_reach is not None and bare_reach.reachable else "no"]
-    if goal["kind"] in _PUT and goal["type2"] in (o["type"], "object") and \
-            goal["color2"] in ("any", o["color"]):
+    anchor = o["name"] in anchors if anchors is not None else \
+        goal["type2"] in (o["type"], "object") and goal["color2"] in ("any", o["color"])
+    if goal["kind"] in _PUT and anchor:
         fits = _near_fits(grid, x, y, diagonal=goal["kind"] == "putnear")
         percept += ["place-next", _next(search.to_drop(fits))]
     return percept
