@@ -175,34 +175,26 @@ def test_an_agent_without_actions_gets_the_safe_action_and_the_run_fails(teleo):
     assert braked >= lost
 
 
-def test_a_lockstep_stall_is_reported_and_changes_nothing(teleo, reference):
+@pytest.mark.parametrize("stage", [
+    "ME.inference",
+    # the goal entry's stats travel in its goal lists; a stopped one sends none, and the
+    # clock, reading them from ME's Actions or the stats sent alone by a process gone idle,
+    # names it, not the stages after it
+    "goals",
+])
+def test_a_lockstep_stall_is_reported_and_changes_nothing(teleo, reference, stage):
     launcher, info = start(teleo, "--cycles", CYCLES)
     wait_cycles(info, 80)
-    os.kill(info["pids"]["ME.inference"], signal.SIGSTOP)
+    os.kill(info["pids"][stage], signal.SIGSTOP)
     wait_for(lambda: False, 2.0)
-    os.kill(info["pids"]["ME.inference"], signal.SIGCONT)
+    os.kill(info["pids"][stage], signal.SIGCONT)
     assert launcher.wait(180) == 0, teleo.launch_output()
     s = summary(teleo)
-    assert s["stalls"] and s["stalls"][0]["stages"] == ["ME.inference"]
+    assert s["stalls"] and s["stalls"][0]["stages"] == [stage], s["stalls"]
     assert s["stalls"][0]["seconds"] >= 1.0 and s["status"] == "completed"
-    assert "stalls: 1 (ME.inference" in teleo.launch_output() or len(s["stalls"]) > 1
+    assert f"stalls: 1 ({stage}" in teleo.launch_output() or len(s["stalls"]) > 1
     assert trace(info) == reference
     assert [e["event"] for e in journal(info)][:1] == ["ready"]
-
-
-def test_a_stalled_goal_entry_is_named_in_the_stall_and_changes_nothing(teleo, reference):
-    """Issue 36: the goal entry's stats travel in its goal lists; a stopped one sends none,
-    and the clock, reading them from ME's Actions or the stats sent alone by a process gone
-    idle, names it, not the stages after it."""
-    launcher, info = start(teleo, "--cycles", CYCLES)
-    wait_cycles(info, 80)
-    os.kill(info["pids"]["goals"], signal.SIGSTOP)
-    wait_for(lambda: False, 2.0)
-    os.kill(info["pids"]["goals"], signal.SIGCONT)
-    assert launcher.wait(180) == 0, teleo.launch_output()
-    s = summary(teleo)
-    assert s["stalls"] and s["stalls"][0]["stages"] == ["goals"], s["stalls"]
-    assert s["status"] == "completed" and trace(info) == reference
 
 
 def test_the_launcher_drill_runs_as_a_user_would_run_it(tmp_path):
