@@ -101,11 +101,11 @@ def _arrived(events_in: Inbox, asked: PendingQueries, node, t: int):
 
 def record_window(agents: int) -> int:
     """[cycles] a lockstep run may be ahead of its recorder: about RECORD_BACKLOG messages
-    (a world state and its stats, each agent's percepts, beliefs, intention, actions, goal list
-    and three stats, the goal-entry process's stats per cycle), an eighth of what the
-    recorder's queue holds, so that no sender ever waits for it with messages queued (a process
-    that stops drops them: tests/e2e/test_record_drain.py) and its drain at a stop stays
-    short."""
+    (at most, a cycle: a world state and its stats, the goal entry's stats, and each agent's
+    percepts, beliefs, intention, actions, goal list and its three stages' stats, which go
+    alone only from a stage idle after the cycle), an eighth of what the recorder's queue
+    holds, so that no sender ever waits for it with messages queued (a process that stops
+    drops them: tests/e2e/test_record_drain.py) and its drain at a stop stays short."""
     return max(20, RECORD_BACKLOG // (8 * agents + 3))
 
 

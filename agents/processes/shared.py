@@ -69,9 +69,9 @@ class Chain:
         t1 = time.perf_counter()
         stats = {self.names[0]: [(t1 - t0) * 1e3, 0]}
         p_out[0] = (p_out[0][0], replace(seen, percepts=rows, stats=dict(stats)))
-        t1 = time.perf_counter()
+        t2 = time.perf_counter()
         b_out = self.infer(cycle, {self.keys[0]: p_out[0][1]})
-        stats[self.names[1]] = [(time.perf_counter() - t1) * 1e3, 0]
+        stats[self.names[1]] = [(time.perf_counter() - t2) * 1e3, 0]
         b_out[0] = (b_out[0][0], replace(b_out[0][1], stats=dict(stats)))
         return p_out, b_out, stats
 

@@ -116,6 +116,11 @@ def _main_actions(decision: dict[str, Any]) -> list:
     return actions[:len(actions) - others]
 
 
+def status_line(cycle: int, status: str, text: str = "") -> str:
+    """One line of the follow: `cycle     39  failed`, what the goal does after it."""
+    return f"cycle {cycle:>6}  {status:<9}  {text}".rstrip()
+
+
 @dataclass
 class Follower:
     """What is known of one goal (pure; fed with the messages): its last status and doing,
@@ -146,7 +151,7 @@ class Follower:
         if status in ("achieved", "failed"):  # the reason is said once, at the end
             self.ended, self.reason = status, str(report.get("note", ""))
             key = text = ""
-        pair, line = (status, key), f"cycle {cycle:>6}  {status:<9}  {text}".rstrip()
+        pair, line = (status, key), status_line(cycle, status, text)
         recent, self._seen[pair] = self._seen.get(pair), cycle
         if pair == self._last:
             return None
@@ -255,7 +260,7 @@ def _withdrawn(follower: Follower, agent: str, ask: Callable) -> None:
         follower.ended, follower.reason = "failed", str(record.get("note", ""))
         follower.cycle = int(record.get("updated_cycle", cycle))
         # no decision reported it (the goal left the list first): the line it would have had
-        click.echo(f"cycle {follower.cycle:>6}  failed")
+        click.echo(status_line(follower.cycle, "failed"))
         return
     if record is not None and record.get("status") == "cancelled":
         raise WaitEnded(f"{gid} was cancelled at cycle {record.get('updated_cycle', cycle)} "
