@@ -172,6 +172,12 @@ def main() -> int:
     p.add_argument("--jobs", type=int, default=2)
     args = p.parse_args()
     envs = CORE + HARDER if args.envs == "all" else args.envs.split(",")
+    import gymnasium
+    import minigrid  # noqa: F401  (registers the MiniGrid and BabyAI ids)
+
+    unknown = [n for n in envs if env_id(n) not in gymnasium.registry]
+    if unknown:
+        p.error(f"--envs: not registered: {', '.join(env_id(n) for n in unknown)}")
     seeds = seeds_of(args.seeds)
     print(f"MiniGrid, programs/minigrid.tlp, seeds {args.seeds} ({len(seeds)} each), "
           f"jobs {args.jobs}")
