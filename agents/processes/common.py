@@ -14,6 +14,9 @@ from typing import Any
 import click
 
 from bus.config import bus_options
+from bus.node import open_node
+from bus.stage import Stage
+from bus.stage import stop_on_signals as bus_stop_on_signals
 
 
 def setup_logging(process: str, verbose: bool = False) -> logging.Logger:
@@ -27,8 +30,6 @@ def stop_on_signals() -> threading.Event:
     """An Event set by SIGINT or SIGTERM, so the main loop ends and the node closes cleanly
     (an unclosed zenoh session keeps the process alive: docs/bus.md, "Zenoh in Python", item 1); the
     process also stops when its launcher dies (bus/lifeline.py)."""
-    from bus.stage import stop_on_signals as bus_stop_on_signals
-
     return bus_stop_on_signals(child=True)
 
 
@@ -38,9 +39,6 @@ def run_stage(cfg: Any, run: str, process: str, inputs: list[str], outputs: list
     """Open the node, run a bus Stage (join inputs by cycle, call `step`, publish outputs and
     stats, re-emit on a repeated cycle) until SIGINT/SIGTERM, then close the node. ``bind``
     is given the node first (for what the step asks of other processes)."""
-    from bus.node import open_node
-    from bus.stage import Stage
-
     stop = stop_on_signals()
     with open_node(cfg, run, process) as node:
         if bind is not None:

@@ -35,6 +35,13 @@ from typing import Any
 
 import click
 
+from agents.lang import Belief, Engine, LangError, SharedRows
+from agents.lang.core.outcomes import as_outcomes
+from agents.lang.core.store import BeliefSet
+from agents.lang.loader import read_text
+from agents.lang.registry import memory_of, read_learned, remember
+from agents.lang.swap import carry_state
+from agents.processes.agent_setup import AgentSetup
 from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.goal_sync import GoalSync
 from agents.processes.hints import with_hints
@@ -48,8 +55,9 @@ from bus.messages import Actions, Envelope, Intention, Message
 from bus.schema import brief
 
 
-class Executive:
-    """The engine state of one agent plus the user goals it was last given."""
+class EngineHost:
+    """The engine and engine state of one agent in its executive process, plus the user
+    goals it was last given (the engine's own executive is agents/lang/execution)."""
 
     def __init__(self, engine: Any, log: logging.Logger, state: Any = None,
                  solver: str | None = "means-ends") -> None:
@@ -67,9 +75,6 @@ class Executive:
         """Run the program of ``entry`` ({"name", "text"}) from now on, the engine state
         carried over (agents/lang/swap.py); returns the verdict (swapping.note). A goal the
         new program cannot pursue is not offered to it again."""
-        from agents.lang import Engine
-        from agents.lang.swap import carry_state
-
         program, why = read_program(entry)
         if program is None:
             return note(entry, why)
@@ -85,9 +90,6 @@ class Executive:
     def remember(self, memory: dict[str, Any]) -> None:
         """Take the SCS state from the memory the world handed back (a malformed one is
         logged and ignored: the executive goes on with its own)."""
-        from agents.lang import LangError
-        from agents.lang.registry import remember
-
         if not memory:
             return
         try:
@@ -98,16 +100,11 @@ class Executive:
 
     def memory(self) -> dict[str, Any]:
         """What goes out with the actions, for the world to hand back next cycle."""
-        from agents.lang.registry import memory_of
-
         return memory_of(self.state, self.engine.mechanisms)
 
     def decide(self, percepts: tuple, belief_lists: tuple, outcomes: tuple = ()) -> Any:
         """One executive step; returns the engine's Decision. A malformed outcome is logged
         and left out, never a crash (the world's outcomes are checked by the engine)."""
-        from agents.lang import LangError, SharedRows
-        from agents.lang.core.outcomes import as_outcomes
-
         beliefs = self.beliefs.read(belief_lists)
         good = []
         for o in outcomes:
@@ -134,8 +131,6 @@ class BeliefReader:
         self.last: Any = None
 
     def _belief(self, items: list) -> Any:
-        from agents.lang import Belief, LangError
-
         want = self.arity.get(items[0])
         if want is not None and want != len(items) - 1:
             raise LangError(f"belief {brief(items)}: {items[0]} takes {want} argument(s), "
@@ -143,52 +138,41 @@ class BeliefReader:
         return Belief.from_list(items)
 
     def read(self, lists: tuple) -> Any:
-        from agents.lang.core.store import BeliefSet
-
         if self.last is None or len(lists) != len(self.lists) \
                 or not all(map(is_, lists, self.lists)):
             self.lists, self.last = lists, BeliefSet(self.beliefs.of(lists))
         return self.last
 
 
-def make_executive(program_path: str, log: logging.Logger, state: Any = None,
-                   learned: str | None = None, solver: bool = True,
-                   mechanism: str = "means-ends", own_learned: str | None = None,
-                   swapped: str | None = None) -> Executive:
-    """The executive of ``program_path``: from ``state`` (read back after a restart) if
-    given, else fresh, starting from the skills in its own learned file ``own_learned`` (the
+def make_host(setup: AgentSetup, log: logging.Logger, state: Any = None) -> EngineHost:
+    """The engine host of ``setup``'s agent: from ``state`` (read back after a restart) if
+    given, else fresh, starting from the skills in its own learned file ``learned_out`` (the
     one it writes: after a restart whose state file could not be read, those skills are not
     lost) or else in the learned file ``learned``; the program swapped in and kept in
     ``swapped`` if any (agents/processes/swapping.py). Raises LangError (a ProgramError naming
     file:line:col) for a bad program or ``learned`` file."""
-    from agents.lang import Engine
-    from agents.lang.loader import read_text
-    from agents.lang.registry import read_learned
-
-    program = kept(swapped, program_path, log)
-    engine = Engine(program, solver=mechanism if solver else None)
+    program = kept(setup.swapped, setup.program, log)
+    solver = setup.mechanism if setup.solver else None
+    engine = Engine(program, solver=solver)
     if state is None:
-        skills = read_back_learned(program, Path(own_learned), log) if own_learned else None
-        if skills is None and learned:
-            skills = read_learned(program, read_text(learned), learned)
+        own = setup.learned_out
+        skills = read_back_learned(program, Path(own), log) if own else None
+        if skills is None and setup.learned:
+            skills = read_learned(program, read_text(setup.learned), setup.learned)
         if skills is not None:
             state = engine.initial_state(learned=skills)
-    return Executive(engine, log, state, mechanism if solver else None)
+    return EngineHost(engine, log, state, solver)
 
 
-def make_step(run: str, agent: str, process: str, program_path: str, log: logging.Logger,
-              state_path: str | None = None, learned: str | None = None,
-              learned_out: str | None = None, solver: bool = True,
-              mechanism: str = "means-ends", swapped: str | None = None):
+def make_step(setup: AgentSetup, log: logging.Logger):
     """step(cycle, {percepts, beliefs, goal list}) -> [(intention, ...), (actions, ...)].
     Percepts or beliefs the engine cannot read are refused (bus Refused)."""
-    from agents.lang import LangError
-
+    run, agent, process = setup.run, setup.agent, setup.process("executive")
+    state_path, learned_out = setup.state, setup.learned_out
     saver = StateFile(state_path, log) if state_path else None
     saved = saver.load() if saver else None
-    executive = make_executive(program_path, log, saved.state if saved else None, learned,
-                               solver, mechanism, learned_out, swapped)
-    out = LearnedFile(learned_out, program_path) if learned_out else None
+    host = make_host(setup, log, saved.state if saved else None)
+    out = LearnedFile(learned_out, setup.program) if learned_out else None
     p_key, b_key, g_key = (keys.percepts(run, agent), keys.beliefs(run, agent),
                            keys.goal_list(run, agent))
 
@@ -197,31 +181,31 @@ def make_step(run: str, agent: str, process: str, program_path: str, log: loggin
         env = Envelope.now(run, cycle, process)
         return [(keys.intention(run, agent), Intention(env, agent, intention, swap or {})),
                 (keys.actions(run, agent), Actions(env, agent, tuple(actions),
-                                                   executive.memory()))]
+                                                   host.memory()))]
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
         if saved is not None and cycle <= saved.cycle:
             log.info("cycle %d was decided before the restart: its outputs again", cycle)
             return outputs(cycle, saved.intention, saved.actions)
         seen = inputs[p_key]
-        executive.sync_goals(inputs[g_key].goals)
-        executive.state = replace(executive.state, cycle=cycle)   # the bus's cycle, also
-        executive.remember(seen.memory)                           # after a restart
-        swap = executive.swap(seen.program) if seen.program else {}   # the old program's
+        host.sync_goals(inputs[g_key].goals)
+        host.state = replace(host.state, cycle=cycle)   # the bus's cycle, also
+        host.remember(seen.memory)                           # after a restart
+        swap = host.swap(seen.program) if seen.program else {}   # the old program's
         if swap:                                                      # memory read first
             said(process, cycle, swap, log)
             if swap["ok"]:
-                keep(swapped, seen.program, cycle, log)
+                keep(setup.swapped, seen.program, cycle, log)
         try:
-            decision = executive.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
+            decision = host.decide(seen.percepts, inputs[b_key].beliefs, seen.outcomes)
         except LangError as exc:   # percepts or beliefs the engine cannot read
             raise Refused(f"{p_key}, {b_key}: the inputs of cycle {cycle}: {exc}") from None
-        intention = with_hints(decision.to_dict(), seen.percepts, executive.engine.program)
+        intention = with_hints(decision.to_dict(), seen.percepts, host.engine.program)
         actions = [a.to_list() for a in decision.actions]
-        if saver is not None and saver.changed(executive.state):
-            saver.save(Saved(cycle, executive.state, intention, actions))
+        if saver is not None and saver.changed(host.state):
+            saver.save(Saved(cycle, host.state, intention, actions))
         if out is not None:
-            out.save(executive.state.learned)
+            out.save(host.state.learned)
         return outputs(cycle, intention, actions, swap)
 
     return step
@@ -246,14 +230,14 @@ def main(run: str, agent: str, program: str, bus_config: BusConfig, state_path: 
          learned: str | None, learned_out: str | None, no_solver: bool,
          mechanism: str, swapped: str | None) -> None:
     """Prioritised executive of one agent."""
-    from agents.lang import LangError
-
-    process = f"{agent}.executive"
+    setup = AgentSetup(run=run, agent=agent, program=program, state=state_path,
+                       learned=learned, learned_out=learned_out, solver=not no_solver,
+                       mechanism=mechanism, swapped=swapped)
+    process = setup.process("executive")
     log = setup_logging(process)
     inputs = [keys.percepts(run, agent), keys.beliefs(run, agent), keys.goal_list(run, agent)]
     try:
-        step = make_step(run, agent, process, program, log, state_path, learned, learned_out,
-                         not no_solver, mechanism, swapped)
+        step = make_step(setup, log)
     except LangError as exc:
         raise click.ClickException(str(exc)) from exc
     run_stage(bus_config, run, process, inputs, [keys.actions(run, agent)], step, log)

@@ -9,6 +9,8 @@ import logging
 from dataclasses import dataclass, field
 from typing import Any
 
+from agents.lang import GoalError
+
 
 @dataclass
 class GoalSync:
@@ -27,8 +29,6 @@ class GoalSync:
               log: logging.Logger) -> Any:
         """The engine state with the user goals of ``goal_list``; a goal the engine refuses
         is logged and left out."""
-        from agents.lang import GoalError
-
         wanted = {g["id"]: (g["goal"], int(g["priority"])) for g in goal_list}
         ends = {g["id"]: (bool(g.get("once", False)), g.get("deadline") or None)
                 for g in goal_list}
@@ -57,8 +57,6 @@ class GoalSync:
 def validator(engines: dict[str, Any]):
     """validate(agent, goal, priority) -> "" or the engine's reason (goal_store.Validator),
     with ``engines``: agent -> Engine."""
-    from agents.lang import GoalError
-
     def validate(agent: str, goal: str, priority: int) -> str:
         engine = engines[agent]
         try:

@@ -9,6 +9,10 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from agents.lang import Engine, GoalError, LangError, as_percepts, load_program
+from agents.lang.core.store import PerceptIndex, store_of
+from agents.lang.reading.goals import parse_goal
+from agents.lang.registry import instances_warning, never_true
 from world.domain import get_domain
 from world.errors import WorldError
 from world.run_scenario import Scenario
@@ -22,11 +26,6 @@ def engine_warner(scenario: Scenario, programs: dict | None = None) -> Warner:
     scenario starts with; ``programs``: agent -> loaded Program (loaded here when None). A goal
     that does not read, or a world that cannot be made, gives no warning (the validator and
     the scenario check say what is wrong with those)."""
-    from agents.lang import Engine, GoalError, LangError, as_percepts, load_program
-    from agents.lang.core.store import PerceptIndex, store_of
-    from agents.lang.reading.goals import parse_goal
-    from agents.lang.registry import instances_warning, never_true
-
     engines = {a.id: Engine((programs or {}).get(a.id) or load_program(str(a.program)))
                for a in scenario.agents}
     seen: dict[str, tuple] = {}

@@ -16,6 +16,8 @@ from typing import Any
 
 import click
 
+from agents.lang import Engine, LangError, SharedRows
+from agents.processes.agent_setup import AgentSetup
 from agents.processes.common import agent_options, run_stage, setup_logging
 from agents.processes.per_object import PerObject
 from agents.processes.swapping import keep, kept, note, read_program, said
@@ -26,16 +28,14 @@ from bus.messages import Beliefs, Envelope, Message
 from bus.schema import brief
 
 
-def make_step(run: str, agent: str, process: str, program_path: str,
-              log: logging.Logger | None = None, swapped: str | None = None):
+def make_step(setup: AgentSetup, log: logging.Logger | None = None):
     """step(cycle, {percepts key: Percepts}) -> [(beliefs key, Beliefs)]. Percepts the engine
     cannot read are refused (bus Refused), naming the percept; a malformed world model is
     logged and left out. A program that comes with the percepts is swapped in first
     (agents/processes/swapping.py), and the beliefs of the cycle say so."""
-    from agents.lang import Engine, LangError, SharedRows
-
+    run, agent, process = setup.run, setup.agent, setup.process("inference")
     log = log or logging.getLogger(process)
-    engine = Engine(kept(swapped, program_path, log))
+    engine = Engine(kept(setup.swapped, setup.program, log))
     in_key, out_key = keys.percepts(run, agent), keys.beliefs(run, agent)
 
     rows = BeliefRows()
@@ -48,7 +48,7 @@ def make_step(run: str, agent: str, process: str, program_path: str,
             program, why = read_program(seen.program)
             if program is not None:
                 engine = Engine(program)
-                keep(swapped, seen.program, cycle, log)
+                keep(setup.swapped, seen.program, cycle, log)
             swap = note(seen.program, why)
             said(process, cycle, swap, log)
         percepts = SharedRows(seen.percepts)  # rows seen last cycle are the same lists
@@ -99,11 +99,11 @@ _KEY = itemgetter(0)
 def main(run: str, agent: str, program: str, bus_config: BusConfig,
          swapped: str | None) -> None:
     """Belief inference of one agent."""
-    process = f"{agent}.inference"
+    setup = AgentSetup(run=run, agent=agent, program=program, swapped=swapped)
+    process = setup.process("inference")
     log = setup_logging(process)
-    step = make_step(run, agent, process, program, log, swapped)
     run_stage(bus_config, run, process, [keys.percepts(run, agent)], [keys.beliefs(run, agent)],
-              step, log)
+              make_step(setup, log), log)
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
+from agents.processes.agent_setup import AgentSetup
 from agents.processes.common import agent_options, run_stage, setup_logging
 from bus import keys
 from bus.config import BusConfig
@@ -22,6 +23,9 @@ from bus.errors import BusError, Refused
 from bus.fields import MEMORY, PROGRAM
 from bus.messages import Envelope, Message, Percepts, WorldState, WorldStatic
 from bus.schema import FieldError, brief
+from world.domain import domain_of
+from world.errors import WorldError
+from world.static import has_static, whole
 
 STATIC_ASK_S = 5.0   # [s] the wait for the world's answer about its static configuration
 
@@ -59,9 +63,6 @@ def with_static(state: WorldState, static: Callable[[str], dict[str, Any]] | Non
     StaticSource), put back when it lacks it. A shared process makes it once for all its
     agents, whose perception then reads one dict (and the world checks it once: world/base.py
     `rebuild`). Refused when the static part cannot be had."""
-    from world.errors import WorldError
-    from world.static import has_static, whole
-
     snap = state.snapshot
     if static is None or has_static(snap):
         return state
@@ -72,15 +73,12 @@ def with_static(state: WorldState, static: Callable[[str], dict[str, Any]] | Non
                       f"{brief(state.env.sender)}: {exc}") from None
 
 
-def make_step(run: str, agent: str, process: str,
-              static: Callable[[str], dict[str, Any]] | None = None):
+def make_step(setup: AgentSetup, static: Callable[[str], dict[str, Any]] | None = None):
     """step(cycle, {state key: WorldState}) -> [(percepts key, Percepts)]. A snapshot that is
     not its world's (checked against the world's snapshot schema) is refused (bus Refused:
     the cycle waits for a good copy), naming the field. A snapshot without its static part
     gets it from ``static`` (a StaticSource) before the world perceives it."""
-    from world.domain import domain_of
-    from world.errors import WorldError
-
+    run, agent, process = setup.run, setup.agent, setup.process("perception")
     state_key, out_key = keys.world_state(run), keys.percepts(run, agent)
 
     def step(cycle: int, inputs: dict[str, Message]) -> list[tuple[str, Message]]:
@@ -113,11 +111,12 @@ def make_step(run: str, agent: str, process: str,
 @agent_options(with_program=False)
 def main(run: str, agent: str, bus_config: BusConfig) -> None:
     """Perception of one agent."""
-    process = f"{agent}.perception"
+    setup = AgentSetup(run=run, agent=agent)
+    process = setup.process("perception")
     log = setup_logging(process)
     static = StaticSource(run, process)
     run_stage(bus_config, run, process, [keys.world_state(run)], [keys.percepts(run, agent)],
-              make_step(run, agent, process, static), log, bind=static.bind)
+              make_step(setup, static), log, bind=static.bind)
 
 
 if __name__ == "__main__":

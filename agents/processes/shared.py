@@ -3,7 +3,8 @@
     python -m agents.processes.shared --run RUN --name agents1 --agents JSON [bus flags]
 
 JSON: a list of {"agent", "program", "state", "learned_out", "learned", "solver",
-"mechanism"} (the executive's options, tools/launching/run_plan.py writes them). Each cycle the
+"mechanism", "swapped"} (AgentSetup.to_json: the executive's options;
+tools/launching/run_plan.py writes them). Each cycle the
 process joins the world state with every agent's goal list and runs, per agent, the perception,
 inference and executive steps of the separate processes (the same functions) one after the
 other, handing each step's message to the next in memory: no hop, no decode between an
@@ -26,13 +27,17 @@ from dataclasses import replace
 
 import click
 
+from agents.lang import LangError
 from agents.processes import executive, inference, perception
+from agents.processes.agent_setup import AgentSetup
 from agents.processes.common import setup_logging, stop_on_signals
 from bus import keys
 from bus.config import BusConfig, bus_options
 from bus.errors import Refused
 from bus.messages import Actions, Message
+from bus.node import open_node
 from bus.rows import shared_rows
+from bus.stage import Stage
 
 STAGE_NAMES = ("perception", "inference", "executive")
 
@@ -42,19 +47,14 @@ class Chain:
     all they need) and `step` (the executive too, once the goal list is there), handing each
     step's message to the next in memory."""
 
-    def __init__(self, run: str, spec: dict, log: logging.Logger,
+    def __init__(self, setup: AgentSetup, log: logging.Logger,
                  static: perception.StaticSource | None = None) -> None:
-        agent = spec["agent"]
-        self.names = [f"{agent}.{s}" for s in STAGE_NAMES]
+        run, agent = setup.run, setup.agent
+        self.names = [setup.process(s) for s in STAGE_NAMES]
         self.run, self.agent = run, agent
-        self.perceive = perception.make_step(run, agent, self.names[0], static)
-        self.infer = inference.make_step(run, agent, self.names[1], spec["program"], log,
-                                          spec.get("swapped"))
-        self.decide = executive.make_step(run, agent, self.names[2], spec["program"], log,
-                                          spec.get("state"), spec.get("learned"),
-                                          spec.get("learned_out"), spec.get("solver", True),
-                                          spec.get("mechanism", "means-ends"),
-                                          spec.get("swapped"))
+        self.perceive = perception.make_step(setup, static)
+        self.infer = inference.make_step(setup, log)
+        self.decide = executive.make_step(setup, log)
         self.keys = (keys.percepts(run, agent), keys.beliefs(run, agent),
                      keys.goal_list(run, agent))
         self.ahead: tuple[int, list, list, dict] | None = None  # front, done early
@@ -102,14 +102,11 @@ class Chain:
                                   for k, m in e_out)]
 
 
-def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
+def run_shared(cfg: BusConfig, run: str, name: str, specs: list[AgentSetup],
                log: logging.Logger) -> None:
     """Run the agents of `specs` in one Stage until SIGINT/SIGTERM."""
-    from bus.node import open_node
-    from bus.stage import Stage
-
     static = perception.StaticSource(run, name)   # one ask for every agent here
-    chains = [Chain(run, spec, log, static) for spec in specs]
+    chains = [Chain(spec, log, static) for spec in specs]
     state_key = keys.world_state(run)
 
     made: list = [None, None]   # the last world state and its copy with the static part
@@ -139,7 +136,7 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
             for chain in chains:
                 chain.early(msg.env.cycle, key, state)
 
-    agents = [spec["agent"] for spec in specs]
+    agents = [spec.agent for spec in specs]
     inputs = [state_key, *(keys.goal_list(run, a) for a in agents)]
     outputs = [keys.actions(run, a) for a in agents]
     stages = [f"{a}.{s}" for a in agents for s in STAGE_NAMES]
@@ -154,6 +151,24 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
                  stage.cycles_done, stage.late, begun[0])
 
 
+def read_setups(run: str, agents_json: str) -> list[AgentSetup]:
+    """The agents of ``--agents``; a ClickException naming the item and key that is wrong."""
+    try:
+        items = json.loads(agents_json)
+    except ValueError as exc:
+        raise click.ClickException(f"--agents: not JSON: {exc}") from exc
+    if not isinstance(items, list) or not items:
+        raise click.ClickException(f"--agents: expected a non-empty JSON list of maps with "
+                                   f"'agent' and 'program', got {agents_json:.80}")
+    out = []
+    for i, item in enumerate(items):
+        try:
+            out.append(AgentSetup.from_json(run, item))
+        except ValueError as exc:
+            raise click.ClickException(f"--agents[{i}]: {exc}") from exc
+    return out
+
+
 @click.command()
 @click.option("--run", required=True, help="Run id.")
 @click.option("--name", required=True, help="This process's name, e.g. agents1.")
@@ -162,17 +177,8 @@ def run_shared(cfg: BusConfig, run: str, name: str, specs: list[dict],
 @bus_options
 def main(run: str, name: str, agents_json: str, bus_config: BusConfig) -> None:
     """Several agents' perception, inference and executive in one process."""
-    from agents.lang import LangError
-
     log = setup_logging(name)
-    try:
-        specs = json.loads(agents_json)
-    except ValueError as exc:
-        raise click.ClickException(f"--agents: not JSON: {exc}") from exc
-    if not isinstance(specs, list) or not all(
-            isinstance(s, dict) and {"agent", "program"} <= set(s) for s in specs):
-        raise click.ClickException(f"--agents: expected a JSON list of maps with 'agent' and "
-                                   f"'program', got {agents_json:.80}")
+    specs = read_setups(run, agents_json)
     try:
         run_shared(bus_config, run, name, specs, log)
     except LangError as exc:

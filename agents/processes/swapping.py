@@ -23,13 +23,13 @@ import logging
 from pathlib import Path
 from typing import Any
 
+from agents.lang import Engine, ProgramError, load_program, load_program_text
+from agents.processes.goal_sync import validator
 from agents.processes.persist import write_atomically
 
 
 def read_program(entry: dict[str, Any]) -> tuple[Any, str]:
     """(the Program of a Percepts.program entry, "") or (None, why not: every error)."""
-    from agents.lang import ProgramError, load_program_text
-
     name = str(entry.get("name") or "<program>")
     try:
         return load_program_text(str(entry.get("text", "")), name), ""
@@ -69,8 +69,6 @@ def keep(path: str | None, entry: dict[str, Any], cycle: int, log: logging.Logge
 def kept(path: str | None, program_path: str, log: logging.Logger) -> Any:
     """The program to start with: the one swapped in and kept in `path` when there is one
     that reads, else the file `program_path` (ProgramError when it does not read)."""
-    from agents.lang import load_program
-
     if path and Path(path).exists():
         try:
             entry = json.loads(Path(path).read_text())
@@ -93,17 +91,12 @@ class ProgramWatch:
     is taken and one it cannot pursue refused from the cycle of the swap on."""
 
     def __init__(self, scenario: Any) -> None:
-        from agents.lang import Engine, load_program
-        from agents.processes.goal_sync import validator
-
         self.engines = {a.id: Engine(load_program(str(a.program))) for a in scenario.agents}
         self.standing = {a: _standing(e.program) for a, e in self.engines.items()}
         self.validate = validator(self.engines)
 
     def follow(self, control: dict[str, Any], log: logging.Logger) -> None:
         """Take the programs of a world state's ``control`` (one that does not read: kept)."""
-        from agents.lang import Engine
-
         for agent, entry in (control.get("programs") or {}).items():
             program, why = read_program(entry) if isinstance(entry, dict) else (None, "")
             if agent in self.engines and program is not None:

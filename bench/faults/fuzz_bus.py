@@ -32,6 +32,7 @@ from typing import Any
 from fuzz_values import JUNK, fields_of, mutate, pool_of, swap, wire
 
 from agents.processes import executive, inference, perception
+from agents.processes.agent_setup import AgentSetup
 from agents.processes.goals import GoalEntry, engine_validator
 from bus import keys
 from bus.codec import decode, encode
@@ -88,9 +89,9 @@ class Pipeline:
                      "beliefs": keys.beliefs(RUN, a), "goals": keys.goal_list(RUN, a),
                      "actions": keys.actions(RUN, a), "intention": keys.intention(RUN, a),
                      "events": keys.world_events(RUN)}
-        self.perceive = perception.make_step(RUN, a, f"{a}.perception")
-        self.infer = inference.make_step(RUN, a, f"{a}.inference", program, log)
-        self.decide = executive.make_step(RUN, a, f"{a}.executive", program, log)
+        self.perceive = perception.make_step(AgentSetup(run=RUN, agent=a))
+        self.infer = inference.make_step(AgentSetup(run=RUN, agent=a, program=program), log)
+        self.decide = executive.make_step(AgentSetup(run=RUN, agent=a, program=program), log)
         self.entry = GoalEntry(sc, self.tmp / f"goals-{self.domain}.json",
                                engine_validator(sc), log)
         self.bases: dict[str, list[dict]] = {k: [] for k in self.keys}
@@ -292,7 +293,7 @@ def state_reader(pipe: Pipeline) -> BusReader:
     """A WorldState payload -> the perception step; its percepts must decode at inference."""
     bases = pipe.bases["state"]
     pool = pool_of(bases)
-    step = perception.make_step(RUN, pipe.agent, f"{pipe.agent}.perception")
+    step = perception.make_step(AgentSetup(run=RUN, agent=pipe.agent))
     counter = iter(range(1 << 62))
 
     def make(rng: random.Random) -> bytes:
@@ -318,8 +319,8 @@ def agent_reader(pipe: Pipeline, which: str) -> BusReader:
     "memory" (only a Percepts' memory mutated, to inference and executive)."""
     program = str(pipe.scenario.agents[0].program)
     a, k = pipe.agent, pipe.keys
-    infer = inference.make_step(RUN, a, f"{a}.inference", program, log)
-    decide = executive.make_step(RUN, a, f"{a}.executive", program, log)
+    infer = inference.make_step(AgentSetup(run=RUN, agent=a, program=program), log)
+    decide = executive.make_step(AgentSetup(run=RUN, agent=a, program=program), log)
     counter = iter(range(1 << 62))
     inputs = ("percepts", "beliefs", "goals")
     pools = {x: pool_of(pipe.bases[x]) for x in inputs}

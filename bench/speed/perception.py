@@ -32,6 +32,7 @@ from pathlib import Path
 # this file is bench/speed/perception.py: keep its folder off the path so `world` is the package
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).parent.resolve()]
 
+from agents.processes.agent_setup import AgentSetup  # noqa: E402
 from agents.processes.perception import make_step  # noqa: E402
 from bus import keys  # noqa: E402
 from bus.codec import decode, encode  # noqa: E402
@@ -85,7 +86,7 @@ def baseline(static: dict) -> object:
 
 
 def current(static: dict) -> object:
-    step = make_step(RUN, AGENT, "p", lambda domain: static)
+    step = make_step(AgentSetup(run=RUN, agent=AGENT), lambda domain: static)
     key = keys.world_state(RUN)
 
     def run(cycle: int, state: WorldState) -> bytes:

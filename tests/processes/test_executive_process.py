@@ -7,7 +7,7 @@ import logging
 from pathlib import Path
 
 from agents.lang import Engine, load_program
-from agents.processes.executive import Executive
+from agents.processes.executive import EngineHost
 
 PROGRAM = Path(__file__).resolve().parents[1] / "e2e" / "fixtures" / "hold_speed.tlp"
 SLOW = (["self", "ME", "speed", 0.0, "limit", 15],)
@@ -18,13 +18,13 @@ def entry(goal_id: str, goal: str, priority: int) -> dict:
     return {"id": goal_id, "goal": goal, "priority": priority, "status": "pending"}
 
 
-def step(executive: Executive, percepts) -> dict:
+def step(executive: EngineHost, percepts) -> dict:
     beliefs = tuple(b.to_list() for b in executive.engine.infer(percepts))
     return executive.decide(percepts, beliefs).to_dict()
 
 
 def test_goal_list_changes_reach_the_engine():
-    executive = Executive(Engine(load_program(str(PROGRAM))), logging.getLogger("test"))
+    executive = EngineHost(Engine(load_program(str(PROGRAM))), logging.getLogger("test"))
     executive.sync_goals((entry("g1", "(package-delivered PACKET1)", 3),
                           entry("g2", "(package-delivered PACKET2)", 5)))
     decision = step(executive, SLOW)
@@ -37,7 +37,7 @@ def test_goal_list_changes_reach_the_engine():
 
 
 def test_a_goal_the_engine_refuses_is_skipped_not_fatal():
-    executive = Executive(Engine(load_program(str(PROGRAM))), logging.getLogger("test"))
+    executive = EngineHost(Engine(load_program(str(PROGRAM))), logging.getLogger("test"))
     executive.sync_goals((entry("g1", "(flying ME)", 3),))
     executive.sync_goals((entry("g1", "(flying ME)", 3),))
     assert executive.goals.refused == {"g1"}

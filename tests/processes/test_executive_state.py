@@ -11,6 +11,7 @@ from pathlib import Path
 
 from agents.lang import Engine, load_program
 from agents.lang.registry import read_learned
+from agents.processes.agent_setup import AgentSetup
 from agents.processes.executive import make_step
 from agents.processes.persist import Saved, StateFile, set_aside_files
 from bus import keys
@@ -20,6 +21,12 @@ from tests.lang import test_blocks as blocks
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = str(ROOT / "programs" / "blocks.tlp")
 LOG = logging.getLogger("test")
+
+
+def executive_step(state: str, learned_out: str | None = None):
+    """The executive process's step for agent ME of run r, its state kept in ``state``."""
+    return make_step(AgentSetup(run="r", agent="ME", program=PROGRAM, state=state,
+                                learned_out=learned_out), LOG)
 TOWER = [["table", "T", "xpos", 0, "ypos", 0, "height", 2], ["hand", "H1", "status", "empty"],
          ["block", "A", "xpos", 0, "ypos", 2, "height", 2],
          ["block", "B", "xpos", 0, "ypos", 4, "height", 2],
@@ -43,11 +50,11 @@ def _decision(outs) -> dict:
 
 def test_a_restarted_executive_goes_on_with_its_goal_stack(tmp_path):
     path = tmp_path / "state-ME.json"
-    step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+    step = executive_step(str(path))
     first = _decision(step(0, _inputs(0, TOWER)))
     assert first["solver"]["stacks"][0]["entries"][1]["goal"] == "(unstackable B A)"
     # the process dies after deciding cycle 0; the clock sends cycle 0 again to the new one
-    again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+    again = executive_step(str(path))
     repeated = again(0, _inputs(0, TOWER))
     assert _decision(repeated) == first                       # re-emitted, not decided twice
     second = _decision(again(1, _inputs(1, TOWER)))
@@ -94,7 +101,7 @@ def test_a_state_file_that_is_not_utf8_is_set_aside_not_a_crash(tmp_path, caplog
 def _learn(tmp_path: Path):
     """An executive with a state file and its own learned file, run until it learned."""
     state, out = tmp_path / "state-ME.json", tmp_path / "learned-ME.tlp"
-    step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state), learned_out=str(out))
+    step = executive_step(str(state), learned_out=str(out))
     support, holding = dict(blocks.TOWER), None
     for cycle in range(6):   # the world: each action applied as the world would
         outs = step(cycle, _inputs(cycle, blocks.percepts(support, holding)))
@@ -110,8 +117,7 @@ def test_a_restart_after_an_unreadable_state_keeps_the_learned_skills_on_disk(tm
     state, out, skills = _learn(tmp_path)
     for damage in (b"\xff\xfe\x00binary", b'{"cycle": "forty"}'):
         state.write_bytes(damage)
-        again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state),
-                          learned_out=str(out))
+        again = executive_step(str(state), learned_out=str(out))
         again(6, _inputs(6, TOWER))
         assert read_learned(load_program(PROGRAM), out.read_text(), str(out)) == skills
         assert StateFile(state, LOG).load().state.learned == skills
@@ -121,7 +127,7 @@ def test_an_unreadable_learned_file_is_set_aside_and_the_executive_starts(tmp_pa
     state, out, _ = _learn(tmp_path)
     state.unlink()
     out.write_bytes(b"\xff\xfe(not a skill")
-    again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(state), learned_out=str(out))
+    again = executive_step(str(state), learned_out=str(out))
     again(0, _inputs(0, TOWER))
     assert (tmp_path / "learned-ME.tlp.bad").read_bytes() == b"\xff\xfe(not a skill"
 
@@ -135,7 +141,7 @@ WORLD = [CLEAR] * 3 + [TOWER] * 4   # A clear: nothing to do; then A covered: th
 
 def test_the_state_is_written_only_when_a_decision_changed_it(tmp_path):
     path = tmp_path / "state-ME.json"
-    step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+    step = executive_step(str(path))
     written = []
     for cycle, percepts in enumerate(WORLD):
         step(cycle, _inputs(cycle, percepts))
@@ -147,14 +153,14 @@ def test_a_killed_executive_loses_nothing_whichever_cycle_it_dies_in(tmp_path):
     """Killed after deciding cycle k, written or not: restarted on its file, given cycle k again
     (its outputs were not published) or cycle k + 1 (they were), it decides every cycle as the
     executive that never died."""
-    ref = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(tmp_path / "ref.json"))
+    ref = executive_step(str(tmp_path / "ref.json"))
     undisturbed = [_decision(ref(c, _inputs(c, p))) for c, p in enumerate(WORLD)]
     for k in range(len(WORLD) - 1):
         for resent in (True, False):
             path = tmp_path / f"state-{k}-{resent}.json"
-            step = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+            step = executive_step(str(path))
             got = [_decision(step(c, _inputs(c, WORLD[c]))) for c in range(k + 1)]
-            again = make_step("r", "ME", "ME.executive", PROGRAM, LOG, str(path))
+            again = executive_step(str(path))
             if resent:
                 got[k] = _decision(again(k, _inputs(k, WORLD[k])))
             got += [_decision(again(c, _inputs(c, WORLD[c]))) for c in range(k + 1, len(WORLD))]

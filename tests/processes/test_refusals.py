@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from agents.processes import executive, inference, perception
+from agents.processes.agent_setup import AgentSetup
 from bus import keys
 from bus.codec import decode, encode
 from bus.errors import CodecError, Refused
@@ -47,12 +48,12 @@ def encode_body(body: dict) -> bytes:
 def agent_steps(pipe: Pipeline):
     program = str(pipe.scenario.agents[0].program)
     a = pipe.agent
-    return (inference.make_step(RUN, a, f"{a}.inference", program, LOG),
-            executive.make_step(RUN, a, f"{a}.executive", program, LOG))
+    return (inference.make_step(AgentSetup(run=RUN, agent=a, program=program), LOG),
+            executive.make_step(AgentSetup(run=RUN, agent=a, program=program), LOG))
 
 
 def test_perception_refuses_a_snapshot_its_world_did_not_make(pipe):
-    step = perception.make_step(RUN, pipe.agent, "ME.perception")
+    step = perception.make_step(AgentSetup(run=RUN, agent=pipe.agent))
     state = last(pipe, "state")
     assert step(state.env.cycle, {pipe.keys["state"]: state})   # the real one is perceived
     snap = copy.deepcopy(state.snapshot)

@@ -24,6 +24,7 @@ import secrets
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from agents.processes.agent_setup import AgentSetup
 from bus.config import BusConfig, Mode
 from bus.load import scaled
 from tools.launching.run_secrets import RunSecrets, host_of
@@ -204,11 +205,12 @@ def _shared_specs(plan: Plan) -> dict[str, ProcSpec | None]:
     size = plan.agents_per_process
     for i in range(0, len(agents), size):
         group, name = agents[i:i + size], f"agents{i // size + 1}"
-        specs = [{"agent": a.id, "program": str(a.program.resolve()),
-                  "state": str(summary.state_file(plan.run_dir, a.id)),
-                  "learned_out": str(summary.learned_file(plan.run_dir, a.id)),
-                  "swapped": str(summary.swapped_file(plan.run_dir, a.id)),
-                  "learned": plan.learned, "solver": a.solver, "mechanism": a.mechanism}
+        specs = [AgentSetup(run=plan.run, agent=a.id, program=str(a.program.resolve()),
+                            state=str(summary.state_file(plan.run_dir, a.id)),
+                            learned_out=str(summary.learned_file(plan.run_dir, a.id)),
+                            swapped=str(summary.swapped_file(plan.run_dir, a.id)),
+                            learned=plan.learned, solver=a.solver,
+                            mechanism=a.mechanism).to_json()
                  for a in group]
         argv = module_argv("agents.processes.shared", "--run", plan.run,
                            *bus_config(plan, name).to_args(), "--name", name,
