@@ -41,7 +41,7 @@ def _cell(r: Run | None, best_len: int, teleo: bool) -> str:
         return "-"
     if not r.solved:
         return {"timeout": "T/O", "limit": "limit", "failed": "fail", "invalid": "INVALID",
-                "error": "err"}.get(r.status, r.status)
+                "error": "err", "unchecked": "unchk"}.get(r.status, r.status)
     ratio = f" x{r.length / best_len:.2f}" if best_len else ""
     extra = f" c{r.cycles} s{r.solving}" if teleo else ""
     return f"{r.length}{ratio}{extra} {r.solve_s if teleo else r.wall_s:.1f}s"
@@ -114,7 +114,9 @@ def failures(runs: Iterable[Run], emit: Callable) -> None:
         emit("\n== teleo runs not solved")
     for r in bad:
         src = f" (skills of {r.source})" if r.source else ""
-        claim = " [its summary claims achieved; the replay denies it]" if r.claimed else ""
+        claim = "" if not r.claimed else " [its summary claims achieved; " + (
+            "the replay cannot read the task]" if r.status == "unchecked" else
+            "the replay denies it]")
         emit(f"{r.domain} {r.task} {r.who}{src}: {r.status}{claim}: {r.detail or 'no reason'}")
 
 
@@ -169,6 +171,10 @@ def targets(grouped: dict[tuple[str, str], dict[str, Run]], limit_s: float,
     line(not silent, "no run ends with a goal still active and no reason given", silent)
     lies = [f"{r.domain} {r.task} {r.who}: {r.detail}" for r in teleo if r.status == "invalid"]
     line(not lies, "no summary claims a success the independent replay denies", lies)
+    unread = [f"{r.domain} {r.task} {r.who}" for r in teleo if r.status == "unchecked"]
+    if unread:
+        emit(f"  (claimed achieved but not replayed, the replay's parser refusing the task, "
+             f"counted unsolved: {', '.join(unread)})")
     killed = [f"{r.domain} {r.task} {r.who}" for r in teleo if r.status == "timeout"]
     if killed:
         emit(f"  (killed at the time limit, counted unsolved: {len(killed)} teleo runs)")

@@ -108,9 +108,10 @@ def run_teleo(domain: str, task: str, domain_file: str, problem_file: str, limit
                   learned=str(out) if out.exists() else "", source=source,
                   plan=plan)
     if status == "achieved":
-        verdict = strips.check(strips.load(domain_file, problem_file), plan)
+        verdict = strips.verify(domain_file, problem_file, plan)
         if not verdict.valid:
-            return Run(domain, task, who, "invalid", detail=verdict.reason, **common)
+            return Run(domain, task, who, "invalid" if verdict.read else "unchecked",
+                       detail=verdict.reason, **common)
         return Run(domain, task, who, "solved", **common)
     return Run(domain, task, who, status if status in ("failed", "limit") else "error",
                detail=_reason(data) or (f"exit {done.returncode}, status {status!r}"
@@ -147,8 +148,8 @@ def run_pyperplan(domain: str, task: str, domain_file: str, problem_file: str, p
     if not soln.exists():
         return Run(domain, task, planner, "failed", wall_s=wall, detail="no plan found")
     plan = tuple(strips.read_plan(soln.read_text()))
-    verdict = strips.check(strips.load(domain_file, problem_file), plan)
+    verdict = strips.verify(domain_file, problem_file, plan)
     if not verdict.valid:
-        return Run(domain, task, planner, "invalid", True, len(plan), wall_s=wall,
-                   detail=verdict.reason, plan=plan)
+        return Run(domain, task, planner, "invalid" if verdict.read else "unchecked", True,
+                   len(plan), wall_s=wall, detail=verdict.reason, plan=plan)
     return Run(domain, task, planner, "solved", True, len(plan), wall_s=wall, plan=plan)

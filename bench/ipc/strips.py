@@ -6,8 +6,9 @@ engine is used, so a teleo summary that claims a success the replay denies is ca
 
 Covers what pyperplan parses: STRIPS with typing and domain constants (the five IPC domains of
 bench/ipc/suites), and action costs, which it drops itself before parsing (``uncosted``: a
-plan's validity does not depend on them). An action is a sequence of lower-case names,
-``("stack", "a", "b")``.
+plan's validity does not depend on them); negative preconditions and equality, which
+pyperplan does not read, are rewritten for it and tested here (negations.py). An action is a
+sequence of lower-case names, ``("stack", "a", "b")``.
 """
 
 from __future__ import annotations
@@ -18,7 +19,11 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from pyperplan.pddl.errors import ParseError
 from pyperplan.pddl.parser import Parser
+from pyperplan.pddl.tree_visitor import SemanticError
+
+from bench.ipc.negations import positive, split
 
 Atom = tuple[str, ...]
 """A ground atom: ("on", "a", "b")."""
@@ -39,6 +44,9 @@ class Operator:
     pre: tuple[Atom, ...]
     adds: tuple[Atom, ...]
     dels: tuple[Atom, ...]
+    absent: tuple[Atom, ...] = ()   # negative preconditions (negations.py)
+    same: tuple[tuple[str, str], ...] = ()    # (= ?a ?b)
+    differ: tuple[tuple[str, str], ...] = ()  # (not (= ?a ?b))
 
 
 @dataclass(frozen=True)
@@ -60,6 +68,7 @@ class Verdict:
     valid: bool
     length: int
     reason: str = ""
+    read: bool = True   # False: the replay's parser could not read the task, so no verdict
 
 
 def _atom(pred) -> Atom:
@@ -108,11 +117,13 @@ def load(domain: str | Path, problem: str | Path) -> StripsTask:
     """Parse ``domain`` and ``problem`` (PDDL files) with pyperplan's parser (action costs
     dropped first)."""
     texts = [Path(domain).read_text(), Path(problem).read_text()]
-    if any(map(has_costs, texts)):
+    read = [uncosted(t) if has_costs(t) else t for t in texts]
+    read[0] = positive(read[0])
+    if read != texts:
         with tempfile.TemporaryDirectory(prefix="strips-") as folder:
             files = [Path(folder) / "domain.pddl", Path(folder) / "problem.pddl"]
-            for f, t in zip(files, texts, strict=True):
-                f.write_text(uncosted(t))
+            for f, t in zip(files, read, strict=True):
+                f.write_text(t)
             return _parsed(*files)
     return _parsed(domain, problem)
 
@@ -127,10 +138,11 @@ def _parsed(domain: str | Path, problem: str | Path) -> StripsTask:
     for a in dom.actions.values():
         params = tuple((n.lower(), tuple(str(t.name).lower() for t in ts))
                        for n, ts in a.signature)
-        ops[a.name.lower()] = Operator(a.name.lower(), params,
-                                       tuple(_atom(p) for p in a.precondition),
+        holds, absent, same, differ = split(tuple(_atom(p) for p in a.precondition))
+        ops[a.name.lower()] = Operator(a.name.lower(), params, holds,
                                        tuple(_atom(p) for p in a.effect.addlist),
-                                       tuple(_atom(p) for p in a.effect.dellist))
+                                       tuple(_atom(p) for p in a.effect.dellist),
+                                       absent, same, differ)
     return StripsTask(ops, kinds, frozenset(_atom(p) for p in prob.initial_state),
                       frozenset(_atom(p) for p in prob.goal))
 
@@ -164,6 +176,15 @@ def apply(task: StripsTask, state: frozenset[Atom], step: Sequence[str]) -> froz
     for p in op.pre:
         if ground(p) not in state:
             raise Illegal(f"{_text(step)}: precondition {_text(ground(p))} is false")
+    for p in op.absent:
+        if ground(p) in state:
+            raise Illegal(f"{_text(step)}: precondition (not {_text(ground(p))}) is false")
+    for pair, want in (*((p, True) for p in op.same), *((p, False) for p in op.differ)):
+        left, right = ground(("=", *pair))[1:]
+        if (left == right) != want:
+            raise Illegal(f"{_text(step)}: precondition "
+                          f"{'(= ' if want else '(not (= '}{left} {right})"
+                          f"{'' if want else ')'} is false")
     return (state - {ground(d) for d in op.dels}) | {ground(a) for a in op.adds}
 
 
@@ -177,6 +198,18 @@ def replay(task: StripsTask, steps: Iterable[Sequence[str]]) -> frozenset[Atom]:
         except Illegal as exc:
             raise Illegal(f"step {k}: {exc}") from None
     return state
+
+
+def verify(domain: str | Path, problem: str | Path, steps: Sequence[Sequence[str]]) -> Verdict:
+    """``steps`` replayed on the task of ``domain`` and ``problem``; a task pyperplan's parser
+    refuses (a predicate it finds undeclared, a requirement it lacks) gets a Verdict with
+    ``read`` False and the parser's reason: neither valid nor denied."""
+    try:
+        task = load(domain, problem)
+    except (ParseError, SemanticError, ValueError, KeyError, AttributeError) as exc:
+        return Verdict(False, len(steps), f"the replay cannot read this task "
+                                          f"({type(exc).__name__}: {exc})", read=False)
+    return check(task, steps)
 
 
 def check(task: StripsTask, steps: Sequence[Sequence[str]]) -> Verdict:
