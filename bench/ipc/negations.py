@@ -5,8 +5,9 @@ many IPC domains use both. Before pyperplan parses a domain, each such literal o
 precondition is written as a positive atom of a predicate of its own (``(not (at ?t ?l))``
 -> ``(replay-not-at ?t ?l)``, declared with ``at``'s parameters; ``(= ?a ?b)`` ->
 ``(replay-eq ?a ?b)``, ``(not (= ...))`` -> ``(replay-neq ...)``), and the replay tests those
-atoms against the state instead of looking them up (``split``). Anything else pyperplan does
-not read (``forall``, ``when``, ``or``) is left as it is, for pyperplan to refuse.
+atoms against the state instead of looking them up (``split``); a goal's negative literals
+likewise. Anything else pyperplan does not read (``forall``, ``when``, ``or``) is left as it
+is, for pyperplan to refuse.
 """
 
 from __future__ import annotations
@@ -63,31 +64,46 @@ def _positive(tree: Tree, used: set[str]) -> Tree:
     return [_positive(t, used) for t in tree]
 
 
-def positive(text: str) -> str:
-    """Domain ``text`` with its actions' negative preconditions and equalities as atoms of
-    predicates declared for them; the text itself when it has none."""
-    if re.search(r"\(\s*(not|=)[\s(]", text, re.I) is None:
-        return text
-    forms = _read(text)
-    define = next((f for f in forms if _is(f, "define")), None)
-    if define is None:
-        return text
-    used: set[str] = set()
-    for item in define:
-        if _is(item, ":action"):
-            for k in range(len(item) - 1):
-                if str(item[k]).lower() == ":precondition":
-                    item[k + 1] = _positive(item[k + 1], used)
+def _declare(define: list, used: set[str]) -> bool:
+    """Declare the predicates of ``used`` in ``define``'s ``:predicates``; False if it has
+    none."""
     predicates = next((i for i in define if _is(i, ":predicates")), None)
     if predicates is None:
-        return text
+        return False
     declared = {str(d[0]).lower(): d[1:] for d in predicates[1:] if isinstance(d, list) and d}
     for name in sorted(used):
         if name in (EQ, NEQ):
             predicates.append([name, "?a", "?b"])
         elif name in declared:
             predicates.append([NOT + name, *declared[name]])
-    return "\n".join(map(_write, forms))
+    return True
+
+
+def positive(domain: str, problem: str = "") -> tuple[str, str]:
+    """Domain and problem texts with the actions' preconditions' and the goal's negative
+    literals and equalities as atoms of predicates declared for them; the texts themselves
+    when they have none."""
+    if re.search(r"\(\s*(not|=)[\s(]", domain + problem, re.I) is None:
+        return domain, problem
+    forms, goal_forms = _read(domain), _read(problem) if problem else []
+    define = next((f for f in forms if _is(f, "define")), None)
+    if define is None:
+        return domain, problem
+    used: set[str] = set()
+    for item in define:
+        if _is(item, ":action"):
+            for k in range(len(item) - 1):
+                if str(item[k]).lower() == ":precondition":
+                    item[k + 1] = _positive(item[k + 1], used)
+    goal_used: set[str] = set()
+    for form in goal_forms:
+        for k, item in enumerate(form if _is(form, "define") else ()):
+            if _is(item, ":goal"):
+                form[k] = [item[0], *(_positive(t, goal_used) for t in item[1:])]
+    if not _declare(define, used | goal_used):
+        return domain, problem
+    new_problem = "\n".join(map(_write, goal_forms)) if goal_used else problem
+    return "\n".join(map(_write, forms)), new_problem
 
 
 def split(pre: tuple[tuple[str, ...], ...]) -> tuple[tuple, tuple, tuple, tuple]:

@@ -58,6 +58,7 @@ class StripsTask:
     kinds: dict[str, frozenset[str]]
     init: frozenset[Atom]
     goal: frozenset[Atom]
+    goal_absent: frozenset[Atom] = frozenset()   # the goal's negative literals
 
 
 @dataclass(frozen=True)
@@ -117,8 +118,7 @@ def load(domain: str | Path, problem: str | Path) -> StripsTask:
     """Parse ``domain`` and ``problem`` (PDDL files) with pyperplan's parser (action costs
     dropped first)."""
     texts = [Path(domain).read_text(), Path(problem).read_text()]
-    read = [uncosted(t) if has_costs(t) else t for t in texts]
-    read[0] = positive(read[0])
+    read = list(positive(*(uncosted(t) if has_costs(t) else t for t in texts)))
     if read != texts:
         with tempfile.TemporaryDirectory(prefix="strips-") as folder:
             files = [Path(folder) / "domain.pddl", Path(folder) / "problem.pddl"]
@@ -143,8 +143,11 @@ def _parsed(domain: str | Path, problem: str | Path) -> StripsTask:
                                        tuple(_atom(p) for p in a.effect.addlist),
                                        tuple(_atom(p) for p in a.effect.dellist),
                                        absent, same, differ)
+    goal, absent, same, differ = split(tuple(_atom(p) for p in prob.goal))
+    if same or differ:
+        raise ValueError("an equality in the goal")   # not in any IPC task
     return StripsTask(ops, kinds, frozenset(_atom(p) for p in prob.initial_state),
-                      frozenset(_atom(p) for p in prob.goal))
+                      frozenset(goal), frozenset(absent))
 
 
 def _text(atom: Sequence[str]) -> str:
@@ -218,9 +221,10 @@ def check(task: StripsTask, steps: Sequence[Sequence[str]]) -> Verdict:
         state = replay(task, steps)
     except Illegal as exc:
         return Verdict(False, len(steps), str(exc))
-    missing = sorted(task.goal - state)
+    missing = [*map(_text, sorted(task.goal - state)),
+               *(f"(not {_text(a)})" for a in sorted(task.goal_absent & state))]
     if missing:
-        return Verdict(False, len(steps), "the goal's " + " ".join(map(_text, missing[:5]))
+        return Verdict(False, len(steps), "the goal's " + " ".join(missing[:5])
                        + (" ..." if len(missing) > 5 else "") + " false at the end")
     return Verdict(True, len(steps))
 

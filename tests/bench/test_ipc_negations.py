@@ -41,20 +41,38 @@ PROBLEM = """(define (problem three) (:domain doors)
          (opens k1 b))
   (:goal (and (at c))))
 """
+NEGATIVE_GOAL = PROBLEM.replace("(:goal (and (at c)))", "(:goal (and (not (holding k2)) (at a)))")
 ROOMS, KEYS = ("a", "b", "c"), ("k1", "k2")
 
 
+@pytest.fixture(scope="module", params=[PROBLEM, NEGATIVE_GOAL], ids=["goal", "negative-goal"])
+def problem(request) -> str:
+    return request.param
+
+
 @pytest.fixture(scope="module")
-def files(tmp_path_factory) -> tuple[Path, Path]:
+def files(tmp_path_factory, problem) -> tuple[Path, Path]:
     here = tmp_path_factory.mktemp("doors")
     (here / "domain.pddl").write_text(DOMAIN)
-    (here / "problem.pddl").write_text(PROBLEM)
+    (here / "problem.pddl").write_text(problem)
     return here / "domain.pddl", here / "problem.pddl"
 
 
-def test_a_good_plan_through_negative_preconditions_is_valid(files) -> None:
+def _files(tmp_path: Path, problem: str) -> tuple[Path, Path]:
+    (tmp_path / "domain.pddl").write_text(DOMAIN)
+    (tmp_path / "problem.pddl").write_text(problem)
+    return tmp_path / "domain.pddl", tmp_path / "problem.pddl"
+
+
+def test_a_good_plan_through_negative_preconditions_is_valid(tmp_path) -> None:
     plan = [("swap", "k2", "k1"), ("unlock", "k1", "b", "a"), ("go", "a", "b"), ("go", "b", "c")]
-    assert strips.verify(*files, plan) == strips.Verdict(True, 4)
+    assert strips.verify(*_files(tmp_path, PROBLEM), plan) == strips.Verdict(True, 4)
+
+
+def test_a_negative_goal_is_checked_at_the_end(tmp_path) -> None:
+    files = _files(tmp_path, NEGATIVE_GOAL)
+    assert strips.verify(*files, [("swap", "k2", "k1")]) == strips.Verdict(True, 1)
+    assert strips.verify(*files, []).reason == "the goal's (not (holding k2)) false at the end"
 
 
 @pytest.mark.parametrize("plan, reason", [
@@ -63,8 +81,8 @@ def test_a_good_plan_through_negative_preconditions_is_valid(files) -> None:
     ([("swap", "k2", "k2")], "step 1: (swap k2 k2): precondition (not (holding k2)) is false"),
     ([("swap", "k2", "k1"), ("unlock", "k1", "b", "a")], "the goal's (at c) false at the end"),
 ])
-def test_a_bad_plan_is_denied_naming_the_negative_literal(files, plan, reason) -> None:
-    verdict = strips.verify(*files, plan)
+def test_a_bad_plan_is_denied_naming_the_negative_literal(tmp_path, plan, reason) -> None:
+    verdict = strips.verify(*_files(tmp_path, PROBLEM), plan)
     assert verdict.read and not verdict.valid
     assert verdict.reason.startswith(reason)
 
@@ -74,7 +92,7 @@ def test_a_domain_without_negations_is_left_as_it_is() -> None:
         "(not (holding ?j)) (= ?k ?k)", "").replace("(and (not (at ?a)) (at ?b))", "(at ?b)")
     plain = plain.replace("(not (locked ?r))", "(at ?r)").replace(
         "(and (not (holding ?k)) (holding ?j))", "(holding ?j)")
-    assert negations.positive(plain) == plain
+    assert negations.positive(plain, PROBLEM) == (plain, PROBLEM)
 
 
 def test_what_pyperplan_cannot_read_is_no_verdict_either_way(tmp_path) -> None:
