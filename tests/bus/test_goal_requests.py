@@ -83,7 +83,7 @@ def test_requests_are_bounded_saved_before_the_answer_and_rate_limited(cfg, run_
     store = tmp_path / "goals.json"
     with goals_process(cfg, run_id, store) as (node, _proc, _log):
         huge = ask(node, "post", "(package-delivered " + "X" * 1_000_000 + ")", 5)
-        assert not huge.ok and huge.reason.endswith("longer than 4096 characters")
+        assert not huge.ok and huge.reason.endswith("longer than 65536 characters")
         big_priority = ask(node, "post", "(package-delivered PACKET1)", 2**64 - 1)
         assert not big_priority.ok and "priority must be an integer in 1..1000000" in \
             big_priority.reason

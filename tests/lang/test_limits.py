@@ -128,9 +128,9 @@ def test_an_empty_program_is_an_error(text):
 
 @pytest.mark.parametrize("goal, message", [
     ("(" * 100, "column 65: lists nested deeper than 64 levels"),
-    ("(package-delivered " + "P" * 4100 + ")", "longer than 4096 characters"),
+    ("(and" + " (package-delivered PACKET1)" * 2500 + ")", "longer than 65536 characters"),
     ("(package-delivered 1e999)", "column 20: 1e999: number inf is not finite"),
-    ("(package-delivered " + "7" * 5000 + ")", "longer than 4096 characters"),
+    ("(package-delivered " + "7" * 70000 + ")", "longer than 65536 characters"),
 ])
 def test_goals_within_the_limits(goal, message):
     with pytest.raises(GoalError, match=message):

@@ -140,7 +140,7 @@ def test_impasse_and_failure_are_reported_as_they_are_with_the_engines_note():
 # -- bounds on requests (fault drill O5) ---------------------------------------------------
 
 def test_a_goal_over_the_length_limit_is_refused_before_it_is_read():
-    with pytest.raises(GoalStoreError, match=r"longer than 4096 characters"):
+    with pytest.raises(GoalStoreError, match=r"longer than 65536 characters"):
         GoalStore().post("ME", "(package-delivered " + "X" * 1_000_000 + ")", 5, 0, accept_all)
 
 

@@ -118,3 +118,25 @@ def test_a_bad_time_limit_is_a_usage_error():
     result = CliRunner().invoke(cli, ["solve", str(BLOCKS[0]), str(BLOCKS[1]),
                                       "--time-limit", "0"])
     assert result.exit_code == 2 and "--time-limit" in result.output
+
+
+def test_a_goal_of_many_literals_longer_than_a_posted_goal_used_to_be_is_solved(tmp_path):
+    """A PDDL problem's goal may be thousands of characters (every cell of a grid to visit);
+    a line of 24 cells with long names gives one over 5,000."""
+    cells = [f"cell-{k:02d}-" + "x" * 200 for k in range(24)]
+    domain = """(define (domain line) (:requirements :strips :typing) (:types cell)
+  (:predicates (at ?c - cell) (next ?a - cell ?b - cell) (visited ?c - cell))
+  (:action move :parameters (?a - cell ?b - cell) :precondition (and (at ?a) (next ?a ?b))
+    :effect (and (not (at ?a)) (at ?b) (visited ?b))))"""
+    links = " ".join(f"(next {a} {b}) (next {b} {a})" for a, b in zip(cells, cells[1:]))
+    goal = " ".join(f"(visited {c})" for c in cells)
+    problem = (f"(define (problem walk) (:domain line) (:objects {' '.join(cells)} - cell)\n"
+               f"  (:init (at {cells[0]}) (visited {cells[0]}) {links})\n"
+               f"  (:goal (and {goal})))")
+    assert len(goal) > 5000
+    (tmp_path / "d.pddl").write_text(domain)
+    (tmp_path / "p.pddl").write_text(problem)
+    files = (tmp_path / "d.pddl", tmp_path / "p.pddl")
+    code, out = _solve(files)
+    assert (code, out["status"]) == (0, "achieved"), out
+    assert replayed(files, out["actions"]) and len(out["actions"]) == len(cells) - 1

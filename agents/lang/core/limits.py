@@ -28,9 +28,10 @@ INT_MIN, INT_MAX = -(2**63), 2**63 - 1
 """Integers are signed 64-bit: what msgpack carries on the bus."""
 MAX_DIAGNOSTICS = 100
 """Errors reported per source; reading stops after the first MAX_DIAGNOSTICS."""
-MAX_GOAL_CHARS = 4096
+MAX_GOAL_CHARS = 64 * 1024
 """[characters] of one goal's text, e.g. ``(package-delivered PACKET2)`` has 27; a
-conjunction of the 29 (on X Y) literals of a 30-block tower, about 400."""
+conjunction of the 29 (on X Y) literals of a 30-block tower, about 400; a PDDL problem's goal
+of a few hundred literals (every cell of a grid to visit), some 5,000 to 40,000."""
 MAX_EVENT_CHARS = 64 * 1024
 """[characters] of one world event's JSON text."""
 MAX_STATE_CHARS = 64 * 1024 * 1024
