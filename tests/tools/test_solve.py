@@ -128,7 +128,8 @@ def test_a_goal_of_many_literals_longer_than_a_posted_goal_used_to_be_is_solved(
   (:predicates (at ?c - cell) (next ?a - cell ?b - cell) (visited ?c - cell))
   (:action move :parameters (?a - cell ?b - cell) :precondition (and (at ?a) (next ?a ?b))
     :effect (and (not (at ?a)) (at ?b) (visited ?b))))"""
-    links = " ".join(f"(next {a} {b}) (next {b} {a})" for a, b in zip(cells, cells[1:]))
+    links = " ".join(f"(next {a} {b}) (next {b} {a})"
+                     for a, b in zip(cells, cells[1:], strict=False))
     goal = " ".join(f"(visited {c})" for c in cells)
     problem = (f"(define (problem walk) (:domain line) (:objects {' '.join(cells)} - cell)\n"
                f"  (:init (at {cells[0]}) (visited {cells[0]}) {links})\n"

@@ -11,10 +11,13 @@ from world.errors import ConfigError
 from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate, uncommented
 
 _UNSUPPORTED = {
-    "When": "conditional effects (when)", "Forall": "universal quantifiers (forall)",
-    "ForallCondition": "universal quantifiers (forall)",
-    "ExistsCondition": "existential quantifiers (exists)", "Or": "disjunctions (or)",
-    "Imply": "implications (imply)", "OneOf": "non-deterministic effects (oneof)",
+    "When": "conditional effects (when; :conditional-effects)",
+    "Forall": "universal quantifiers (forall; :conditional-effects)",
+    "ForallCondition": "universal quantifiers (forall; :universal-preconditions)",
+    "ExistsCondition": "existential quantifiers (exists; :existential-preconditions)",
+    "Or": "disjunctions (or; :disjunctive-preconditions)",
+    "Imply": "implications (imply; :disjunctive-preconditions)",
+    "OneOf": "non-deterministic effects (oneof; :non-deterministic)",
 }
 
 

@@ -24,6 +24,12 @@ from world.pddl.task import DomainModel, Task, locate, position, uncommented
 INSTALL = "pip install 'teleo[pddl]'"
 SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality",
                        "action-costs"})
+SYNTAX_ONLY = frozenset({"adl", "disjunctive-preconditions", "existential-preconditions",
+                         "universal-preconditions", "quantified-preconditions"})
+"""Requirements that only allow syntax in conditions: a domain that declares one and writes
+STRIPS runs (many IPC domains declare :adl and use none of it); the construct itself, where
+written, is refused at its place, naming it and its requirement (convert.py). Conditional
+effects, durative actions and numeric fluents are refused where declared."""
 
 
 _PARSERS: list = []   # the library's two parsers, made once per process (each builds its grammar)
@@ -102,7 +108,7 @@ def _check_requirements(text: str, path: str | Path) -> None:
     library reads some of them, such as durative actions, only partly)."""
     for m in re.finditer(r"\(\s*:requirements\b([^)]*)\)", text, re.I):
         for r in re.finditer(r":([\w-]+)", m.group(1)):
-            if r.group(1).lower() not in SUPPORTED:
+            if r.group(1).lower() not in SUPPORTED | SYNTAX_ONLY:
                 at = position(path, text, m.start(1) + r.start())
                 raise ConfigError(f"{at}: pddl: requirement :{r.group(1).lower()} is not "
                                   f"supported; the pddl world runs {_fragment()}")

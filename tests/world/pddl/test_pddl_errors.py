@@ -49,7 +49,8 @@ def test_a_file_that_ends_early_says_so(tmp_path):
 
 
 @pytest.mark.parametrize("requirement", [":conditional-effects", ":durative-actions",
-                                         ":numeric-fluents", ":adl"])
+                                         ":numeric-fluents", ":derived-predicates",
+                                         ":timed-initial-literals"])
 def test_an_unsupported_requirement_is_refused_by_name(tmp_path, requirement):
     text = DOMAIN.replace(":equality)", f":equality {requirement})")
     msg = _domain_error(tmp_path, text)
@@ -57,10 +58,31 @@ def test_an_unsupported_requirement_is_refused_by_name(tmp_path, requirement):
     assert msg.startswith(f"{tmp_path / 'd.pddl'}:4:")
 
 
-def test_an_undeclared_conditional_effect_is_refused_by_name(tmp_path):
-    text = DOMAIN.replace("(ready)))\n", "(when (ready) (ready))))\n", 1)
+@pytest.mark.parametrize("requirement", [":adl", ":disjunctive-preconditions",
+                                         ":quantified-preconditions"])
+def test_a_syntax_requirement_declared_and_not_used_runs(tmp_path, requirement):
+    text = DOMAIN.replace(":equality)", f":equality {requirement})")
+    path = write_problem(tmp_path, text, "d.pddl")
+    assert load_domain(path).name == "trucks"
+
+
+@pytest.mark.parametrize("declared", ["", " :adl"])
+def test_a_conditional_effect_is_refused_naming_it_and_its_requirement(tmp_path, declared):
+    text = DOMAIN.replace(":equality)", f":equality{declared})").replace(
+        "(ready)))\n", "(when (ready) (ready))))\n", 1)
     assert "(when" in text
-    assert "conditional effects (when) not supported" in _domain_error(tmp_path, text)
+    msg = _domain_error(tmp_path, text)
+    assert "conditional effects (when; :conditional-effects) not supported" in msg
+    assert msg.startswith(f"{tmp_path / 'd.pddl'}:")
+
+
+def test_a_disjunction_declared_by_adl_is_refused_at_its_place(tmp_path):
+    text = DOMAIN.replace(":equality)", ":equality :adl)").replace(
+        "(not (broken ?v)))", "(or (not (broken ?v)) (ready)))", 1)
+    assert "(or" in text
+    msg = _domain_error(tmp_path, text)
+    assert "disjunctions (or; :disjunctive-preconditions) not supported" in msg
+    assert msg.startswith(f"{tmp_path / 'd.pddl'}:15:")
 
 
 def test_an_undeclared_type_in_the_domain_is_named(tmp_path):
