@@ -35,11 +35,11 @@ def declares_costs(code: str) -> bool:
     m = re.search(r"\(\s*:functions\b", code, re.I)
     if m is None:
         return False
-    body = code[m.end():_end(code, m.start()) - 1]
+    body = code[m.end():form_end(code, m.start()) - 1]
     return [n.lower() for n in re.findall(r"\(\s*([^\s()]+)", body)] == ["total-cost"]
 
 
-def _end(code: str, start: int) -> int:
+def form_end(code: str, start: int) -> int:
     """The index just after the parenthesised expression opening at ``start``."""
     depth = 0
     for k in range(start, len(code)):
@@ -66,7 +66,7 @@ def _blank(code: str, spans: list[tuple[int, int]], empty: list[tuple[int, int]]
 
 
 def _spans(code: str, pattern: str) -> list[tuple[int, int]]:
-    return [(m.start(), _end(code, m.start())) for m in re.finditer(pattern, code, re.I)]
+    return [(m.start(), form_end(code, m.start())) for m in re.finditer(pattern, code, re.I)]
 
 
 def without_costs(code: str, path: str | Path, problem: bool) -> str:

@@ -20,6 +20,7 @@ from world.errors import ConfigError
 from world.pddl.convert import domain_model, task_of
 from world.pddl.costs import NOTE, declares_costs, without_costs
 from world.pddl.task import DomainModel, Task, locate, position, uncommented
+from world.pddl.type_list import single_types
 
 INSTALL = "pip install 'teleo[pddl]'"
 SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality",
@@ -64,6 +65,7 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
     costs = declares_costs(code)
     if costs:   # run with the costs ignored (costs.py), and say so
         code = without_costs(code, path, problem=False)
+    code = single_types(code)
     for construct, name in (("durative-action", "durative actions (:durative-action)"),
                             ("functions", "numeric fluents (:functions)"),
                             ("derived", "derived predicates (:derived)")):
@@ -71,7 +73,7 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
         if m:
             raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not "
                               f"supported; the pddl world runs STRIPS with {_fragment()}")
-    d = _parsed(parse_domain, path, code if costs else text)
+    d = _parsed(parse_domain, path, code if code != uncommented(text) else text)
     model = domain_model(d, str(path), text)
     return replace(model, notes=(NOTE,)) if costs else model
 
@@ -115,7 +117,17 @@ def _check_requirements(text: str, path: str | Path) -> None:
 
 
 def _parsed(parse, path: str | Path, text: str):
-    """The library's parse of ``text``, its errors as one line at file:line:col."""
+    """The library's parse of ``text``, its errors as one line at file:line:col. A parser
+    that failed is dropped: the library leaves it mid-parse, and its next parse would fail
+    with "parser is in an unexpected state"."""
+    try:
+        return _parse(parse, path, text)
+    except ConfigError:
+        reset_parsers()
+        raise
+
+
+def _parse(parse, path: str | Path, text: str):
     from lark.exceptions import (
         LarkError,
         UnexpectedCharacters,

@@ -169,3 +169,9 @@ def test_teleo_solve_of_a_bad_problem_is_one_line(tmp_path):
     out = CliRunner().invoke(cli, ["solve", str(TRUCKS[0]), str(bad)])
     assert out.exit_code == 1 and "Traceback" not in out.output
     assert out.output.count("\n") == 1 and f"{bad}:3:" in out.output
+
+
+def test_a_syntax_error_leaves_the_next_file_readable(tmp_path):
+    bad = DOMAIN.replace(":effect", ":efect", 1)
+    assert "syntax error" in _domain_error(tmp_path, bad)
+    assert load_domain(write_problem(tmp_path, DOMAIN, "good.pddl")).name == "trucks"
