@@ -141,3 +141,21 @@ def test_a_goal_of_many_literals_longer_than_a_posted_goal_used_to_be_is_solved(
     code, out = _solve(files)
     assert (code, out["status"]) == (0, "achieved"), out
     assert replayed(files, out["actions"]) and len(out["actions"]) == len(cells) - 1
+
+
+def test_a_goal_reached_by_many_ways_through_the_same_literals_is_solved(tmp_path):
+    """Each (p_i) and (q_i) needs both (p_i-1) and (q_i-1): regressing (p22) along every way
+    walks 2**22 chains through the same 44 literals; the conjuncts' needs are read from a
+    bounded regression, so the first cycle ends and the plan is the shortest, 44 actions."""
+    n = 22
+    preds = " ".join(f"(p{i}) (q{i})" for i in range(n + 1))
+    acts = "\n".join(f"(:action make-{x}{i} :parameters () :precondition (and (p{i - 1}) "
+                     f"(q{i - 1})) :effect ({x}{i}))" for i in range(1, n + 1) for x in "pq")
+    (tmp_path / "d.pddl").write_text(f"(define (domain lattice) (:requirements :strips) "
+                                     f"(:predicates {preds})\n{acts})")
+    (tmp_path / "p.pddl").write_text(f"(define (problem l) (:domain lattice) (:init (p0) (q0))"
+                                     f" (:goal (and (p{n}) (q{n}))))")
+    files = (tmp_path / "d.pddl", tmp_path / "p.pddl")
+    code, out = _solve(files, "--time-limit", "60")
+    assert (code, out["status"]) == (0, "achieved"), out["reason"]
+    assert len(out["actions"]) == 2 * n and replayed(files, out["actions"])

@@ -39,6 +39,9 @@ from .task import Task
 
 MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
 MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]
+MAX_REGRESS = 256   # literals regressed for one goal's needs [literals]: a goal reached by
+                    # many ways through the same literals is regressed along each; the tuned
+                    # domains' plans take a few dozen
 MAX_SHARED = 64    # agendas kept across cycles [agendas]
 
 
@@ -97,15 +100,17 @@ def needs(task: Task, goal: str, above: tuple[str, ...] = ()) -> dict[Literal, s
     key = ("needs", goal, above)
     if key not in task.memo:
         out: dict[Literal, str] = {}
-        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above))
+        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above),
+                 [MAX_REGRESS])
         task.memo[key] = out
     return task.memo[key]
 
 
 def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozenset,
-             out: dict[Literal, str], avoid: frozenset = frozenset()) -> None:
+             out: dict[Literal, str], avoid: frozenset, budget: list[int]) -> None:
     out.setdefault(goal, above)
-    if depth >= MAX_PLAN or goal in on_path:
+    budget[0] -= 1
+    if depth >= MAX_PLAN or goal in on_path or budget[0] < 0:
         return
     if task.holds(goal):
         for r in _support(task, goal, MAX_SUPPORT):
@@ -126,7 +131,7 @@ def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozens
         if cond.negated or cond.variables():
             out.setdefault(cond, here)
         else:
-            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid)
+            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid, budget)
 
 
 def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
