@@ -1,6 +1,8 @@
 """The engine's small case, where a cycle's work is mostly fixed costs: a variable is one object
-per name (equal and hashed by identity), and the effect model binds an action list only to
-the primitive skills whose actions have its shape, giving what trying every skill gives."""
+per name (equal and hashed by identity); the effect model binds an action list only to the
+primitive skills whose actions have its shape, giving what trying every skill gives; a fact
+store keeps each relation's text for the loop watch's digest until the relation changes, and
+the digest of a store changed step by step is that of a fresh store holding the same facts."""
 
 from __future__ import annotations
 
@@ -15,8 +17,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from agents.lang import Literal, Var, load_program, load_program_text
+from agents.lang.core.store import FactStore, PerceptIndex
 from agents.lang.core.terms import Action, Expr
 from agents.lang.execution.effects import Effects
+from agents.lang.execution.loops import world
 
 from .solving.test_stated_effects import program as blocks_with_effects
 
@@ -98,3 +102,32 @@ def test_an_action_with_an_expression_argument_binds_no_skill():
     gas = next(s for s in program.skills if s.actions and s.actions[0].name == "*gas")
     expr = Action("*gas", (Expr("+", (1, 2)),) * len(gas.actions[0].args))
     assert Effects(program).of_actions([expr]) == Effects(program).of_actions([])
+
+
+_ATOM = st.one_of(st.sampled_from(["A", "B"]), st.integers(-1, 2),
+                  st.sampled_from([0.0, -0.0, 1.0, 2.5]))
+_CHANGE = st.tuples(st.sampled_from(["insert", "delete", "replace", "add", "index"]),
+                    st.sampled_from(["on", "near", ("self", ("speed",))]),
+                    st.lists(st.tuples(_ATOM, _ATOM), max_size=3))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(_CHANGE, max_size=12))
+def test_a_stores_digest_text_is_a_fresh_stores_after_every_change(changes):
+    store = FactStore()
+    index = PerceptIndex.of_groups({"self": [["self", "ME", "speed", 1.0]]})
+    for kind, rel, tuples in changes:
+        have = store.get(rel)
+        if kind == "insert":
+            store.insert(rel, list(dict.fromkeys(t for t in tuples if t not in have)))
+        elif kind == "delete":
+            store.delete(rel, sorted(have, key=repr)[:len(tuples)])
+        elif kind == "replace":
+            store.replace(rel, tuples)
+        elif kind == "add":
+            store.add(rel, tuples)
+        else:
+            store.index(rel, (0,))
+        fresh = FactStore({r: set(ts) for r, ts in store.facts.items()})
+        assert store.lines(rel) == tuple(sorted(map(repr, store.get(rel))))
+        assert world(index, store) == world(index, fresh)
