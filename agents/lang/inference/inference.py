@@ -68,8 +68,7 @@ class Stratum:
     recursive: bool
     rules: tuple  # ((Rule, variants), ...)
     reads: frozenset  # relations read from below (percept relations and lower concepts)
-    elems: tuple = ()  # ((Rule, variants, position, Elem, later), ...) of every rule, in
-    #                    order; ``later``: the relations of the rule's elements after it
+    elems: tuple = ()  # ((Rule, variants, position, Elem), ...) of every rule, in order
 
 
 def build_strata(program: Program) -> list[Stratum]:
@@ -80,8 +79,7 @@ def build_strata(program: Program) -> list[Stratum]:
                  *(base_rule(p, program.arity[p]) for p in preds)]
         rules = tuple((r, variants(r)) for r in rules)
         reads = frozenset(rel for r, _ in rules for rel in r.reads()) - set(preds)
-        elems = tuple((r, vs, i, e, tuple({x.rel: 0 for x in r.elems[i + 1:]}))
-                      for r, vs in rules for i, e in enumerate(r.elems))
+        elems = tuple((r, vs, i, e) for r, vs in rules for i, e in enumerate(r.elems))
         out.append(Stratum(tuple(preds), recursive, rules, reads, elems))
     return out
 

@@ -29,12 +29,11 @@ class Maintainer:
         self.edb, self.idb, self.counts, self.est = edb, idb, counts, est
         self.derivations = 0
 
-    def views(self, rule, i: int, changes: dict, later: tuple) -> tuple:
-        """Stores for a driver on element ``i``: before it as now, after it as before
-        (``later``: the relations of the elements after it)."""
+    def views(self, rule, i: int, changes: dict) -> tuple:
+        """Stores for a driver on element ``i``: before it as now, after it as before."""
         new = (self.idb, self.edb)
         elems = rule.elems
-        if not any(map(changes.__contains__, later)):
+        if not any(elems[j].rel in changes for j in range(i + 1, len(elems))):
             return tuple(new[e.percept] for e in elems)  # (no OldView needed)
         old = (OldView(self.idb, changes), OldView(self.edb, changes))
         return tuple(old[e.percept] if j > i and e.rel in changes else new[e.percept]
@@ -60,11 +59,11 @@ class Maintainer:
         """Update a non-recursive stratum; its set-level change (pred -> Delta)."""
         minus: list = []
         plus: list = []
-        for rule, vs, i, e, later in stratum.elems:
+        for rule, vs, i, e in stratum.elems:
             d = changes.get(e.rel)
             if d:
                 fn = vs[i].get(self.est)
-                S = self.views(rule, i, changes, later)
+                S = self.views(rule, i, changes)
                 if e.negated:
                     gained, lost = self.flips(rule, i, d, changes)
                 else:
