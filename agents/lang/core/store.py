@@ -30,14 +30,17 @@ class FactStore:
     """Relations as name -> set of argument tuples, with maintained indexes on bound positions.
 
     Concept facts are keyed by predicate (str); the percept relations that inference builds are
-    keyed by (type, attrs). ``version`` counts the runs that changed the store."""
+    keyed by (type, attrs). ``version`` counts the runs that changed the store. Its facts change
+    only through ``insert``, ``delete``, ``replace`` and ``add``, which keep what is derived from
+    them (the indexes, ``lines``) what it would be made afresh."""
 
-    __slots__ = ("facts", "_ix", "_by_rel", "version")
+    __slots__ = ("facts", "_ix", "_by_rel", "_text", "version")
 
     def __init__(self, facts: dict | None = None):
         self.facts: dict = facts if facts is not None else {}
         self._ix: dict[tuple, dict] = {}
         self._by_rel: dict[object, list] = {}  # rel -> [(key function, index), ...]
+        self._text: dict[object, tuple[str, ...]] = {}  # rel -> ``lines(rel)``, until it changes
         self.version = 0
 
     def get(self, rel: object) -> set | frozenset:
@@ -54,6 +57,15 @@ class FactStore:
             self._by_rel.setdefault(rel, []).append((key, ix))
         return ix
 
+    def lines(self, rel: object) -> tuple[str, ...]:
+        """The ``repr`` of every tuple of ``rel``, sorted (the text the loop watch digests);
+        kept, as the indexes are, until ``rel`` changes, so that the digest of a cycle pays
+        only for the relations that changed since the last one."""
+        got = self._text.get(rel)
+        if got is None:
+            got = self._text[rel] = tuple(sorted(map(repr, self.facts.get(rel, ()))))
+        return got
+
     def has_index(self, rel: object, positions: tuple[int, ...]) -> bool:
         return (rel, positions) in self._ix
 
@@ -61,6 +73,7 @@ class FactStore:
         """Add ``tuples``, none of them present yet, keeping the indexes up to date."""
         if not tuples:
             return
+        self._text.pop(rel, None)
         s = self.facts.get(rel)
         if s is None:
             s = self.facts[rel] = set()
@@ -72,6 +85,7 @@ class FactStore:
         """Remove ``tuples``, all of them present, keeping the indexes up to date."""
         if not tuples:
             return
+        self._text.pop(rel, None)
         s = self.facts[rel]
         s.difference_update(tuples)
         for key, ix in self._by_rel.get(rel, ()):
@@ -85,6 +99,7 @@ class FactStore:
     def replace(self, rel: object, tuples: Iterable[tuple]) -> None:
         """Make ``rel`` hold exactly ``tuples`` (its indexes are dropped and built again on use)."""
         self.facts[rel] = set(tuples)
+        self._text.pop(rel, None)
         for _key, ix in self._by_rel.pop(rel, ()):
             ix.clear()
         for k in [k for k in self._ix if k[0] == rel]:

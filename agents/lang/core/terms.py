@@ -3,20 +3,46 @@ actions (seed 000, "Representation of Knowledge"). Constants are plain str (symb
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import FrozenInstanceError, dataclass, field
 from typing import NamedTuple
+from weakref import WeakValueDictionary
 
 from .errors import LangError
 
 
-@dataclass(frozen=True, slots=True)
 class Var:
-    """A pattern-match variable ``?name``."""
+    """A pattern-match variable ``?name``. Immutable, and one object per name while any is
+    alive (``Var("x") is Var("x")``), so that it is equal and hashed by identity, in C rather
+    than by a Python ``__eq__``/``__hash__``: variables key every binding the matcher makes."""
 
+    __slots__ = ("name", "__weakref__")
     name: str
+
+    def __new__(cls, name: str) -> Var:
+        v = _VARS.get(name)
+        if v is None:
+            v = object.__new__(cls)
+            object.__setattr__(v, "name", name)
+            _VARS[name] = v
+        return v
+
+    def __setattr__(self, key: str, value: object) -> None:
+        raise FrozenInstanceError(f"cannot assign to field {key!r}")
+
+    def __delattr__(self, key: str) -> None:
+        raise FrozenInstanceError(f"cannot delete field {key!r}")
+
+    def __reduce__(self) -> tuple:
+        return (Var, (self.name,))
+
+    def __repr__(self) -> str:
+        return f"Var(name={self.name!r})"
 
     def __str__(self) -> str:
         return "?" + self.name
+
+
+_VARS: WeakValueDictionary[str, Var] = WeakValueDictionary()  # name -> its one live Var
 
 
 def fmt(v: object) -> str:
@@ -82,7 +108,7 @@ class Literal:
     loc: Loc | None = field(default=None, compare=False)
 
     def __str__(self) -> str:
-        core = "(" + " ".join([self.pred, *(fmt(a) for a in self.args)]) + ")"
+        core = "(" + " ".join([self.pred, *map(fmt, self.args)]) + ")"
         return f"(not {core})" if self.negated else core
 
     def variables(self) -> set[Var]:

@@ -43,6 +43,13 @@ class Effects:
         self.program = program
         self._actions: dict[tuple, tuple[tuple[Literal, ...], tuple[Literal, ...]]] = {}
         self._undoes: dict[Literal, tuple[Literal, ...]] = {}
+        # primitive skills with :actions by the names and arities of their actions, in
+        # program order: the only ones ``_action_binding`` can bind for actions of that shape
+        # (actions with continuous values are new every cycle, so the cache below misses)
+        self._performing: dict[tuple, list] = {}
+        for s in program.skills:
+            if s.kind == "primitive" and s.actions:
+                self._performing.setdefault(_shape(s.actions), []).append(s)
 
     # -- actions -----------------------------------------------------------------------------
     def of_actions(self, actions: tuple[Action, ...] | list[Action]
@@ -52,8 +59,7 @@ class Effects:
         key = tuple((a.name, a.args) for a in actions)
         hit = self._actions.get(key)
         if hit is None:
-            stated = [(s, b) for s in self.program.skills
-                      if s.kind == "primitive" and s.actions
+            stated = [(s, b) for s in self._performing.get(_shape(actions), ())
                       for b in [_action_binding(s, actions)] if b is not None]
             heads = [_pattern(s.head, b) for s, b in stated]
             adds = [_pattern(e, b) for s, b in stated for e in s.effects if not e.negated]
@@ -245,6 +251,11 @@ def _canonical(lit: Literal) -> Literal:
     names: dict = {}
     return Literal(lit.pred, tuple(names.setdefault(a, Var(f"_{len(names) + 1}"))
                                    if isinstance(a, Var) else a for a in lit.args))
+
+
+def _shape(actions) -> tuple:
+    """The names and numbers of arguments of ``actions``, in order."""
+    return tuple((a.name, len(a.args)) for a in actions)
 
 
 def _action_binding(skill, actions) -> dict | None:

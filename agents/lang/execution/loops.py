@@ -61,7 +61,7 @@ def world(pidx: PerceptIndex, store: FactStore) -> str:
     parts = ["\n".join(rows), "\n|"] if rows else ["|"]
     facts = store.facts
     for pred in sorted(k for k in facts if isinstance(k, str)):
-        lines = sorted(map(repr, facts[pred]))
+        lines = store.lines(pred)
         if lines:
             parts += (pred, ("\n" + pred).join(lines), "\n")
     return hashlib.blake2b("".join(parts).encode(), digest_size=16).hexdigest()

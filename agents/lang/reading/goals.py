@@ -18,7 +18,7 @@ is refused (``enumerable``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from ..core.conjunction import (
     Conjunction,
@@ -53,10 +53,10 @@ class GoalEntry:
     once: bool = False
     deadline: int = -1
     ended: str = ""
+    text: str = field(init=False, repr=False, compare=False)  # the literal's text, made once
 
-    @property
-    def text(self) -> str:
-        return str(self.literal)
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "text", str(self.literal))
 
 
 def ordered(entries: tuple[GoalEntry, ...]) -> list[GoalEntry]:
