@@ -131,3 +131,15 @@ def test_a_stores_digest_text_is_a_fresh_stores_after_every_change(changes):
         fresh = FactStore({r: set(ts) for r, ts in store.facts.items()})
         assert store.lines(rel) == tuple(sorted(map(repr, store.get(rel))))
         assert world(index, store) == world(index, fresh)
+
+
+def test_threads_making_one_name_at_once_get_one_variable():
+    from concurrent.futures import ThreadPoolExecutor
+
+    from agents.lang.core.terms import Var
+
+    names = [f"racing{k}" for k in range(200)]
+    with ThreadPoolExecutor(8) as pool:
+        made = list(pool.map(lambda n: [Var(n) for _ in range(50)], names * 4))
+    for k, name in enumerate(names * 4):
+        assert all(v is Var(name) for v in made[k])

@@ -4,6 +4,7 @@ actions (seed 000, "Representation of Knowledge"). Constants are plain str (symb
 from __future__ import annotations
 
 from dataclasses import FrozenInstanceError, dataclass, field
+from threading import Lock
 from typing import NamedTuple
 from weakref import WeakValueDictionary
 
@@ -21,9 +22,12 @@ class Var:
     def __new__(cls, name: str) -> Var:
         v = _VARS.get(name)
         if v is None:
-            v = object.__new__(cls)
-            object.__setattr__(v, "name", name)
-            _VARS[name] = v
+            with _MAKING:   # two threads making the same name get the same object
+                v = _VARS.get(name)
+                if v is None:
+                    v = object.__new__(cls)
+                    object.__setattr__(v, "name", name)
+                    _VARS[name] = v
         return v
 
     def __setattr__(self, key: str, value: object) -> None:
@@ -43,6 +47,7 @@ class Var:
 
 
 _VARS: WeakValueDictionary[str, Var] = WeakValueDictionary()  # name -> its one live Var
+_MAKING = Lock()
 
 
 def fmt(v: object) -> str:
