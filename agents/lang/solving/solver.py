@@ -29,7 +29,7 @@ from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, held_by, one_step, undoes_any
-from .search import MAX_PUSHES, advance
+from .search import MAX_PUSHES, advance, next_conjunct
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
 from .task import Task
@@ -100,9 +100,10 @@ class MeansEndsSolver(ImpasseHandler):
             held = held_by(task, stack) if mine else []
             items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)
                                         and not undoes_any(task, c, held)] + [current]))
-        elif current and mine and (current in conds or not items):
-            self._refocus(walk, stack, current)   # (a part of a plan done first stays: the
-            #                                        plan still needs it)
+        elif current and mine and (current in conds or not items) and \
+                not self._refocus(task, walk, stack, conds, current):
+            items = [current]   # (a part of a plan done first stays: the plan still needs
+            #                      it; so does a conjunct the search would push again)
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
@@ -135,17 +136,25 @@ class MeansEndsSolver(ImpasseHandler):
         return True
 
     @staticmethod
-    def _refocus(walk: Walk, stack: GoalStack, current: str) -> None:
-        """Drop what the stack ``stack`` of a conjunction does for its conjunct ``current``."""
+    def _refocus(task: Task, walk: Walk, stack: GoalStack, conds: tuple[str, ...],
+                 current: str) -> bool:
+        """Drop what the stack ``stack`` of a conjunction (of ``conds``) does for its
+        conjunct ``current``; not when the search would push ``current`` again at once (the
+        agenda's conjuncts all given up, it falls back on the written order): dropping it
+        every cycle, acting never, would be a livelock that no change of situation shows.
+        Returns whether it was dropped."""
         bottom = stack.entries[0]
         pushes = list(bottom.pushes)
         if current in pushes:
             del pushes[len(pushes) - 1 - pushes[::-1].index(current)]
+        if next_conjunct(task, conds, tuple(pushes), [bottom.goal]) == current:
+            return False
         kept = replace(stack, entries=(replace(bottom, pushes=tuple(pushes)),))
         state: SolverState = walk.current("solver")
         stacks = tuple(kept if s.goal_id == stack.goal_id else s for s in state.stacks)
         _publish(walk, stacks, (f"{stack.goal_id}: dropped {current}: achieving it now would "
                                 "undo what another conjunct's plan needs",), (), ())
+        return True
 
     def begin(self, finder: PathFinder, walk: Walk) -> None:
         state: SolverState = walk.current("solver")
@@ -190,9 +199,18 @@ class MeansEndsSolver(ImpasseHandler):
             stack = walk.current("solver").stack_of(entry.id) or stack
         prev = walk.state.path_of(entry.id)
 
-        def probe(goal: Literal):
+        def probe(goal: Literal, keep: tuple[Literal, ...]):
             memory = Remembered(prev, entry.id not in walk.state.active) \
                 if prev and prev[0].goal == str(goal) else NOTHING
+            if keep:   # a path that keeps what the way under way holds, if there is one
+                saved = walk.protected
+                walk.protected = [*saved, (entry.id, f"(the way {goal} is for)", keep)]
+                try:
+                    found = finder.achieve(walk, goal, memory, 0, frozenset())
+                finally:
+                    walk.protected = saved
+                if found:
+                    return found
             return finder.achieve(walk, goal, memory, 0, frozenset())
 
         step = advance(task, stack, probe)
