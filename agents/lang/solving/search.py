@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 from ..core.terms import Literal
 from ..execution.effects import undone_by
-from ..execution.paths import Found
+from ..execution.paths import Found, PathFinder, Walk
 from .loose import rebind
 from .ordering import agenda
 from .state import (
@@ -183,6 +183,26 @@ def _kept(task: Task, entries: list[StackEntry]) -> tuple[Literal, ...]:
         for c in e.decision.conditions
         if c != top and pushable(lit := condition(c)) and task.holds(c)
         and not undone_by(lit, undone)))
+
+
+def keeping(finder: PathFinder, walk: Walk, goal: Literal, keep: tuple[Literal, ...],
+             goal_id: str) -> Found | None:
+    """A one-action path for ``goal`` (a primitive skill whose head it is) that undoes none of
+    ``keep``, or None: what the search prefers to a path that undoes what the ways below the
+    subgoal hold (``_kept``); only one-action paths are looked
+    at, so that a subgoal with none costs one more pass over its primitive skills, not
+    another search of every path."""
+    saved = walk.protected
+    walk.protected = [*saved, (goal_id, f"(the ways below {goal})", keep)]
+    try:
+        for s in finder.program.skills_for(goal.pred):
+            if s.kind == "primitive":
+                found = finder.enter(walk, s, goal, str(goal), 0, frozenset())
+                if found:
+                    return found
+    finally:
+        walk.protected = saved
+    return None
 
 
 def next_conjunct(task: Task, conds: tuple[str, ...], pushes: tuple[str, ...],

@@ -22,14 +22,14 @@ from dataclasses import replace
 
 from ..core.conjunction import Conjunction
 from ..core.terms import Literal
-from ..execution.effects import Effects
+from ..execution.effects import Effects, undone_goal
 from ..execution.executive import Impasse, ImpasseHandler
 from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, held_by, one_step, undoes_any
-from .search import MAX_PUSHES, advance, next_conjunct
+from .search import MAX_PUSHES, advance, keeping, next_conjunct
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
 from .task import Task
@@ -138,10 +138,8 @@ class MeansEndsSolver(ImpasseHandler):
     @staticmethod
     def _refocus(task: Task, walk: Walk, stack: GoalStack, conds: tuple[str, ...],
                  current: str) -> bool:
-        """Drop what the stack ``stack`` of a conjunction (of ``conds``) does for its
-        conjunct ``current``; not when the search would push ``current`` again at once (the
-        agenda's conjuncts all given up, it falls back on the written order): dropping it
-        every cycle, acting never, would be a livelock that no change of situation shows.
+        """Drop what the stack of a conjunction (of ``conds``) does for ``current``, unless
+        the search would push it again at once (a livelock no change of situation shows).
         Returns whether it was dropped."""
         bottom = stack.entries[0]
         pushes = list(bottom.pushes)
@@ -202,16 +200,9 @@ class MeansEndsSolver(ImpasseHandler):
         def probe(goal: Literal, keep: tuple[Literal, ...]):
             memory = Remembered(prev, entry.id not in walk.state.active) \
                 if prev and prev[0].goal == str(goal) else NOTHING
-            if keep:   # a path that keeps what the way under way holds, if there is one
-                saved = walk.protected
-                walk.protected = [*saved, (entry.id, f"(the way {goal} is for)", keep)]
-                try:
-                    found = finder.achieve(walk, goal, memory, 0, frozenset())
-                finally:
-                    walk.protected = saved
-                if found:
-                    return found
-            return finder.achieve(walk, goal, memory, 0, frozenset())
+            found = finder.achieve(walk, goal, memory, 0, frozenset())
+            undoes = found and keep and undone_goal(finder.effects, [("", "", keep)], found[1])
+            return keeping(finder, walk, goal, keep, entry.id) or found if undoes else found
 
         step = advance(task, stack, probe)
         events += [f"{entry.id}: {e}" for e in step.events]
