@@ -179,7 +179,7 @@ def _kept(task: Task, entries: list[StackEntry]) -> tuple[Literal, ...]:
     top = entries[-1].goal
     undone = task.effects.undoes(literal(top))
     return tuple(dict.fromkeys(
-        lit for e in entries[1:-1] if e.decision is not None and e.decision.kind == SKILL
+        lit for e in entries[:-1] if e.decision is not None and e.decision.kind == SKILL
         for c in e.decision.conditions
         if c != top and pushable(lit := condition(c)) and task.holds(c)
         and not undone_by(lit, undone)))
