@@ -28,7 +28,7 @@ from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
-from .ordering import agenda, held_by, one_step, undoes_any
+from .ordering import agenda, excused, held_by, one_step, undoes_any
 from .search import MAX_PUSHES, advance, keeping, next_conjunct
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
@@ -139,13 +139,15 @@ class MeansEndsSolver(ImpasseHandler):
     def _refocus(task: Task, walk: Walk, stack: GoalStack, conds: tuple[str, ...],
                  current: str) -> bool:
         """Drop what the stack of a conjunction (of ``conds``) does for ``current``, unless
-        the search would push it again at once (a livelock no change of situation shows).
-        Returns whether it was dropped."""
+        the search would push it again at once (a livelock no change of situation shows) or
+        the way under way excuses its threats (``excused``). Returns whether it was dropped."""
         bottom = stack.entries[0]
         pushes = list(bottom.pushes)
         if current in pushes:
             del pushes[len(pushes) - 1 - pushes[::-1].index(current)]
         if next_conjunct(task, conds, tuple(pushes), [bottom.goal]) == current:
+            return False
+        if excused(task, conds, current, stack):
             return False
         kept = replace(stack, entries=(replace(bottom, pushes=tuple(pushes)),))
         state: SolverState = walk.current("solver")
