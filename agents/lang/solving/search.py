@@ -18,7 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from ..core.terms import Literal
-from ..execution.effects import undone_by
+from ..execution.effects import undone_by, undone_goal
 from ..execution.paths import Found, PathFinder, Walk
 from .loose import rebind
 from .ordering import agenda
@@ -186,23 +186,25 @@ def _kept(task: Task, entries: list[StackEntry]) -> tuple[Literal, ...]:
 
 
 def keeping(finder: PathFinder, walk: Walk, goal: Literal, keep: tuple[Literal, ...],
-             goal_id: str) -> Found | None:
-    """A one-action path for ``goal`` (a primitive skill whose head it is) that undoes none of
-    ``keep``, or None: what the search prefers to a path that undoes what the ways below the
-    subgoal hold (``_kept``); only one-action paths are looked
-    at, so that a subgoal with none costs one more pass over its primitive skills, not
-    another search of every path."""
+            goal_id: str, found: Found | None) -> Found | None:
+    """``found`` (the first path for ``goal``), unless its actions undo one of ``keep`` (what
+    the ways below the subgoal hold: ``_kept``) and a one-action path (a primitive skill whose
+    head ``goal`` is) undoes none of them: then that one. Only one-action paths are looked at,
+    so that a subgoal with none costs one more pass over its primitive skills, not another
+    search of every path."""
+    if not found or not keep or not undone_goal(finder.effects, [("", "", keep)], found[1]):
+        return found
     saved = walk.protected
     walk.protected = [*saved, (goal_id, f"(the ways below {goal})", keep)]
     try:
         for s in finder.program.skills_for(goal.pred):
             if s.kind == "primitive":
-                found = finder.enter(walk, s, goal, str(goal), 0, frozenset())
-                if found:
-                    return found
+                other = finder.enter(walk, s, goal, str(goal), 0, frozenset())
+                if other:
+                    return other
     finally:
         walk.protected = saved
-    return None
+    return found
 
 
 def next_conjunct(task: Task, conds: tuple[str, ...], pushes: tuple[str, ...],

@@ -22,7 +22,7 @@ from dataclasses import replace
 
 from ..core.conjunction import Conjunction
 from ..core.terms import Literal
-from ..execution.effects import Effects, undone_goal
+from ..execution.effects import Effects
 from ..execution.executive import Impasse, ImpasseHandler
 from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
@@ -102,8 +102,7 @@ class MeansEndsSolver(ImpasseHandler):
                                         and not undoes_any(task, c, held)] + [current]))
         elif current and mine and (current in conds or not items) and \
                 not self._refocus(task, walk, stack, conds, current):
-            items = [current]   # (a part of a plan done first stays: the plan still needs
-            #                      it; so does a conjunct the search would push again)
+            items = [current]   # (a part of a plan done first stays: the plan needs it)
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
@@ -138,9 +137,8 @@ class MeansEndsSolver(ImpasseHandler):
     @staticmethod
     def _refocus(task: Task, walk: Walk, stack: GoalStack, conds: tuple[str, ...],
                  current: str) -> bool:
-        """Drop what the stack of a conjunction (of ``conds``) does for ``current``, unless
-        the search would push it again at once (a livelock no change of situation shows) or
-        the way under way excuses its threats (``excused``). Returns whether it was dropped."""
+        """Drop what the stack of a conjunction does for ``current``, unless the search would
+        push it again at once (a livelock) or its way excuses its threats. Dropped: True."""
         bottom = stack.entries[0]
         pushes = list(bottom.pushes)
         if current in pushes:
@@ -203,8 +201,7 @@ class MeansEndsSolver(ImpasseHandler):
             memory = Remembered(prev, entry.id not in walk.state.active) \
                 if prev and prev[0].goal == str(goal) else NOTHING
             found = finder.achieve(walk, goal, memory, 0, frozenset())
-            undoes = found and keep and undone_goal(finder.effects, [("", "", keep)], found[1])
-            return keeping(finder, walk, goal, keep, entry.id) or found if undoes else found
+            return keeping(finder, walk, goal, keep, entry.id, found)
 
         step = advance(task, stack, probe)
         events += [f"{entry.id}: {e}" for e in step.events]
