@@ -34,7 +34,7 @@ from ..core.terms import Literal, Test, Var
 from ..execution.effects import undone_by
 from .landmarks import key as _key
 from .landmarks import landmarks
-from .state import condition, literal, pushable
+from .state import SKILL, condition, literal, pushable
 from .task import Task
 
 MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
@@ -186,6 +186,31 @@ def one_step(task: Task, g: str) -> bool:
             if not task.undoes_skill(s, b):
                 return True
     return False
+
+
+def excused(task: Task, conds: tuple[str, ...], g: str, stack) -> bool:
+    """Whether the way under way for the conjunct ``g`` (the skill chained off it on the goal
+    stack ``stack``) excuses every threat of ``g`` to another unsatisfied conjunct's plan:
+    each is to a need that plan has only for a goal the way achieves too (a piece glazed
+    white is glazed, so its being untreated, which glazing it black would need, is no longer
+    needed). False when there is no threat, or no such way."""
+    way = stack.entries[1].decision if len(stack.entries) > 1 else None
+    if way is None or way.kind != SKILL or g not in conds:
+        return False
+    made = made_by(task, way)
+    unsat = [c for c in conds if c != g and pushable(condition(c)) and not task.holds(c)]
+    threats = [above for h in unsat for need, above in needs(task, h).items()
+               if _threatens(task, g, need, above)]
+    return bool(threats) and all(above and literal(above) in made for above in threats)
+
+
+def made_by(task: Task, way) -> list[Literal]:
+    """The ground literals the skill of the way ``way`` (an Alternative) states it achieves."""
+    s = task.skill(way.clause)
+    b = dict(way.bindings)
+    return [Literal(x.pred, tuple(b.get(a.name, a) if isinstance(a, Var) else a
+                                  for a in x.args))
+            for x in (s.head, *s.effects) if not x.negated]
 
 
 def held_by(task: Task, stack) -> list[Literal]:

@@ -18,7 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from ..core.terms import Literal
-from ..execution.paths import Found
+from ..execution.effects import undone_by, undone_goal
+from ..execution.paths import Found, PathFinder, Walk
 from .loose import rebind
 from .ordering import agenda
 from .state import (
@@ -40,8 +41,9 @@ MAX_STACK = 64      # deepest goal stack [entries] (clearing the bottom of a tow
 MAX_EXECUTE = 50    # cycles a subgoal's path may run without achieving it [cycles]
 MAX_PUSHES = 2      # times one condition of a way may be pushed (achieved, undone, again)
 
-Probe = Callable[[Literal], "Found | None"]
-"""An executable path for a subgoal in the current situation, or None."""
+Probe = Callable[[Literal, tuple[Literal, ...]], "Found | None"]
+"""An executable path for a subgoal in the current situation, or None; given the literals to
+keep, one whose first action undoes none of them when there is such a path."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -65,7 +67,8 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
     while True:
         top = entries[-1]
         # (the goal itself, at the bottom, is what the executive has just found no path for)
-        found = probe(literal(top.goal)) if len(entries) > 1 else None
+        found = probe(literal(top.goal), _kept(task, entries)) if len(entries) > 1 \
+            else None
         if found is not None and top.executed < MAX_EXECUTE:
             first = found[2][0]
             entries[-1] = replace(top, executed=top.executed + 1,
@@ -131,12 +134,7 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
     solver; not the planner's back-chainer, whose control rules order its goals), also for a
     skill's start."""
     if way.kind == CONJUNCTION or (way.kind == CONCEPT and len(on_stack) == 1):
-        # a conjunct given up after a circle is not pushed again; a user's goal written as a
-        # concept is ordered as its relations written as (and ...) would be
-        items = [c for c in agenda(task, way.conditions) if c not in on_stack
-                 and entry.pushes.count(c) < MAX_PUSHES]
-        cond = items[0] if items else next((c for c in way.conditions
-                                            if not task.holds(c)), None)
+        cond = next_conjunct(task, way.conditions, entry.pushes, on_stack)
     else:
         cond = next((c for c in way.conditions if not task.holds(c)), None)
         if ordered and way.kind == SKILL and cond is not None and \
@@ -171,6 +169,54 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
         why = (f"decomposed {entry.goal} through {way.shows} into "
                f"{' '.join(way.conditions)}; {cond} does not hold")
     return StackEntry(cond, why), ""
+
+
+def _kept(task: Task, entries: list[StackEntry]) -> tuple[Literal, ...]:
+    """What a path for the top subgoal should not undo where it can help it: the conditions
+    of the skills chained off on the stack below it that hold now (a hoist made available by
+    putting its crate down anywhere but back on the crate a way below needs clear), less
+    those that achieving it undoes whatever the way (the crate the hoist lifts)."""
+    top = entries[-1].goal
+    undone = task.effects.undoes(literal(top))
+    return tuple(dict.fromkeys(
+        lit for e in entries[:-1] if e.decision is not None and e.decision.kind == SKILL
+        for c in e.decision.conditions
+        if c != top and pushable(lit := condition(c)) and task.holds(c)
+        and not undone_by(lit, undone)))
+
+
+def keeping(finder: PathFinder, walk: Walk, goal: Literal, keep: tuple[Literal, ...],
+            goal_id: str, found: Found | None) -> Found | None:
+    """``found`` (the first path for ``goal``), unless its actions undo one of ``keep`` (what
+    the ways below the subgoal hold: ``_kept``) and a one-action path (a primitive skill whose
+    head ``goal`` is) undoes none of them: then that one. Only one-action paths are looked at,
+    so that a subgoal with none costs one more pass over its primitive skills, not another
+    search of every path."""
+    if not found or not keep or not undone_goal(finder.effects, [("", "", keep)], found[1]):
+        return found
+    saved = walk.protected
+    walk.protected = [*saved, (goal_id, f"(the ways below {goal})", keep)]
+    try:
+        for s in finder.program.skills_for(goal.pred):
+            if s.kind == "primitive":
+                other = finder.enter(walk, s, goal, str(goal), 0, frozenset())
+                if other:
+                    return other
+    finally:
+        walk.protected = saved
+    return found
+
+
+def next_conjunct(task: Task, conds: tuple[str, ...], pushes: tuple[str, ...],
+                  on_stack: list[str]) -> str | None:
+    """The conjunct of ``conds`` the search pushes next: the first of the agenda that is not
+    on the stack nor pushed MAX_PUSHES times already (a conjunct given up after a circle is
+    not pushed again); when the agenda has none left, the first that does not hold, in
+    written order (a user's goal written as a concept is ordered as its relations written as
+    (and ...) would be)."""
+    items = [c for c in agenda(task, conds) if c not in on_stack
+             and pushes.count(c) < MAX_PUSHES]
+    return items[0] if items else next((c for c in conds if not task.holds(c)), None)
 
 
 def _short(reason: str, limit: int = 400) -> str:

@@ -28,8 +28,8 @@ from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
-from .ordering import agenda, held_by, one_step, undoes_any
-from .search import MAX_PUSHES, advance
+from .ordering import agenda, excused, held_by, one_step, undoes_any
+from .search import MAX_PUSHES, advance, keeping, next_conjunct
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
 from .task import Task
@@ -100,9 +100,9 @@ class MeansEndsSolver(ImpasseHandler):
             held = held_by(task, stack) if mine else []
             items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)
                                         and not undoes_any(task, c, held)] + [current]))
-        elif current and mine and (current in conds or not items):
-            self._refocus(walk, stack, current)   # (a part of a plan done first stays: the
-            #                                        plan still needs it)
+        elif current and mine and (current in conds or not items) and \
+                not self._refocus(task, walk, stack, conds, current):
+            items = [current]   # (a part of a plan done first stays: the plan needs it)
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
@@ -135,17 +135,24 @@ class MeansEndsSolver(ImpasseHandler):
         return True
 
     @staticmethod
-    def _refocus(walk: Walk, stack: GoalStack, current: str) -> None:
-        """Drop what the stack ``stack`` of a conjunction does for its conjunct ``current``."""
+    def _refocus(task: Task, walk: Walk, stack: GoalStack, conds: tuple[str, ...],
+                 current: str) -> bool:
+        """Drop what the stack of a conjunction does for ``current``, unless the search would
+        push it again at once (a livelock) or its way excuses its threats. Dropped: True."""
         bottom = stack.entries[0]
         pushes = list(bottom.pushes)
         if current in pushes:
             del pushes[len(pushes) - 1 - pushes[::-1].index(current)]
+        if next_conjunct(task, conds, tuple(pushes), [bottom.goal]) == current:
+            return False
+        if excused(task, conds, current, stack):
+            return False
         kept = replace(stack, entries=(replace(bottom, pushes=tuple(pushes)),))
         state: SolverState = walk.current("solver")
         stacks = tuple(kept if s.goal_id == stack.goal_id else s for s in state.stacks)
         _publish(walk, stacks, (f"{stack.goal_id}: dropped {current}: achieving it now would "
                                 "undo what another conjunct's plan needs",), (), ())
+        return True
 
     def begin(self, finder: PathFinder, walk: Walk) -> None:
         state: SolverState = walk.current("solver")
@@ -190,10 +197,11 @@ class MeansEndsSolver(ImpasseHandler):
             stack = walk.current("solver").stack_of(entry.id) or stack
         prev = walk.state.path_of(entry.id)
 
-        def probe(goal: Literal):
+        def probe(goal: Literal, keep: tuple[Literal, ...]):
             memory = Remembered(prev, entry.id not in walk.state.active) \
                 if prev and prev[0].goal == str(goal) else NOTHING
-            return finder.achieve(walk, goal, memory, 0, frozenset())
+            found = finder.achieve(walk, goal, memory, 0, frozenset())
+            return keeping(finder, walk, goal, keep, entry.id, found)
 
         step = advance(task, stack, probe)
         events += [f"{entry.id}: {e}" for e in step.events]
