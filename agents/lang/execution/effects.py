@@ -43,6 +43,7 @@ class Effects:
         self.program = program
         self._actions: dict[tuple, tuple[tuple[Literal, ...], tuple[Literal, ...]]] = {}
         self._undoes: dict[Literal, tuple[Literal, ...]] = {}
+        self._achieved: dict[Literal, tuple[Literal, ...]] = {}
         # primitive skills with :actions by the names and arities of their actions, in
         # program order: the only ones ``_action_binding`` can bind for actions of that shape
         # (actions with continuous values are new every cycle, so the cache below misses)
@@ -95,10 +96,16 @@ class Effects:
         any value."""
         return self._stated_with(e, True)
 
-    def achieved_with(self, e: Literal) -> list[Literal]:
+    def achieved_with(self, e: Literal) -> tuple[Literal, ...]:
         """What every primitive skill that states its effects and can achieve ``e`` also
-        achieves (``(on A B)`` by *stack comes with ``(clear A)``), as patterns."""
-        return [p for p in self._stated_with(e, False) if p != _canonical(e)]
+        achieves (``(on A B)`` by *stack comes with ``(clear A)``), as patterns; kept as
+        ``undoes`` keeps its answers."""
+        hit = self._achieved.get(e)
+        if hit is None:
+            hit = tuple(p for p in self._stated_with(e, False) if p != _canonical(e))
+            if len(self._achieved) < _MAX_CACHE:
+                self._achieved[e] = hit
+        return hit
 
     def _stated_with(self, e: Literal, negated: bool) -> list[Literal]:
         common: list[Literal] | None = None

@@ -45,6 +45,7 @@ class TypedEffects(InferredEffects):
         if admits != self.admits:
             self.admits = admits
             self._undoes.clear()
+            self._achieved.clear()
             self._actions.clear()
             self._inferred.clear()
 
