@@ -56,8 +56,8 @@ def test_achieving_a_literal_undoes_what_every_way_to_it_deletes():
     held = effects.undoes(Literal("holding", ("a",)))
     assert Literal("clear", ("a",)) in held                 # both ways delete it
     assert not any(p.pred in ("ontable", "on") for p in held)   # only one way each
-    assert effects.achieved_with(Literal("on", ("a", "b"))) == [Literal("clear", ("a",))]
-    assert effects.achieved_with(Literal("holding", ("a",))) == []
+    assert effects.achieved_with(Literal("on", ("a", "b"))) == (Literal("clear", ("a",)),)
+    assert effects.achieved_with(Literal("holding", ("a",))) == ()
 
 
 def test_a_program_without_effects_predicts_as_before():
