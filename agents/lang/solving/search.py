@@ -57,8 +57,10 @@ class Step:
     note: str = ""
 
 
-def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
-    """One cycle of means-ends search on ``stack`` (see the module docstring)."""
+def advance(task: Task, stack: GoalStack, probe: Probe, focus: str = "") -> Step:
+    """One cycle of means-ends search on ``stack`` (see the module docstring); ``focus``: the
+    goal the executive's last path was for (a conjunct, or a part of one's plan done first):
+    among the conjuncts free to be pushed, that one's goes on."""
     entries = list(stack.entries)
     events: list[str] = []
     decided = False
@@ -79,7 +81,7 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
             return Step(replace(stack, entries=tuple(entries)), None, "", tuple(events),
                         f"problem solving: pushed {top.goal}")
         else:
-            entry, child, reason = decide(task, top, [e.goal for e in entries])
+            entry, child, reason = decide(task, top, [e.goal for e in entries], focus=focus)
             entries[-1] = entry
             if child is not None:
                 entries.append(child)
@@ -95,8 +97,8 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
                                           f"{_short(reason)}")
 
 
-def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = False
-           ) -> tuple[StackEntry, StackEntry | None, str]:
+def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = False,
+           focus: str = "") -> tuple[StackEntry, StackEntry | None, str]:
     """One chaining decision for ``entry``: (entry updated, the child to push, "") or, when
     no way is left, (entry, None, why): the chosen way goes on with its next unsatisfied
     condition; failing that, the next alternative is chosen afresh. With ``ready`` (the
@@ -117,14 +119,14 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
         entry = rebind(task, entry)
         if ready and all(task.holds(c) for c in entry.decision.conditions):
             return entry, None, ""
-        child, why = _push(task, entry, entry.decision, on_stack, not ready)
+        child, why = _push(task, entry, entry.decision, on_stack, not ready, focus)
         if child is not None:
             return replace(entry, pushes=entry.pushes + (child.goal,)), child, ""
         entry = entry.give_up(why)
 
 
 def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
-          ordered: bool = True) -> tuple[StackEntry | None, str]:
+          ordered: bool = True, focus: str = "") -> tuple[StackEntry | None, str]:
     """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none;
     for a conjunction, or the concept definition of the goal itself (at the bottom of the
     stack), the first of its agenda (agents/lang/solving/ordering.py); with ``ordered`` (the
@@ -133,7 +135,7 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
     if way.kind == CONJUNCTION or (way.kind == CONCEPT and len(on_stack) == 1):
         # a conjunct given up after a circle is not pushed again; a user's goal written as a
         # concept is ordered as its relations written as (and ...) would be
-        items = [c for c in agenda(task, way.conditions) if c not in on_stack
+        items = [c for c in agenda(task, way.conditions, focus) if c not in on_stack
                  and entry.pushes.count(c) < MAX_PUSHES]
         cond = items[0] if items else next((c for c in way.conditions
                                             if not task.holds(c)), None)

@@ -28,7 +28,7 @@ from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
-from .ordering import agenda, held_by, one_step, undoes_any
+from .ordering import agenda, held_by, one_step, pending_part, undoes_any
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
@@ -103,6 +103,10 @@ class MeansEndsSolver(ImpasseHandler):
         elif current and mine and (current in conds or not items):
             self._refocus(walk, stack, current)   # (a part of a plan done first stays: the
             #                                        plan still needs it)
+        elif current and not mine and pending_part(task, conds, current):
+            items = [current, *items]   # so does one the executive's own path was for (a
+            # learned skill clearing B: the hand it filled on the way no longer makes the
+            # agenda promote (clear B), which the solver's stack would still work on)
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
@@ -195,7 +199,7 @@ class MeansEndsSolver(ImpasseHandler):
                 if prev and prev[0].goal == str(goal) else NOTHING
             return finder.achieve(walk, goal, memory, 0, frozenset())
 
-        step = advance(task, stack, probe)
+        step = advance(task, stack, probe, prev[0].goal if prev else "")
         events += [f"{entry.id}: {e}" for e in step.events]
         conflicts = tuple(dict.fromkeys(stack.conflicts + tuple(
             f"{g} {text}" for g, text in task.conflicts.items())))
