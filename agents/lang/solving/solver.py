@@ -28,10 +28,10 @@ from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
-from .ordering import agenda, held_by, one_step, pending_part, undoes_any
+from .ordering import agenda, held_by, needs, one_step, pending_part, undoes_any
 from .search import MAX_PUSHES, advance
 from .section import SolverSection
-from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
+from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal, pushable
 from .task import Task
 from .typed import TypedEffects
 
@@ -97,7 +97,8 @@ class MeansEndsSolver(ImpasseHandler):
             # block in the hand to its place); not a part of another's plan, which would
             # take the hand from the work under way, nor one that undoes what the way under
             # way has already achieved (a car rotated back off the segment it was brought to)
-            held = held_by(task, stack) if mine else []
+            held = held_by(task, stack) if mine else [   # (no stack: what the path's plan
+                n for n in needs(task, current) if pushable(n) and task.holds(n)]   # holds)
             items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)
                                         and not undoes_any(task, c, held)] + [current]))
         elif current and mine and (current in conds or not items):
