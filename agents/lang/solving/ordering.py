@@ -57,10 +57,6 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         return task.shared[key]
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
     plans = {h: needs(task, h, above) for h in unsat}
-    if current and current not in conds:   # a part of a conjunct's plan, done first: that
-        # conjunct's plan goes on (not another's, which would move again what the
-        # first would have put in its place)
-        current = next((h for h in unsat if literal(current) in plans[h]), current)
     free, promote = [], []
     # achieving a conjunct that another undoes outright is left for after it (the movie is
     # rewound, which resets the counter, before the counter is reset); the one that undoes it
@@ -75,6 +71,13 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
             free.append(g)
         elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
             promote += [above for _, _, above in threats if above]
+    if current and current not in conds:   # a part of a conjunct's plan, done first: that
+        # conjunct's plan goes on (not another's, which would move again what the
+        # first would have put in its place): of those free, the one whose plan needs it
+        # nearest
+        current = min((h for h in [*free, *unsat] if literal(current) in plans[h]),
+                      key=lambda h: (h not in free, _depth(plans[h], literal(current))),
+                      default=current)
     if free:
         now = [g for g in free if one_step(task, g)]
         now += [p for p in dict.fromkeys(promote) if p not in now and one_step(task, p)]
@@ -89,6 +92,16 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         task.shared.clear()
     task.shared[key] = out
     return out
+
+
+def _depth(plan: dict[Literal, str], need: Literal) -> int:
+    """How many unsatisfied goals of ``plan`` (``needs``) lie between ``need`` and the
+    conjunct the plan is for: (clear B), which unstacking B for (on B D) needs, is nearer
+    (on B D) than (on A E), whose plan unstacks B off A to free A."""
+    depth, above = 0, plan.get(need, "")
+    while above and depth < MAX_PLAN:
+        depth, above = depth + 1, plan.get(literal(above), "")
+    return depth
 
 
 def needs(task: Task, goal: str, above: tuple[str, ...] = ()) -> dict[Literal, str]:
@@ -226,3 +239,12 @@ def undoes_any(task: Task, goal: str, held: list[Literal]) -> bool:
         return False
     patterns = task.effects.undoes(literal(goal))
     return any(undone_by(h, patterns) for h in held)
+
+
+def pending_part(task: Task, conds: tuple[str, ...], goal: str) -> bool:
+    """Whether ``goal`` is an unsatisfied part (not a conjunct) of the plan of an unsatisfied
+    conjunct among ``conds`` (``needs``): the executive goes on with its own path for it."""
+    if goal in conds or task.holds(goal) or not pushable(condition(goal)):
+        return False
+    return any(literal(goal) in needs(task, c) for c in conds
+               if pushable(condition(c)) and not task.holds(c))

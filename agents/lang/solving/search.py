@@ -59,8 +59,10 @@ class Step:
     note: str = ""
 
 
-def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
-    """One cycle of means-ends search on ``stack`` (see the module docstring)."""
+def advance(task: Task, stack: GoalStack, probe: Probe, focus: str = "") -> Step:
+    """One cycle of means-ends search on ``stack`` (see the module docstring); ``focus``: the
+    goal the executive's last path was for (a conjunct, or a part of one's plan done first):
+    among the conjuncts free to be pushed, that one's goes on."""
     entries = list(stack.entries)
     events: list[str] = []
     decided = False
@@ -82,7 +84,7 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
             return Step(replace(stack, entries=tuple(entries)), None, "", tuple(events),
                         f"problem solving: pushed {top.goal}")
         else:
-            entry, child, reason = decide(task, top, [e.goal for e in entries])
+            entry, child, reason = decide(task, top, [e.goal for e in entries], focus=focus)
             entries[-1] = entry
             if child is not None:
                 entries.append(child)
@@ -98,8 +100,8 @@ def advance(task: Task, stack: GoalStack, probe: Probe) -> Step:
                                           f"{_short(reason)}")
 
 
-def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = False
-           ) -> tuple[StackEntry, StackEntry | None, str]:
+def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = False,
+           focus: str = "") -> tuple[StackEntry, StackEntry | None, str]:
     """One chaining decision for ``entry``: (entry updated, the child to push, "") or, when
     no way is left, (entry, None, why): the chosen way goes on with its next unsatisfied
     condition; failing that, the next alternative is chosen afresh. With ``ready`` (the
@@ -120,21 +122,21 @@ def decide(task: Task, entry: StackEntry, on_stack: list[str], ready: bool = Fal
         entry = rebind(task, entry)
         if ready and all(task.holds(c) for c in entry.decision.conditions):
             return entry, None, ""
-        child, why = _push(task, entry, entry.decision, on_stack, not ready)
+        child, why = _push(task, entry, entry.decision, on_stack, not ready, focus)
         if child is not None:
             return replace(entry, pushes=entry.pushes + (child.goal,)), child, ""
         entry = entry.give_up(why)
 
 
 def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
-          ordered: bool = True) -> tuple[StackEntry | None, str]:
+          ordered: bool = True, focus: str = "") -> tuple[StackEntry | None, str]:
     """The next unsatisfied condition of ``way`` as a new stack entry, or why there is none;
     for a conjunction, or the concept definition of the goal itself (at the bottom of the
     stack), the first of its agenda (agents/lang/solving/ordering.py); with ``ordered`` (the
     solver; not the planner's back-chainer, whose control rules order its goals), also for a
     skill's start."""
     if way.kind == CONJUNCTION or (way.kind == CONCEPT and len(on_stack) == 1):
-        cond = next_conjunct(task, way.conditions, entry.pushes, on_stack)
+        cond = next_conjunct(task, way.conditions, entry.pushes, on_stack, focus)
     else:
         cond = next((c for c in way.conditions if not task.holds(c)), None)
         if ordered and way.kind == SKILL and cond is not None and \
@@ -208,13 +210,13 @@ def keeping(finder: PathFinder, walk: Walk, goal: Literal, keep: tuple[Literal, 
 
 
 def next_conjunct(task: Task, conds: tuple[str, ...], pushes: tuple[str, ...],
-                  on_stack: list[str]) -> str | None:
+                  on_stack: list[str], focus: str = "") -> str | None:
     """The conjunct of ``conds`` the search pushes next: the first of the agenda that is not
     on the stack nor pushed MAX_PUSHES times already (a conjunct given up after a circle is
     not pushed again); when the agenda has none left, the first that does not hold, in
     written order (a user's goal written as a concept is ordered as its relations written as
-    (and ...) would be)."""
-    items = [c for c in agenda(task, conds) if c not in on_stack
+    (and ...) would be); ``focus``: the conjunct the executive's last path served."""
+    items = [c for c in agenda(task, conds, focus) if c not in on_stack
              and pushes.count(c) < MAX_PUSHES]
     return items[0] if items else next((c for c in conds if not task.holds(c)), None)
 

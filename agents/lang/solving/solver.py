@@ -28,10 +28,10 @@ from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
-from .ordering import agenda, excused, held_by, one_step, undoes_any
+from .ordering import agenda, excused, held_by, needs, one_step, pending_part, undoes_any
 from .search import MAX_PUSHES, advance, keeping, next_conjunct
 from .section import SolverSection
-from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal
+from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal, pushable
 from .task import Task
 from .typed import TypedEffects
 
@@ -97,12 +97,17 @@ class MeansEndsSolver(ImpasseHandler):
             # block in the hand to its place); not a part of another's plan, which would
             # take the hand from the work under way, nor one that undoes what the way under
             # way has already achieved (a car rotated back off the segment it was brought to)
-            held = held_by(task, stack) if mine else []
+            held = held_by(task, stack) if mine else [   # (no stack: what the path's plan
+                n for n in needs(task, current) if pushable(n) and task.holds(n)]   # holds)
             items = list(dict.fromkeys([c for c in items if c in conds and one_step(task, c)
                                         and not undoes_any(task, c, held)] + [current]))
         elif current and mine and (current in conds or not items) and \
                 not self._refocus(task, walk, stack, conds, current):
             items = [current]   # (a part of a plan done first stays: the plan needs it)
+        elif current and not mine and pending_part(task, conds, current):
+            items = [current, *items]   # so does one the executive's own path was for (a
+            # learned skill clearing B: the hand it filled on the way no longer makes the
+            # agenda promote (clear B), which the solver's stack would still work on)
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
@@ -203,7 +208,7 @@ class MeansEndsSolver(ImpasseHandler):
             found = finder.achieve(walk, goal, memory, 0, frozenset())
             return keeping(finder, walk, goal, keep, entry.id, found)
 
-        step = advance(task, stack, probe)
+        step = advance(task, stack, probe, prev[0].goal if prev else "")
         events += [f"{entry.id}: {e}" for e in step.events]
         conflicts = tuple(dict.fromkeys(stack.conflicts + tuple(
             f"{g} {text}" for g, text in task.conflicts.items())))

@@ -22,7 +22,16 @@ from ..execution.effects import undone_goal
 from ..execution.paths import btuple, show
 from .bindings import cheapest
 from .landmarks import key, landmarks
-from .state import CONCEPT, CONJUNCTION, SKILL, Alternative, grounded, literal, pushable
+from .state import (
+    CONCEPT,
+    CONJUNCTION,
+    SKILL,
+    Alternative,
+    condition,
+    grounded,
+    literal,
+    pushable,
+)
 
 MAX_BINDINGS = 64      # candidate bindings examined per clause
 MAX_PER_CLAUSE = 3     # alternatives kept per clause (the best-ranked bindings)
@@ -54,7 +63,10 @@ class Ways:
         """Skill chaining first, then concept chaining (seed 000: "chaining backwards off
         either conceptual clauses or primitive skills, with a priority on the latter"): the
         primitive skills for the goal in program order, then its concept clauses; within a
-        clause the best-ranked bindings (``rank``), at most MAX_PER_CLAUSE of them. Skills
+        clause the best-ranked bindings (``rank``), at most MAX_PER_CLAUSE of them. Where the
+        program admits the relaxed estimate, the primitive skills' ways are ordered by it
+        (stable: program order among equals): a package is unloaded at an airport from the
+        airplane that can bring it, not from a truck that could only be loaded there. Skills
         with subgoals (learned or written) are not chained off: the executive already found
         none of them executable, and their starts are compound.
         ``applicable``: also the skills whose conditions all hold already (a planner that
@@ -72,6 +84,8 @@ class Ways:
         else:
             out = [a for s in self.program.skills_for(goal.pred) if s.kind == "primitive"
                    for a in self._by_skill(s, goal, applicable)]
+            if len(out) > 1 and not applicable and self.estimated():
+                out.sort(key=lambda a: self.estimate([condition(c) for c in a.conditions]))
             for clause in self.program.concepts.get(goal.pred, ()) if concepts else ():
                 out += self._by_concept(clause, goal)
         self._alternatives[key] = hit = tuple(out)

@@ -84,12 +84,20 @@ FALLBACK = """
 """
 
 
+# a skill for a concept defined by relations: the program admits no relaxed estimate
+# (agents/lang/solving/relaxed.py), so the primitive skills are tried in program order
+NO_ESTIMATE = FALLBACK + """
+(concepts ((set ?x) :percepts ((thing ?x)) :relations ((lit ?x))))
+(skills ((set ?x) :percepts ((thing ?x)) :start ((ready ?x)) :actions ((*set ?x))))
+"""
+
+
 def test_backtrack_the_first_chain_fails_the_second_succeeds():
     """(done A): skill chaining tries the first skill (program order), pushing its start
     (armed A); nothing achieves it, so the search backtracks to the second skill, whose start
     (lit A) has an executable path, and executes it in the same cycle."""
-    decisions, state = _solve(Engine(load_program_text(FALLBACK, "fallback.tlp")), "(done A)",
-                              [["thing", "A", "ready", "yes"]], 2)
+    decisions, state = _solve(Engine(load_program_text(NO_ESTIMATE, "fallback.tlp")),
+                              "(done A)", [["thing", "A", "ready", "yes"]], 2)
     stacks = [d.section("solver").stack("g1") for d in decisions]
     assert stacks == [["(done A)", "(armed A)"], ["(done A)", "(lit A)"]]
     assert decisions[1].section("solver").events == (
@@ -102,6 +110,17 @@ def test_backtrack_the_first_chain_fails_the_second_succeeds():
     entry = decisions[1].section("solver").to_dict()["stacks"][0]["entries"][0]
     assert entry["decision"]["alternative"] == 2 and entry["failures"][0].startswith(
         "(fire A): its subgoal (armed A) cannot be achieved")
+
+
+def test_with_the_relaxed_estimate_the_skill_whose_start_can_hold_is_chained_first():
+    """The same program without the concept admits the relaxed estimate: the primitive skills
+    for a goal are ranked by it across skills, not only bindings within one (logistics: a
+    package to an airport is unloaded from the airplane that can bring it, not from a truck
+    of the airport's city that could only be loaded there), so (armed A), which nothing
+    achieves, is never pushed."""
+    decisions, _ = _solve(Engine(load_program_text(FALLBACK, "fallback.tlp")), "(done A)",
+                          [["thing", "A", "ready", "yes"]], 1)
+    assert decisions[0].section("solver").stack("g1") == ["(done A)", "(lit A)"]
 
 
 def test_a_way_reachable_only_through_its_own_goal_is_not_chained_off(blocks):
