@@ -73,7 +73,7 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
         if m:
             raise ConfigError(f"{position(path, text, m.start())}: pddl: {name} not "
                               f"supported; the pddl world runs STRIPS with {_fragment()}")
-    d = _parsed(parse_domain, path, code if code != uncommented(text) else text)
+    d = _parsed(parse_domain, path, code)   # comments blanked: positions are the text's
     model = domain_model(d, str(path), text)
     return replace(model, notes=(NOTE,)) if costs else model
 
