@@ -1,6 +1,6 @@
 """How the goal-entry process words what it refuses or warns about: a scripted request
-refused (for the run's summary) and a priority that would outrank the program's standing
-goals (docs/scenarios.md, "Priorities")."""
+refused (for the run's summary), a priority that would outrank the program's standing
+goals (docs/scenarios.md, "Priorities") and a program goal that a request would change."""
 
 from __future__ import annotations
 
@@ -28,3 +28,19 @@ def rank_problem(standing: tuple[str, ...], priority: int) -> str:
     return (f"priority {priority} ranks the goal above the program's standing goal"
             f"{'s' if len(above) > 1 else ''} {shown}{more}: the agent would pursue it before "
             f"them, at their expense; give priority {len(standing)} or more, or force it")
+
+
+def program_goal_problem(standing: tuple[str, ...], agent: str, goal_id: str, op: str) -> str:
+    """Why `op` (cancel, priority) may not change `goal_id` of `agent`, or "" for a user
+    goal: a program goal (p1..pn: the program's own, in its order; user goals are g1, g2,
+    ...) cannot be cancelled nor reprioritised, and a p-id the program lacks is named."""
+    number = goal_id[1:]
+    if goal_id[:1] != "p" or not number.isdigit() or number.startswith("0"):
+        return ""
+    ids = {0: "none", 1: "p1"}.get(len(standing), f"p1..p{len(standing)}")
+    if int(number) > len(standing):
+        return f"no goal {goal_id!r}: the program goals of {agent} are {ids}"
+    what = "cancelled" if op == "cancel" else "given another priority"
+    return (f"{goal_id} is a program goal of {agent}, {standing[int(number) - 1]}: it cannot "
+            f"be {what} (program goals rank in the program's order; user goals are g1, g2, "
+            "...)")

@@ -21,26 +21,40 @@ Warner = Callable[[str, str], str]
 """warn(agent, goal text) -> "" or one line saying which instances nothing can make true."""
 
 
-def engine_warner(scenario: Scenario, programs: dict | None = None) -> Warner:
+def engine_warner(scenario: Scenario, programs: dict | None = None,
+                  eager: bool = False) -> Warner:
     """warn(agent, goal) for ``scenario``'s agents, from each agent's percepts of the world the
     scenario starts with; ``programs``: agent -> loaded Program (loaded here when None). A goal
     that does not read, or a world that cannot be made, gives no warning (the validator and
-    the scenario check say what is wrong with those)."""
+    the scenario check say what is wrong with those). The world is made once, for every
+    agent, at the first warning, or here when ``eager`` (the goal-entry process: before it
+    announces itself, so that no cycle waits for a world to be made)."""
     engines = {a.id: Engine((programs or {}).get(a.id) or load_program(str(a.program)))
                for a in scenario.agents}
-    seen: dict[str, tuple] = {}
+    seen: dict[str, tuple | None] = {}
+
+    def look() -> None:
+        try:
+            domain = get_domain(scenario.domain)
+            snap = domain.create(scenario.world_table, scenario.run.seed,
+                                 list(scenario.agent_ids)).snapshot_dict()
+        except (WorldError, LangError):   # a world that cannot be made warns of nothing
+            seen.update(dict.fromkeys(engines))   # (the scenario check says why)
+            return
+        for agent, engine in engines.items():
+            try:
+                pidx = PerceptIndex(as_percepts(domain.perceive(snap, agent)))
+                seen[agent] = (pidx, store_of(engine.infer(pidx)))
+            except (WorldError, LangError):
+                seen[agent] = None
 
     def situation(agent: str) -> tuple | None:
-        if agent not in seen:
-            try:
-                domain = get_domain(scenario.domain)
-                world = domain.create(scenario.world_table, scenario.run.seed,
-                                      list(scenario.agent_ids))
-                pidx = PerceptIndex(as_percepts(domain.perceive(world.snapshot_dict(), agent)))
-                seen[agent] = (pidx, store_of(engines[agent].infer(pidx)))
-            except (WorldError, LangError):   # a world that cannot be made warns of nothing
-                seen[agent] = None              # (the scenario check says why)
-        return seen[agent]
+        if not seen:
+            look()
+        return seen.get(agent)
+
+    if eager:
+        look()
 
     def warn(agent: str, goal: str) -> str:
         engine = engines.get(agent)

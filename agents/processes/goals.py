@@ -32,7 +32,7 @@ from agents.lang.core.limits import shorten
 from agents.processes import goal_file
 from agents.processes.common import setup_logging, stop_on_signals
 from agents.processes.goal_store import MAX_ID_CHARS, GoalStore, GoalStoreError
-from agents.processes.goal_texts import rank_problem, refused_text
+from agents.processes.goal_texts import program_goal_problem, rank_problem, refused_text
 from agents.processes.goal_warnings import Warner, engine_warner
 from agents.processes.request_limits import RequestLimiter
 from agents.processes.swapping import ProgramWatch
@@ -81,10 +81,15 @@ class GoalEntry:
         self.published: dict[str, tuple[dict[str, Any], ...]] = {}
         self.node: Node | None = None  # set once the session is open
         self.unsaved = False  # statuses mirrored but not yet saved
+        self._deferred = False  # scripted requests being applied: saved once after them
         self.saved_at = clock()
 
     def _commit(self, store: GoalStore) -> None:
-        """Make `store` current and save it before anyone is told (a request's change)."""
+        """Make `store` current and save it before anyone is told (a request's change);
+        while scripted requests are applied (`_deferred`), only made current."""
+        if self._deferred:
+            self.store, self.unsaved = store, True
+            return
         if store == self.store and not self.unsaved:
             return
         try:
@@ -166,21 +171,10 @@ class GoalEntry:
                              "list")
 
     def _not_a_program_goal(self, agent: str, goal_id: str, op: str) -> None:
-        """Refuse to cancel or reprioritise a program goal (p1..pn: the program's own, in its
-        order; user goals are g1, g2, ...), saying which one it is, or that the program has
-        no such goal."""
-        number = goal_id[1:]
-        if goal_id[:1] != "p" or not number.isdigit() or number.startswith("0"):
-            return
-        standing = self.standing.get(agent, ())
-        ids = {0: "none", 1: "p1"}.get(len(standing), f"p1..p{len(standing)}")
-        if int(number) > len(standing):
-            raise GoalStoreError(f"no goal {goal_id!r}: the program goals of {agent} are {ids}")
-        what = "cancelled" if op == "cancel" else "given another priority"
-        raise GoalStoreError(
-            f"{goal_id} is a program goal of {agent}, {standing[int(number) - 1]}: it cannot "
-            f"be {what} (program goals rank in the program's order; user goals are g1, g2, "
-            "...)")
+        """Refuse to cancel or reprioritise a program goal (goal_texts.program_goal_problem)."""
+        problem = program_goal_problem(self.standing.get(agent, ()), agent, goal_id, op)
+        if problem:
+            raise GoalStoreError(problem)
 
     def _rank(self, agent: str, priority: int, force: bool) -> str:
         """The priority rule: raises GoalStoreError when `priority` ranks a goal above the
@@ -210,14 +204,25 @@ class GoalEntry:
         return ProcessStats(env, PROCESS, ms, 0)
 
     def _scripted(self, cycle: int) -> None:
+        """Apply the scenario's requests due at `cycle`, then save the store once: nobody
+        waits for a scripted request's answer, so one durable save before the cycle's goal
+        lists go out keeps them as safe as a save each (a failed save is retried by flush)."""
         due = [(i, g) for i, g in enumerate(self.scenario.goals)
                if g.at_cycle <= cycle and i not in self.store.scripted_done]
-        for index, scripted in due:
-            self._run_scripted(scripted)
-            try:
-                self._commit(self.store.mark_scripted([index]))
-            except GoalStoreError as exc:
-                self.log.error("scripted request %d: %s", index, exc)
+        if not due:
+            return
+        self._deferred = True
+        try:
+            for _, scripted in due:
+                self._run_scripted(scripted)
+        finally:
+            self._deferred = False
+        marked = self.store.mark_scripted(i for i, _ in due)   # a new store: always saved
+        try:
+            self._commit(marked)
+        except GoalStoreError as exc:   # kept, done once, and saved by a later flush
+            self.store, self.unsaved = marked, True
+            self.log.error("scripted requests %s: %s", [i for i, _ in due], exc)
 
     def _run_scripted(self, g: ScriptedGoal) -> None:
         try:
@@ -246,8 +251,9 @@ def serve(cfg: BusConfig, run: str, scenario: Scenario, store_path: Path) -> Non
     log = setup_logging(PROCESS)
     stop = stop_on_signals()
     programs = ProgramWatch(scenario)   # swapped programs too (agents/processes/swapping.py)
-    entry = GoalEntry(scenario, store_path, programs.validate, log,
-                      standing=programs.standing, warn=engine_warner(scenario))
+    loaded = {agent: engine.program for agent, engine in programs.engines.items()}
+    entry = GoalEntry(scenario, store_path, programs.validate, log, standing=programs.standing,
+                      warn=engine_warner(scenario, loaded, eager=True))
     with open_node(cfg, run, PROCESS) as node:
         entry.node = node
         inbox = node.subscribe(keys.world_state(run))

@@ -158,6 +158,43 @@ def test_a_refused_scripted_request_is_kept_for_the_summary(tmp_path):
     assert _goals(tmp_path / "goals.json")[2] == expected
 
 
+def test_the_requests_scripted_for_one_cycle_are_saved_together_before_its_lists(
+        tmp_path, monkeypatch):
+    """The scenario's requests due at a cycle (here three posts and a refused cancel) are
+    applied and then saved once, durably, before that cycle's goal lists are made: a
+    restarted goal entry finds them all, marked done, and does not apply them again."""
+    from agents.processes import goal_file
+
+    text = DEMO.read_text().replace('"programs/driving.tlp"', f'"{ROOT}/programs/driving.tlp"')
+    path = tmp_path / "s.toml"
+    path.write_text(text + "".join(
+        f'[[goals]]\nop = "post"\nagent = "ME"\ngoal = "(package-delivered PACKET{k})"\n'
+        f"priority = 5\nat_cycle = 4\n" for k in (7, 8, 9))
+        + '[[goals]]\nop = "cancel"\ngoal_id = "g9"\nat_cycle = 4\n')
+    scenario = load_scenario(path)
+    store = tmp_path / "goals.json"
+    entry = GoalEntry(scenario, store, engine_validator(scenario), logging.getLogger("test"),
+                      standing=standing_goals(scenario))
+    saves = []
+    real_save = goal_file.save
+    monkeypatch.setattr(goal_file, "save", lambda s, p: saves.append(p) or real_save(s, p))
+    entry.cycle = 4
+    entry._scripted(4)
+    assert len(saves) == 1 and not entry.unsaved
+    again = goal_file.open_store(store).store
+    assert again == entry.store
+    assert [g.goal for g in again.goals] == [   # the demo's own of cycle 0, then these
+        f"(package-delivered PACKET{k})" for k in (1, 7, 8, 9)]
+    due = {i for i, g in enumerate(scenario.goals) if g.at_cycle <= 4}
+    assert again.scripted_done == frozenset(due) and len(due) == len(scenario.goals) - 1
+    assert again.refused[-1].startswith("scripted cancel of g9 at cycle 4 refused: ")
+    restarted = GoalEntry(scenario, store, engine_validator(scenario),
+                          logging.getLogger("test"), standing=standing_goals(scenario))
+    restarted.cycle = 5
+    restarted._scripted(5)
+    assert restarted.store == again
+
+
 def test_a_goal_whose_concept_needs_a_percept_that_is_not_there_says_which():
     """Issue 31 (N16): `(at-address ME 12 A)` failed with `no primitive skill achieves
     at-address`, though the program has at-address skills: no package has address 12 on A.

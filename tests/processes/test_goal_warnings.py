@@ -62,3 +62,21 @@ def test_possible_instances_and_conjunctions_are_not_warned(tmp_path):
     for goal in ["(clear ?b)", "(and (on D ?x))", "(on D A)", "(ontable ?b T)"]:
         ok, reason = _post(entry, goal)
         assert ok and "warning" not in reason, (goal, reason)
+
+
+def test_the_goal_entry_looks_at_the_world_before_any_post(tmp_path):
+    """The goal-entry process makes the start's world once, for every agent, before it
+    announces itself (eager): its warnings are the lazy warner's, and one that cannot make
+    the world warns of nothing, never fails a post."""
+    path = tmp_path / "bw.toml"
+    path.write_text(TOML.format(program=ROOT / "programs" / "blocks.tlp"))
+    scenario = load_scenario(path)
+    lazy, eager = engine_warner(scenario), engine_warner(scenario, eager=True)
+    for goal in ["(on D ?x)", "(clear ?b)", "(on D A)"]:
+        assert eager("ME", goal) == lazy("ME", goal), goal
+    assert eager("ME", "(on D ?x)")
+    assert eager("NOBODY", "(on D ?x)") == ""
+    broken = tmp_path / "broken.toml"
+    broken.write_text(TOML.format(program=ROOT / "programs" / "blocks.tlp")
+                      .replace('[["C", "A"], ["B"], ["D"]]', '[["C", "A"], ["C"], ["D"]]'))
+    assert engine_warner(load_scenario(broken), eager=True)("ME", "(on D ?x)") == ""
