@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
-from itertools import compress, repeat
+from itertools import chain, compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
@@ -182,9 +182,10 @@ def check_frame(frame: Frame) -> None:
     """Check every value of ``frame`` (raises LangError naming a bad percept)."""
     if frame.checked:  # Percept objects: nothing to check
         return
-    for t, rows in frame.groups.items():
-        if not plainly_valid(rows):
-            frame.check([t])
+    if not plainly_valid(list(chain.from_iterable(frame.groups.values()))):
+        for t, rows in frame.groups.items():  # find the bad ones
+            if not plainly_valid(rows):
+                frame.check([t])
     frame.checked = True
 
 
