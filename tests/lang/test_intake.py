@@ -5,10 +5,13 @@ agrees with one built from Percept objects."""
 from __future__ import annotations
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from agents.lang import Engine, LangError, Percept, load_program_text
-from agents.lang.core.columns import read_cols
+from agents.lang.core.columns import plainly_valid, read_cols
 from agents.lang.core.intake import PerceptIndex, frame_of
+from agents.lang.core.terms import check_row
 
 PROGRAM = load_program_text("""
 (concepts
@@ -126,3 +129,24 @@ def test_decide_alone_reuses_percepts_only_of_rows_it_has_seen():
                [[*r[:5], 7.5] for r in rows]):
         index = engine._index(ps)
         assert index.by_type["block"][3] == Percept.from_list(ps[3])
+
+
+_ITEM = st.one_of(st.text(max_size=3), st.integers(), st.floats(allow_nan=False), st.booleans(),
+                  st.none(), st.just([1]))
+_ROW = st.one_of(st.lists(_ITEM, max_size=7),
+                 st.builds(lambda t, i, kv: [t, i, *(x for p in kv for x in p)],
+                           st.sampled_from(["block", "lamp"]), _ITEM,
+                           st.lists(st.tuples(_ITEM, _ITEM), max_size=3)))
+
+
+@given(st.lists(_ROW, max_size=6))
+def test_rows_plainly_valid_at_once_are_what_check_row_accepts(rows):
+    """``plainly_valid`` over a whole message says yes exactly when every row passes
+    ``check_row`` (the values here are of exact types: no subclass to fall back for)."""
+    def accepted(row):
+        try:
+            check_row(row)
+        except LangError:
+            return False
+        return True
+    assert plainly_valid(rows) == all(map(accepted, rows))

@@ -2,7 +2,8 @@
 per name (equal and hashed by identity); the effect model binds an action list only to the
 primitive skills whose actions have its shape, giving what trying every skill gives; a fact
 store keeps each relation's text for the loop watch's digest until the relation changes, and
-the digest of a store changed step by step is that of a fresh store holding the same facts."""
+the digest of a store changed step by step is that of a fresh store holding the same facts; a
+remembered step's written-out text is the one its dataclass would generate."""
 
 from __future__ import annotations
 
@@ -21,6 +22,7 @@ from agents.lang.core.store import FactStore, PerceptIndex
 from agents.lang.core.terms import Action, Expr
 from agents.lang.execution.effects import Effects
 from agents.lang.execution.loops import world
+from agents.lang.execution.state import StoredStep
 
 from .solving.test_stated_effects import program as blocks_with_effects
 
@@ -143,3 +145,18 @@ def test_threads_making_one_name_at_once_get_one_variable():
         made = list(pool.map(lambda n: [Var(n) for _ in range(50)], names * 4))
     for k, name in enumerate(names * 4):
         assert all(v is Var(name) for v in made[k])
+
+
+_GENERATED = dataclasses.make_dataclass(   # StoredStep's fields, with the generated repr
+    "StoredStep", [("goal", str), ("skill", int), ("skill_name", str), ("bindings", tuple)],
+    frozen=True)
+_VALUE = st.one_of(st.text(max_size=4), st.integers(), st.floats(allow_nan=False))
+
+
+@given(st.text(max_size=8), st.integers(), st.text(max_size=8),
+       st.lists(st.tuples(st.text(max_size=3), _VALUE), max_size=4).map(tuple))
+def test_a_stored_steps_text_is_the_dataclass_text(goal, skill, name, bindings):
+    """The loop watch hashes the remembered paths' text (loops.intention): StoredStep's
+    written-out repr is the one the dataclass would generate, so digests stay what they were."""
+    assert repr(StoredStep(goal, skill, name, bindings)) == \
+        repr(_GENERATED(goal, skill, name, bindings))

@@ -12,9 +12,9 @@ at those positions. "Equal" is strict: ``3`` and ``3.0``, or ``0.0`` and ``-0.0`
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import compress, repeat
+from itertools import chain, compress, repeat
 from math import copysign
-from operator import is_, is_not, ne, not_
+from operator import is_, is_not, itemgetter, ne, not_
 
 ATOMS = frozenset({str, int, float})
 ID = None  # the column of ids (no attribute name is None)
@@ -92,20 +92,20 @@ def read_cols(rows: list, old: Cols | None) -> Cols | None:
 
 
 def plainly_valid(rows: list) -> bool:
-    """True when ``rows`` (of one type, each a list or tuple led by the type's name) are all
-    ``[type, id, name, value, ...]`` of one length with names of type str and ids and values
-    of type str, int or float: what ``terms.check_row`` accepts, decided per column in C
-    without reading the rows as columns. False when that is not clear (other lengths, a
-    subclass of int): the caller then checks the rows one by one."""
-    cols = _transpose(rows)
-    if cols is None or len(cols) < 2 or len(cols) % 2:
-        return False
-    return all(map(_STRS.issuperset, map(_types, cols[2::2]))) and \
-        all(map(ATOMS.issuperset, map(_types, cols[1::2])))
+    """True when ``rows`` (of any types, each a list or tuple led by its type's name) are all
+    ``[type, id, name, value, ...]`` of an even length of at least 2 with the type and names of
+    type str and ids and values of type str, int or float: what ``terms.check_row`` accepts,
+    decided in three C-level passes over all the rows at once. False when that is not clear
+    (a subclass of int, another length): the caller then checks the rows one by one."""
+    if not rows:
+        return True
+    lens = set(map(len, rows))
+    return min(lens) >= 2 and not any(n & 1 for n in lens) and \
+        ATOMS.issuperset(map(type, chain.from_iterable(rows))) and \
+        _STRS.issuperset(map(type, chain.from_iterable(map(_EVEN, rows))))
 
 
-def _types(col: tuple):
-    return map(type, col)
+_EVEN = itemgetter(slice(0, None, 2))  # a row's type and attribute names
 
 
 def _transpose(rows: list) -> list[tuple] | None:

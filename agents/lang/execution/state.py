@@ -44,6 +44,13 @@ class StoredStep:
     skill_name: str
     bindings: tuple  # ((var name, value), ...) sorted by name
 
+    def __repr__(self) -> str:
+        # the dataclass's own text, written out: the loop watch hashes the remembered paths'
+        # text every cycle (loops.intention), and the generated repr's recursion guard tripled
+        # its cost (tests/lang/test_small_case.py holds the two texts equal)
+        return f"StoredStep(goal={self.goal!r}, skill={self.skill!r}, " \
+               f"skill_name={self.skill_name!r}, bindings={self.bindings!r})"
+
     def to_dict(self) -> dict:
         return {"goal": self.goal, "skill": self.skill, "skill_name": self.skill_name,
                 "bindings": [[k, v] for k, v in self.bindings]}

@@ -17,7 +17,7 @@ from itertools import compress
 from math import copysign
 from operator import is_not
 
-from ..core.columns import ATOMS, ID, Cols, read_cols
+from ..core.columns import ATOMS, ID, Cols, plainly_valid, read_cols
 from ..core.intake import Frame, frame_of
 from ..core.terms import Percept, check_row
 
@@ -199,16 +199,17 @@ def check_new_rows(frame: Frame) -> None:
         _check_at(frame.groups[t], at)
 
 
-def check_irregular(frame: Frame, types: list[str], kept: dict[str, list]) -> None:
-    """Check the rows of ``types`` one by one (raises LangError naming a bad percept), except
-    the shared rows taken in last cycle: a type whose rows are ``kept[type]`` needs no check,
-    one patched from them only its new rows."""
+def check_rows(frame: Frame, types: list[str], kept: dict[str, list]) -> None:
+    """Check the rows of ``types`` (raises LangError naming a bad percept), except the shared
+    rows taken in last cycle: a type whose rows are ``kept[type]`` needs no check, one patched
+    from them only its new rows. Checked at once in C (``columns.plainly_valid``), row by row
+    only where that is not clear."""
     for t in types:
         at = new_since(frame, t, kept.get(t))
-        if at is None:
-            frame.check([t])
-        else:
-            _check_at(frame.groups[t], at)
+        rows = frame.groups[t] if at is None else [frame.groups[t][j] for j in at]
+        if not plainly_valid(rows):
+            for row in rows:
+                check_row(row)
 
 
 def _check_at(rows: list, at: list[int]) -> None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
-from itertools import compress, repeat
+from itertools import chain, compress, repeat
 from math import copysign
 from operator import is_, is_not, itemgetter, not_
 
@@ -29,7 +29,7 @@ from ..core.columns import (
 )
 from ..core.intake import Frame
 from ..core.store import Delta, FactStore
-from .shared_rows import check_irregular, read_cols_of
+from .shared_rows import check_rows, read_cols_of
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,23 +64,25 @@ class PerceptTracker:
         deltas: dict = {}
         sums_before = dict(self.sums)
         cols = self.cols
-        news = {t: read_cols_of(rows, cols.get(t), frame, t) for t, rows in frame.groups.items()}
+        # only the types the program reads are read by column; the others are only checked
+        news = {t: read_cols_of(rows, cols.get(t), frame, t)
+                for t, rows in frame.groups.items() if t in self.rels_of}
+        unread = [t for t in frame.groups if t not in news]
         irregular = [t for t, c in news.items() if c is None]
         kept = self.kept if frame.shared else {}
         if not frame.checked:  # every check before any change: a bad message changes nothing
-            check_irregular(frame, irregular, kept)
-        for t, rows in frame.groups.items():
-            old, new = self.cols.get(t), news[t]
+            check_rows(frame, irregular + unread, kept)
+        for t, new in news.items():
+            rows, old = frame.groups[t], self.cols.get(t)
             if old is not None and (new is None or old.names != new.names):
                 old = None
             if new is None:
                 self.cols.pop(t, None)
-                if t in self.rels_of and rows is not kept.get(t):  # else: the same rows
+                if rows is not kept.get(t):  # else: the same rows
                     self._irregular(t, rows, edb, deltas)
                 continue
             self.cols[t] = new
-            if t in self.rels_of:
-                self._regular(t, old, new, edb, deltas)
+            self._regular(t, old, new, edb, deltas)
         for t in self.rels_of:
             if t not in frame.groups:
                 self.cols.pop(t, None)
@@ -100,7 +102,7 @@ class PerceptTracker:
                     now = now | s
             self.summary = now
         now = self.summary
-        self.kept = {t: frame.groups[t] for t in irregular} if frame.shared else {}
+        self.kept = {t: frame.groups[t] for t in irregular + unread} if frame.shared else {}
         return PerceptChange(deltas, was.mixed, now.mixed, now is not was and was.clashes(now))
 
     # -- one type ------------------------------------------------------------------------
@@ -182,9 +184,10 @@ def check_frame(frame: Frame) -> None:
     """Check every value of ``frame`` (raises LangError naming a bad percept)."""
     if frame.checked:  # Percept objects: nothing to check
         return
-    for t, rows in frame.groups.items():
-        if not plainly_valid(rows):
-            frame.check([t])
+    if not plainly_valid(list(chain.from_iterable(frame.groups.values()))):
+        for t, rows in frame.groups.items():  # find the bad ones
+            if not plainly_valid(rows):
+                frame.check([t])
     frame.checked = True
 
 
