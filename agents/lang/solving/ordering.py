@@ -32,10 +32,9 @@ from __future__ import annotations
 from ..core.matcher import solve, unify_head
 from ..core.terms import Literal, Test, Var
 from ..execution.effects import undone_by
-from .landmarks import key as _key
-from .landmarks import landmarks
 from .state import SKILL, condition, literal, pushable
 from .task import Task
+from .threats import FREE, PROMOTE, Threats, threatens
 
 MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
 MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]
@@ -57,20 +56,21 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         return task.shared[key]
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
     plans = {h: needs(task, h, above) for h in unsat}
-    free, promote = [], []
+    threats = Threats(task, unsat, plans)   # (agents/lang/solving/threats.py: the same
+    # as comparing each conjunct with each need of the others' plans, at the cost of those
+    # that can meet)
     # achieving a conjunct that another undoes outright is left for after it (the movie is
     # rewound, which resets the counter, before the counter is reset); the one that undoes it
     # is not held back for that (achieving it first is the way round)
-    later = {h for h in unsat if any(g != h and _threatens(task, g, literal(h), "")
-                                     for g in unsat)}
+    later = threats.later
+    free: list[str] = []
+    promote: dict[str, None] = {}
     for g in unsat:
-        threats = [(h, need, above) for h in unsat if h != g
-                   for need, above in plans[h].items() if _threatens(task, g, need, above)
-                   and not (h in later and need == literal(h) and not above)]
-        if not threats:
+        verdict = threats.verdict(g)
+        if verdict == FREE:
             free.append(g)
-        elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
-            promote += [above for _, _, above in threats if above]
+        elif verdict == PROMOTE:
+            threats.promote(g, promote)
     if current and current not in conds:   # a part of a conjunct's plan, done first: that
         # conjunct's plan goes on (not another's, which would move again what the
         # first would have put in its place): of those free, the one whose plan needs it
@@ -80,12 +80,12 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
                       default=current)
     if free:
         now = [g for g in free if one_step(task, g)]
-        now += [p for p in dict.fromkeys(promote) if p not in now and one_step(task, p)]
+        now += [p for p in promote if p not in now and one_step(task, p)]
         out = now + [g for g in free if g == current and g not in now] + \
             [g for g in free if g not in now and g != current]
         out = [g for g in out if g not in later] + [g for g in out if g in later]
     elif promote:
-        out = list(dict.fromkeys(promote))
+        out = list(promote)
     else:
         out = unsat
     if len(task.shared) >= MAX_SHARED:
@@ -173,18 +173,6 @@ def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
     return []
 
 
-def _threatens(task: Task, g: str, need: Literal, above: str = "") -> bool:
-    """True when achieving the conjunct ``g`` makes ``need`` false, unless it also achieves
-    ``above``, the goal ``need`` is needed for (a program stating its skills' effects:
-    stacking B, held to be put down to clear it, on A clears it as well)."""
-    lit = literal(g)
-    if need.negated:
-        return undone_by(lit, (Literal(need.pred, need.args),))
-    if need.variables() or not undone_by(need, task.effects.undoes(lit)):
-        return False
-    return not (above and undone_by(literal(above), tuple(task.effects.achieved_with(lit))))
-
-
 def one_step(task: Task, g: str) -> bool:
     """True when one executable primitive skill achieves ``g`` now (its start holds and it
     undoes no protected goal)."""
@@ -213,7 +201,7 @@ def excused(task: Task, conds: tuple[str, ...], g: str, stack) -> bool:
     made = made_by(task, way)
     unsat = [c for c in conds if c != g and pushable(condition(c)) and not task.holds(c)]
     threats = [above for h in unsat for need, above in needs(task, h).items()
-               if _threatens(task, g, need, above)]
+               if threatens(task, g, need, above)]
     return bool(threats) and all(above and literal(above) in made for above in threats)
 
 
