@@ -1,5 +1,5 @@
 """Benchmark: the cost of ordering a large conjunction (agents/lang/solving/ordering.py,
-``agenda``), the threat check by index (threats.py) against the pairwise one it replaced (kept
+``agenda``), the threat check by index (``Threats``) against the pairwise one it replaced (kept
 as the reference in tests/lang/solving/test_ordering_threats.py), in the same run on the same
 situations: the initial state of each task, its goal as the conjunction. Both agendas must
 agree; the figure is the ratio of their times, the needs of the plans computed before either

@@ -1,4 +1,4 @@
-"""The agenda's threat check by index (agents/lang/solving/threats.py) orders a conjunction
+"""The agenda's threat check by index (ordering.py, ``Threats``) orders a conjunction
 exactly as comparing every conjunct with every need of the others' plans did: the pairwise
 agenda is kept here as the reference, and both run on random STRIPS domains (the pddl world's
 programs: stated effects, negative preconditions) and on random Blocks World situations (the
@@ -15,10 +15,9 @@ from agents.lang import Engine, as_percepts, load_program, load_program_text
 from agents.lang.core.store import PerceptIndex, store_of
 from agents.lang.execution.effects import Effects
 from agents.lang.solving.landmarks import key, landmarks
-from agents.lang.solving.ordering import _depth, agenda, needs, one_step
+from agents.lang.solving.ordering import _depth, agenda, needs, one_step, threatens
 from agents.lang.solving.state import condition, literal, pushable
 from agents.lang.solving.task import Task
-from agents.lang.solving.threats import threatens
 from agents.lang.solving.typed import TypedEffects
 from world.pddl.perception import perceive
 from world.pddl.program import program_text
