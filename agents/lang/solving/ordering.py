@@ -221,6 +221,8 @@ class Threats:
     def _excuses(self, g: str, shape: _Shape) -> set[int]:
         """The entries of ``shape`` whose goal achieving ``g`` achieves too."""
         hit = self._excused.get(g)
+        if hit is None and not shape.above_lits:
+            return set()   # (nothing to excuse: what ``g`` achieves with it is not asked)
         if hit is None:
             made = tuple(self.task.effects.achieved_with(self.goals[g]))
             hit = self._excused[g] = set(self._covered(

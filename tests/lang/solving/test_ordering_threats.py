@@ -114,7 +114,7 @@ def strips(draw):
     return program, raw, conds, current, above
 
 
-@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(strips())
 def test_the_indexed_agenda_is_the_pairwise_one_on_random_strips_domains(case):
     program, raw, conds, current, above = case
