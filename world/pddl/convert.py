@@ -9,6 +9,7 @@ from typing import Any
 
 from world.errors import ConfigError
 from world.pddl.task import ROOT_TYPE, DomainModel, Lit, Operator, Task, locate, uncommented
+from world.pddl.type_list import ALIAS
 
 _UNSUPPORTED = {
     "When": "conditional effects (when; :conditional-effects)",
@@ -23,8 +24,8 @@ _UNSUPPORTED = {
 
 def domain_model(d: Any, path: str, text: str) -> DomainModel:
     """A DomainModel of the library's Domain ``d`` (read from ``text`` in ``path``)."""
-    types = tuple(sorted((str(t).lower(), str(p).lower() if p else ROOT_TYPE)
-                         for t, p in d.types.items() if str(t).lower() != ROOT_TYPE))
+    types = tuple(sorted((_type(t), _type(p) if p else ROOT_TYPE)
+                         for t, p in d.types.items() if _type(t) != ROOT_TYPE))
     declared = {t for t, _ in types} | {ROOT_TYPE}
     constants = tuple(sorted((str(c.name).lower(), _one_type(c.type_tags, declared, path, text,
                                                              str(c.name)))
@@ -108,7 +109,7 @@ def in_text_order(lits: list[Lit], text: str, start: int) -> list[Lit]:
 
 
 def _one_type(tags, declared: set[str], path: str, text: str, name: str) -> str:
-    tags = sorted(str(t).lower() for t in tags) or [ROOT_TYPE]
+    tags = sorted({_type(t) for t in tags}) or [ROOT_TYPE]
     if len(tags) > 1:
         raise ConfigError(f"{locate(path, text, name)}: pddl: object {name.lower()} has "
                           f"several types ({' '.join(tags)}); an object has one")
@@ -123,13 +124,19 @@ def _params(terms, declared: set[str], path: str, text: str
             ) -> tuple[tuple[str, tuple[str, ...]], ...]:
     out = []
     for t in terms:
-        tags = tuple(sorted(str(x).lower() for x in t.type_tags)) or (ROOT_TYPE,)
+        tags = tuple(sorted({_type(x) for x in t.type_tags})) or (ROOT_TYPE,)
         for tag in tags:
             if tag not in declared:
                 raise ConfigError(f"{locate(path, text, tag)}: pddl: ?{str(t.name).lower()} "
                                   f"is of the undeclared type {tag!r}")
         out.append((f"?{str(t.name).lower()}", tags))
     return tuple(out)
+
+
+def _type(name: Any) -> str:
+    """A type's name, lower-cased; the root's alias (type_list.py) read as the root."""
+    low = str(name).lower()
+    return ROOT_TYPE if low == ALIAS else low
 
 
 def _literals(formula: Any, where: str, what: str) -> list[Lit]:

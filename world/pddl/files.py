@@ -20,7 +20,7 @@ from world.errors import ConfigError
 from world.pddl.convert import domain_model, task_of
 from world.pddl.costs import NOTE, declares_costs, without_costs
 from world.pddl.task import DomainModel, Task, locate, position, uncommented
-from world.pddl.type_list import single_types
+from world.pddl.type_list import root_alias, single_types
 
 INSTALL = "pip install 'teleo[pddl]'"
 SUPPORTED = frozenset({"strips", "typing", "negative-preconditions", "equality",
@@ -65,7 +65,7 @@ def load_domain(path: str | Path, text: str | None = None) -> DomainModel:
     costs = declares_costs(code)
     if costs:   # run with the costs ignored (costs.py), and say so
         code = without_costs(code, path, problem=False)
-    code = single_types(code)
+    code = root_alias(single_types(code))
     for construct, name in (("durative-action", "durative actions (:durative-action)"),
                             ("functions", "numeric fluents (:functions)"),
                             ("derived", "derived predicates (:derived)")):

@@ -24,25 +24,43 @@ A part of a plan to be done first (2.) that one action achieves now is done now 
 conjunct is free (B1 on B2, both to end on the table's side of things: lifting B1 off B2 first
 lets B3 go straight onto it later).
 
-Pure; regressions are kept for the cycle in ``Task.memo``, agendas across cycles by situation
-(a cycle spent deciding leaves the situation as it was) in ``Task.shared``."""
+The threats are found by index (``Threats``), not pair by pair (``threatens``; n conjuncts
+whose plans need k literals each: n * n * k checks, 285,000 for visitall's 144 cells): the
+needs by predicate and first constant argument, so that a pattern meets only the needs it can
+cover; the conjuncts by what achieving them undoes (their *shape*: every cell of visitall
+undoes ``(at-robot ?from)``), the needs a shape threatens found once for all its conjuncts;
+what a conjunct achieves with it (``(at-robot X)``) excuses a few, found by an index of the
+goals the needs are for; a negated need, which depends on the conjunct, is checked per
+conjunct. The answers are those of the pairwise check (tests/lang/solving/
+test_ordering_threats.py keeps it as the reference).
+
+Pure; regressions (agents/lang/solving/landmarks.py, ``needs``) are kept for the cycle in
+``Task.memo``, agendas across cycles by situation (a cycle spent deciding leaves the situation
+as it was) in ``Task.shared``."""
 
 from __future__ import annotations
 
 from ..core.matcher import solve, unify_head
-from ..core.terms import Literal, Test, Var
+from ..core.terms import Literal, Var
 from ..execution.effects import undone_by
-from .landmarks import key as _key
-from .landmarks import landmarks
-from .state import SKILL, condition, literal, pushable
+from .landmarks import (
+    MAX_PLAN,
+    excused,
+    held_by,
+    key,
+    landmarks,
+    needs,
+    pending_part,
+    threatens,
+    undoes_any,
+)
+from .state import condition, literal, pushable
 from .task import Task
 
-MAX_PLAN = 80      # deepest regression of a conjunct's plan [levels]
-MAX_SUPPORT = 2    # levels of what a holding subgoal holds by [levels]
-MAX_REGRESS = 256   # literals regressed for one goal's needs [literals]: a goal reached by
-                    # many ways through the same literals is regressed along each; the tuned
-                    # domains' plans take a few dozen
 MAX_SHARED = 64    # agendas kept across cycles [agendas]
+
+__all__ = ["agenda", "excused", "held_by", "needs", "one_step", "pending_part", "threatens",
+           "undoes_any"]   # (the solver's helpers on the goal stack: landmarks.py)
 
 
 def agenda(task: Task, conds: tuple[str, ...], current: str = "",
@@ -57,20 +75,19 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         return task.shared[key]
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
     plans = {h: needs(task, h, above) for h in unsat}
-    free, promote = [], []
+    threats = Threats(task, unsat, plans)
     # achieving a conjunct that another undoes outright is left for after it (the movie is
     # rewound, which resets the counter, before the counter is reset); the one that undoes it
     # is not held back for that (achieving it first is the way round)
-    later = {h for h in unsat if any(g != h and _threatens(task, g, literal(h), "")
-                                     for g in unsat)}
+    later = threats.later
+    free: list[str] = []
+    promote: dict[str, None] = {}
     for g in unsat:
-        threats = [(h, need, above) for h in unsat if h != g
-                   for need, above in plans[h].items() if _threatens(task, g, need, above)
-                   and not (h in later and need == literal(h) and not above)]
-        if not threats:
+        verdict = threats.verdict(g)
+        if verdict == FREE:
             free.append(g)
-        elif not any(_key(need) in landmarks(task, literal(h)) for h, need, _ in threats):
-            promote += [above for _, _, above in threats if above]
+        elif verdict == PROMOTE:
+            threats.promote(g, promote)
     if current and current not in conds:   # a part of a conjunct's plan, done first: that
         # conjunct's plan goes on (not another's, which would move again what the
         # first would have put in its place): of those free, the one whose plan needs it
@@ -80,12 +97,12 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
                       default=current)
     if free:
         now = [g for g in free if one_step(task, g)]
-        now += [p for p in dict.fromkeys(promote) if p not in now and one_step(task, p)]
+        now += [p for p in promote if p not in now and one_step(task, p)]
         out = now + [g for g in free if g == current and g not in now] + \
             [g for g in free if g not in now and g != current]
         out = [g for g in out if g not in later] + [g for g in out if g in later]
     elif promote:
-        out = list(dict.fromkeys(promote))
+        out = list(promote)
     else:
         out = unsat
     if len(task.shared) >= MAX_SHARED:
@@ -104,87 +121,6 @@ def _depth(plan: dict[Literal, str], need: Literal) -> int:
     return depth
 
 
-def needs(task: Task, goal: str, above: tuple[str, ...] = ()) -> dict[Literal, str]:
-    """What the solver's plan for ``goal`` needs to hold at some point, each with the nearest
-    unsatisfied goal above it in that plan ("" for ``goal`` itself); its ways go not through
-    the goals ``above`` (depot's crate into the truck at the depot where it lies, not by a
-    hoist at the distributor where it is to be lifted from the truck: that hoist lifting
-    it is the goal the truck's unloading is for)."""
-    key = ("needs", goal, above)
-    if key not in task.memo:
-        out: dict[Literal, str] = {}
-        _regress(task, literal(goal), "", 0, frozenset(), out, frozenset(above),
-                 [MAX_REGRESS])
-        task.memo[key] = out
-    return task.memo[key]
-
-
-def _regress(task: Task, goal: Literal, above: str, depth: int, on_path: frozenset,
-             out: dict[Literal, str], avoid: frozenset, budget: list[int]) -> None:
-    out.setdefault(goal, above)
-    budget[0] -= 1
-    if depth >= MAX_PLAN or goal in on_path or budget[0] < 0:
-        return
-    if task.holds(goal):
-        for r in _support(task, goal, MAX_SUPPORT):
-            out.setdefault(r, above)
-        return
-    ways = task.alternatives(goal, applicable=True)   # an executable skill is a way too,
-    ways = sorted(ways, key=lambda w: not all(task.holds(c) for c in w.conditions))  # first
-    path = {str(g) for g in on_path} | {str(goal)} | avoid   # not a way back through the
-    # plan above, nor through the goals ``avoid`` above it on the stack
-    ways = [w for w in ways if not path & set(w.conditions)] or ways   # (put F down to clear it)
-    if not ways:
-        return
-    here = str(goal)
-    for c in ways[0].conditions:
-        cond = condition(c)
-        if isinstance(cond, Test):
-            continue
-        if cond.negated or cond.variables():
-            out.setdefault(cond, here)
-        else:
-            _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid, budget)
-
-
-def _support(task: Task, goal: Literal, depth: int) -> list[Literal]:
-    """What the holding literal ``goal`` holds by: the relations of its first clause that
-    holds, ground where its solution binds them (negations keep their open variables)."""
-    if depth <= 0:
-        return []
-    for clause in task.program.concepts.get(goal.pred, ()):
-        if not clause.relations:
-            continue
-        b0 = unify_head(clause.head, goal, {})
-        if b0 is None:
-            continue
-        sol = next(solve([*clause.percepts, *clause.relations, *clause.tests], b0, task.pidx,
-                         task.store), None)
-        if sol is None:
-            continue
-        out = []
-        for r in clause.relations:
-            g = Literal(r.pred, tuple(sol.get(a, a) if isinstance(a, Var) else a
-                                      for a in r.args), r.negated)
-            out.append(g)
-            if not g.negated and not g.variables():
-                out += _support(task, g, depth - 1)
-        return out
-    return []
-
-
-def _threatens(task: Task, g: str, need: Literal, above: str = "") -> bool:
-    """True when achieving the conjunct ``g`` makes ``need`` false, unless it also achieves
-    ``above``, the goal ``need`` is needed for (a program stating its skills' effects:
-    stacking B, held to be put down to clear it, on A clears it as well)."""
-    lit = literal(g)
-    if need.negated:
-        return undone_by(lit, (Literal(need.pred, need.args),))
-    if need.variables() or not undone_by(need, task.effects.undoes(lit)):
-        return False
-    return not (above and undone_by(literal(above), tuple(task.effects.achieved_with(lit))))
-
-
 def one_step(task: Task, g: str) -> bool:
     """True when one executable primitive skill achieves ``g`` now (its start holds and it
     undoes no protected goal)."""
@@ -201,50 +137,178 @@ def one_step(task: Task, g: str) -> bool:
     return False
 
 
-def excused(task: Task, conds: tuple[str, ...], g: str, stack) -> bool:
-    """Whether the way under way for the conjunct ``g`` (the skill chained off it on the goal
-    stack ``stack``) excuses every threat of ``g`` to another unsatisfied conjunct's plan:
-    each is to a need that plan has only for a goal the way achieves too (a piece glazed
-    white is glazed, so its being untreated, which glazing it black would need, is no longer
-    needed). False when there is no threat, or no such way."""
-    way = stack.entries[1].decision if len(stack.entries) > 1 else None
-    if way is None or way.kind != SKILL or g not in conds:
-        return False
-    made = made_by(task, way)
-    unsat = [c for c in conds if c != g and pushable(condition(c)) and not task.holds(c)]
-    threats = [above for h in unsat for need, above in needs(task, h).items()
-               if _threatens(task, g, need, above)]
-    return bool(threats) and all(above and literal(above) in made for above in threats)
+FREE, LANDMARK, PROMOTE = "free", "landmark", "promote"
 
 
-def made_by(task: Task, way) -> list[Literal]:
-    """The ground literals the skill of the way ``way`` (an Alternative) states it achieves."""
-    s = task.skill(way.clause)
-    b = dict(way.bindings)
-    return [Literal(x.pred, tuple(b.get(a.name, a) if isinstance(a, Var) else a
-                                  for a in x.args))
-            for x in (s.head, *s.effects) if not x.negated]
+def _index_key(p: Literal) -> tuple:
+    """The bucket a pattern's instances are found in: its first constant argument, if any."""
+    for k, a in enumerate(p.args):
+        if not isinstance(a, Var):
+            return (p.pred, len(p.args), k, a)
+    return (p.pred, len(p.args))
 
 
-def held_by(task: Task, stack) -> list[Literal]:
-    """The conditions of the ways chosen above the bottom of the goal stack ``stack`` that
-    hold now: what the work under way has achieved, or found, and still needs."""
-    return [literal(c) for e in stack.entries[1:] if e.decision is not None
-            for c in e.decision.conditions if pushable(condition(c)) and task.holds(c)]
+def _buckets(lit: Literal) -> list[tuple]:
+    """Every bucket a ground literal is in (``_index_key`` of the patterns that may cover it)."""
+    return [(lit.pred, len(lit.args)),
+            *((lit.pred, len(lit.args), k, a) for k, a in enumerate(lit.args))]
 
 
-def undoes_any(task: Task, goal: str, held: list[Literal]) -> bool:
-    """Whether achieving ``goal`` makes one of ``held`` false (the program's effects)."""
-    if not held:
-        return False
-    patterns = task.effects.undoes(literal(goal))
-    return any(undone_by(h, patterns) for h in held)
+class Threats:
+    """The threats among the unsatisfied conjuncts ``unsat`` to the plans ``plans``
+    (``ordering.needs`` of each), answering as ``threatens`` pair by pair would."""
+
+    def __init__(self, task, unsat: list[str], plans: dict[str, dict[Literal, str]]):
+        self.task = task
+        self.unsat = list(dict.fromkeys(unsat))
+        self.entries = [(h, need, above) for h in self.unsat
+                        for need, above in plans[h].items()]   # in the pairwise order
+        self.positive: dict[tuple, list[int]] = {}   # ground positive needs by bucket
+        self.negative: dict[tuple, list[int]] = {}   # negated needs by (pred, arity)
+        for i, (_, need, _) in enumerate(self.entries):
+            if need.negated:
+                self.negative.setdefault((need.pred, len(need.args)), []).append(i)
+            elif not need.variables():
+                for k in _buckets(need):
+                    self.positive.setdefault(k, []).append(i)
+        self.goals = {h: literal(h) for h in self.unsat}
+        self.undone = {h: task.effects.undoes(lit) for h, lit in self.goals.items()}
+        self.later = self._later()
+        self._shapes: dict[tuple, _Shape] = {}
+        self._keys: dict[Literal, str] = {}
+        self._excused: dict[str, set[int]] = {}
+
+    @staticmethod
+    def _covered(patterns: tuple[Literal, ...], index: dict, items) -> list[int]:
+        """The indices in ``index`` (``items`` their literals) ``patterns`` cover, sorted."""
+        out = {i for p in patterns for i in index.get(_index_key(p), ())
+               if undone_by(items(i), (p,))}
+        return sorted(out)
+
+    def _later(self) -> set[str]:
+        """The conjuncts another one undoes outright (``agenda``'s ``later``)."""
+        members: dict[tuple, list[str]] = {}
+        for g in self.unsat:
+            members.setdefault(self.undone[g], []).append(g)
+        index: dict[tuple, list[int]] = {}
+        for j, h in enumerate(self.unsat):
+            for k in _buckets(self.goals[h]):
+                index.setdefault(k, []).append(j)
+        out: set[str] = set()
+        for undone, gs in members.items():
+            for j in self._covered(undone, index, lambda j: self.goals[self.unsat[j]]):
+                h = self.unsat[j]
+                if len(gs) > 1 or gs[0] != h:
+                    out.add(h)
+        return out
+
+    def _kept(self, i: int) -> bool:
+        """Whether entry ``i`` counts as a threat at all: a conjunct that is left for later
+        is not threatened by its being undone outright."""
+        h, need, above = self.entries[i]
+        return not (h in self.later and need == self.goals[h] and not above)
+
+    def _shape(self, g: str) -> _Shape:
+        """The threats of the conjuncts that undo what ``g`` undoes, before excuses."""
+        undone = self.undone[g]
+        hit = self._shapes.get(undone)
+        if hit is None:
+            found = [i for i in self._covered(undone, self.positive,
+                                              lambda i: self.entries[i][1]) if self._kept(i)]
+            hit = self._shapes[undone] = _Shape(found, self.entries)
+        return hit
+
+    def _excuses(self, g: str, shape: _Shape) -> set[int]:
+        """The entries of ``shape`` whose goal achieving ``g`` achieves too."""
+        hit = self._excused.get(g)
+        if hit is None and not shape.above_lits:
+            return set()   # (nothing to excuse: what ``g`` achieves with it is not asked)
+        if hit is None:
+            made = tuple(self.task.effects.achieved_with(self.goals[g]))
+            hit = self._excused[g] = set(self._covered(
+                made, shape.by_above, lambda i: shape.above_lits[i]))
+        return hit
+
+    def _negated(self, g: str) -> list[int]:
+        """The entries (negated needs) achieving ``g`` threatens: those ``g`` is an instance of."""
+        lit = self.goals[g]
+        return [i for i in self.negative.get((lit.pred, len(lit.args)), ())
+                if self.entries[i][0] != g and self._kept(i)
+                and undone_by(lit, (Literal(self.entries[i][1].pred, self.entries[i][1].args),))]
+
+    def _all(self, g: str, negs: list[int]) -> list[tuple[str, Literal, str]]:
+        shape = self._shape(g)
+        excused = self._excuses(g, shape)
+        found = sorted({*(i for i in shape.found if i not in excused), *negs})
+        return [self.entries[i] for i in found if self.entries[i][0] != g]
+
+    def verdict(self, g: str) -> str:
+        """FREE when achieving ``g`` threatens no other conjunct's plan, LANDMARK when one of
+        its threats is to a landmark of that conjunct, else PROMOTE (``agenda``)."""
+        negs = self._negated(g)
+        if negs:
+            threats = self._all(g, negs)
+            if not threats:
+                return FREE
+            return LANDMARK if any(self._landmark(h, need) for h, need, _ in threats) \
+                else PROMOTE
+        shape = self._shape(g)
+        excused = self._excuses(g, shape)
+
+        def counts(i: int) -> bool:
+            return self.entries[i][0] != g and i not in excused
+
+        if not any(counts(i) for i in shape.found):
+            return FREE
+        if any(counts(i) for i in shape.hits):
+            return LANDMARK
+        while shape.cursor < len(shape.found):   # the landmark threats not yet looked at
+            i = shape.found[shape.cursor]
+            shape.cursor += 1
+            if self._landmark(*self.entries[i][:2]):
+                shape.hits.append(i)
+                if counts(i):
+                    return LANDMARK
+        return PROMOTE
+
+    def promote(self, g: str, out: dict[str, None]) -> None:
+        """Add to ``out`` (in order, once each) the goals the needs ``g`` threatens are for;
+        of a shape's threats, only those whose goal no conjunct before added can be new."""
+        negs = self._negated(g)
+        if negs:
+            out.update((above, None) for _, _, above in self._all(g, negs) if above)
+            return
+        shape = self._shape(g)
+        excused = self._excuses(g, shape)
+        left = []
+        for i in shape.pending:
+            h, _, above = self.entries[i]
+            if h != g and i not in excused:
+                out.setdefault(above, None)
+            else:
+                left.append(i)
+        shape.pending = left
+
+    def _landmark(self, h: str, need: Literal) -> bool:
+        k = self._keys.get(need)
+        if k is None:
+            k = self._keys[need] = key(need)
+        return k in landmarks(self.task, self.goals[h])
 
 
-def pending_part(task: Task, conds: tuple[str, ...], goal: str) -> bool:
-    """Whether ``goal`` is an unsatisfied part (not a conjunct) of the plan of an unsatisfied
-    conjunct among ``conds`` (``needs``): the executive goes on with its own path for it."""
-    if goal in conds or task.holds(goal) or not pushable(condition(goal)):
-        return False
-    return any(literal(goal) in needs(task, c) for c in conds
-               if pushable(condition(c)) and not task.holds(c))
+class _Shape:
+    """What achieving a conjunct of one shape threatens, before its own excuses: ``found``
+    (entry indices, in order), ``by_above`` (those with a goal above, by its buckets) and
+    ``above_lits``; ``hits`` (those to a landmark, found up to ``cursor``); ``pending``
+    (those with a goal above that ``Threats.promote`` has not added yet)."""
+
+    def __init__(self, found: list[int], entries: list):
+        self.found = found
+        self.above_lits = {i: literal(entries[i][2]) for i in found if entries[i][2]}
+        self.by_above: dict[tuple, list[int]] = {}
+        for i, lit in self.above_lits.items():
+            for k in _buckets(lit):
+                self.by_above.setdefault(k, []).append(i)
+        self.hits: list[int] = []
+        self.cursor = 0
+        self.pending = [i for i in found if entries[i][2]]
