@@ -221,6 +221,15 @@ def next_conjunct(task: Task, conds: tuple[str, ...], pushes: tuple[str, ...],
     return items[0] if items else next((c for c in conds if not task.holds(c)), None)
 
 
+def next_push(task: Task, entry: StackEntry, on_stack: list[str], focus: str = "") -> str | None:
+    """The subgoal the search's next decision on ``entry`` pushes (``decide``, not committed),
+    with the stack ``on_stack`` and the executive's ``focus`` (``advance``): what the solver's
+    agenda asks before dropping a conjunct (would the search push it straight back?), so that
+    its answer and the next push cannot differ. None when the decision pushes nothing."""
+    child = decide(task, entry, on_stack, focus=focus)[1]
+    return None if child is None else child.goal
+
+
 def _short(reason: str, limit: int = 400) -> str:
     """A nested reason, cut to ``limit`` characters (the full chain is in the events)."""
     return reason if len(reason) <= limit else reason[:limit - 3] + "..."
