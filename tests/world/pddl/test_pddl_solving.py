@@ -14,7 +14,12 @@ defect found on IPC domains teleo was not tuned on (issue 35), written from the 
   white (sanded first), the agenda dropped that way because it undoes the piece's being
   untreated, which the plan for glazed (glazing it black) needs; the executive then glazed
   it black, and round again. A threat to a need the way under way makes needless (it
-  achieves the goal the need is for) no longer drops it."""
+  achieves the goal the need is for) no longer drops it.
+* tugs: a plane is pushed back from its gate (engine off), then starts its engine, which ends
+  the pushing for good, and drives. Driving is written first, so the plan regressed for
+  being at the apron went by road, in program order, not by tow as the search ranks it; the
+  engine's start seemed to threaten nothing, was done first, and no tow was possible after.
+  The regression now ranks a goal's ways as the search does (the relaxed estimate)."""
 
 from __future__ import annotations
 
@@ -29,6 +34,7 @@ from tools.cli import cli
 SWAPS = (FILES / "swaps-domain.pddl", FILES / "swaps-task01.pddl")
 HOISTS = (FILES / "hoists-domain.pddl", FILES / "hoists-task01.pddl")
 FINISH = (FILES / "finish-domain.pddl", FILES / "finish-task01.pddl")
+TUGS = (FILES / "tugs-domain.pddl", FILES / "tugs-task01.pddl")
 
 
 def _solve(files) -> dict:
@@ -63,3 +69,10 @@ def test_a_way_that_achieves_what_a_threatened_need_is_for_is_not_dropped():
     data = _solve(FINISH)
     assert data["status"] == "achieved", data["reason"]
     assert data["actions"][-1] == ["glaze", "p", "black", "white"]
+
+
+def test_the_plan_of_a_condition_is_regressed_through_the_way_the_search_ranks_first():
+    data = _solve(TUGS)
+    assert data["status"] == "achieved", data["reason"]
+    assert data["actions"] == [["push", "gate", "stand"], ["push", "stand", "apron"],
+                               ["start"], ["drive", "apron", "runway"], ["depart", "runway"]]
