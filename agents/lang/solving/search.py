@@ -230,6 +230,14 @@ def next_push(task: Task, entry: StackEntry, on_stack: list[str], focus: str = "
     return None if child is None else child.goal
 
 
+def focus(walk: Walk, goal_id: str) -> str:
+    """The goal the executive's last path for ``goal_id`` was for ("" when none): the focus
+    the search pushes a conjunct by (``advance``), and the one the solver's ``_refocus``
+    predicts with."""
+    prev = walk.state.path_of(goal_id)
+    return prev[0].goal if prev else ""
+
+
 def _short(reason: str, limit: int = 400) -> str:
     """A nested reason, cut to ``limit`` characters (the full chain is in the events)."""
     return reason if len(reason) <= limit else reason[:limit - 3] + "..."

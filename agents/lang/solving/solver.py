@@ -29,7 +29,7 @@ from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, excused, held_by, needs, one_step, pending_part, undoes_any
-from .search import MAX_PUSHES, advance, keeping, next_push
+from .search import MAX_PUSHES, advance, focus, keeping, next_push
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal, pushable
 from .task import Task
@@ -286,13 +286,6 @@ def _settle(task: Task, stack: GoalStack, cycle: int, known: dict[str, str]
     if low == 0:
         events.append(f"solved {entries[0].goal} (problem solving since cycle {stack.started})")
     return replace(stack, entries=tuple(entries[:low])), events, learned
-
-
-def focus(walk: Walk, goal_id: str) -> str:
-    """The goal the executive's last path for ``goal_id`` was for ("" when none): the focus
-    the search pushes a conjunct by (``advance``), and the one ``_refocus`` predicts with."""
-    prev = walk.state.path_of(goal_id)
-    return prev[0].goal if prev else ""
 
 
 def _known(finder: PathFinder) -> dict[str, str]:
