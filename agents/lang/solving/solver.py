@@ -203,11 +203,11 @@ class MeansEndsSolver(ImpasseHandler):
             stack = walk.current("solver").stack_of(entry.id) or stack
         prev = walk.state.path_of(entry.id)
 
-        def probe(goal: Literal, keep: tuple[Literal, ...]):
+        def probe(goal: Literal, keep: tuple[Literal, ...], made: tuple[Literal, ...]):
             memory = Remembered(prev, entry.id not in walk.state.active) \
                 if prev and prev[0].goal == str(goal) else NOTHING
             found = finder.achieve(walk, goal, memory, 0, frozenset())
-            return keeping(finder, walk, goal, keep, entry.id, found)
+            return keeping(finder, walk, goal, keep, entry.id, found, made)
 
         step = advance(task, stack, probe, focus(walk, entry.id))
         events += [f"{entry.id}: {e}" for e in step.events]

@@ -36,7 +36,7 @@ def test_the_prediction_is_the_push_the_search_makes_with_the_same_focus(task, f
     """Three free towers, none a single action away: the one the executive's path served
     goes on, else the first written; the prediction follows the focus as the search does."""
     entry = StackEntry(GOAL, "goal g1 in impasse")
-    step = advance(task, GoalStack("g1", (entry,)), lambda goal, keep: None, focus)
+    step = advance(task, GoalStack("g1", (entry,)), lambda goal, keep, made: None, focus)
     assert [e.goal for e in step.stack.entries] == [GOAL, pushed]
     assert next_push(task, entry, [GOAL], focus) == pushed
 
@@ -45,6 +45,7 @@ def test_a_conjunct_pushed_its_last_time_is_not_predicted_again(task):
     """The prediction sees the pushes the search counts: (on C D) pushed twice already (a
     circle) is not pushed again whatever the focus."""
     entry = StackEntry(GOAL, "goal g1 in impasse")
-    chosen = advance(task, GoalStack("g1", (entry,)), lambda goal, keep: None).stack.entries[0]
+    none = lambda goal, keep, made: None   # noqa: E731 (no path: the search decides)
+    chosen = advance(task, GoalStack("g1", (entry,)), none).stack.entries[0]
     twice = replace(chosen, pushes=("(on C D)", "(on C D)"))
     assert next_push(task, twice, [GOAL], "(on C D)") == "(on A B)"
