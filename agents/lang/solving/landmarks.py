@@ -168,7 +168,8 @@ def _regress(task, goal: Literal, above: str, depth: int, on_path: frozenset,
             out.setdefault(r, above)
         return
     ways = task.alternatives(goal, applicable=True)   # an executable skill is a way too,
-    ways = sorted(ways, key=lambda w: not all(task.holds(c) for c in w.conditions))  # first
+    ways = sorted(ways, key=lambda w: (not all(task.holds(c) for c in w.conditions),  # first;
+                                       _estimate(task, w)))   # then as the search ranks them
     path = {str(g) for g in on_path} | {str(goal)} | avoid   # not a way back through the
     # plan above, nor through the goals ``avoid`` above it on the stack
     ways = [w for w in ways if not path & set(w.conditions)] or ways   # (put F down to clear it)
@@ -183,6 +184,16 @@ def _regress(task, goal: Literal, above: str, depth: int, on_path: frozenset,
             out.setdefault(cond, here)
         else:
             _regress(task, cond, here, depth + 1, on_path | {goal}, out, avoid, budget)
+
+
+def _estimate(task, way) -> float:
+    """The relaxed distance of ``way``'s conditions (Task.estimate; 0 where the program
+    admits none): the regression follows the way the search would choose (an airplane
+    pushed back to the taxiway it is to start up on, not moved there under its own power)."""
+    if not task.estimated():
+        return 0
+    est = task.estimate([condition(c) for c in way.conditions])
+    return 0 if est is None else est
 
 
 def _support(task, goal: Literal, depth: int) -> list[Literal]:

@@ -41,7 +41,7 @@ MAX_STACK = 64      # deepest goal stack [entries] (clearing the bottom of a tow
 MAX_EXECUTE = 50    # cycles a subgoal's path may run without achieving it [cycles]
 MAX_PUSHES = 2      # times one condition of a way may be pushed (achieved, undone, again)
 
-Probe = Callable[[Literal, tuple[Literal, ...]], "Found | None"]
+Probe = Callable[[Literal, tuple[Literal, ...], tuple[Literal, ...]], "Found | None"]
 """An executable path for a subgoal in the current situation, or None; given the literals to
 keep, one whose first action undoes none of them when there is such a path."""
 
@@ -69,7 +69,7 @@ def advance(task: Task, stack: GoalStack, probe: Probe, focus: str = "") -> Step
     while True:
         top = entries[-1]
         # (the goal itself, at the bottom, is what the executive has just found no path for)
-        found = probe(literal(top.goal), _kept(task, entries)) if len(entries) > 1 \
+        found = probe(literal(top.goal), *_kept(task, entries)) if len(entries) > 1 \
             else None
         if found is not None and top.executed < MAX_EXECUTE:
             first = found[2][0]
@@ -173,27 +173,39 @@ def _push(task: Task, entry: StackEntry, way: Alternative, on_stack: list[str],
     return StackEntry(cond, why), ""
 
 
-def _kept(task: Task, entries: list[StackEntry]) -> tuple[Literal, ...]:
+def _kept(task: Task, entries: list[StackEntry]
+          ) -> tuple[tuple[Literal, ...], tuple[Literal, ...]]:
     """What a path for the top subgoal should not undo where it can help it: the conditions
     of the skills chained off on the stack below it that hold now (a hoist made available by
     putting its crate down anywhere but back on the crate a way below needs clear), less
-    those that achieving it undoes whatever the way (the crate the hoist lifts)."""
+    those that achieving it undoes whatever the way (the crate the hoist lifts); and the one
+    of them the way right below achieved last, unless the top's own way needs it too (a hand
+    emptied to unstack with): a one-action path undoing it goes back where that way began
+    (``keeping``)."""
     top = entries[-1].goal
     undone = task.effects.undoes(literal(top))
-    return tuple(dict.fromkeys(
+    kept = tuple(dict.fromkeys(
         lit for e in entries[:-1] if e.decision is not None and e.decision.kind == SKILL
         for c in e.decision.conditions
         if c != top and pushable(lit := condition(c)) and task.holds(c)
         and not undone_by(lit, undone)))
+    way, below = entries[-1].decision, entries[-2].decision
+    last = set(entries[-2].order[-1:]) if below is not None and below.kind == SKILL \
+        else set()
+    return kept, tuple(lit for lit in kept if str(lit) in last - set(
+        way.conditions if way is not None else ()))
 
 
 def keeping(finder: PathFinder, walk: Walk, goal: Literal, keep: tuple[Literal, ...],
-            goal_id: str, found: Found | None) -> Found | None:
+            goal_id: str, found: Found | None, made: tuple[Literal, ...] = ()
+            ) -> Found | None:
     """``found`` (the first path for ``goal``), unless its actions undo one of ``keep`` (what
     the ways below the subgoal hold: ``_kept``) and a one-action path (a primitive skill whose
-    head ``goal`` is) undoes none of them: then that one. Only one-action paths are looked at,
-    so that a subgoal with none costs one more pass over its primitive skills, not another
-    search of every path."""
+    head ``goal`` is) undoes none of them: then that one; with none, None when ``found`` is
+    one action that undoes one of ``made`` (``_kept``: the crate dropped back on the crate
+    just cleared), so that the search chains the subgoal instead. Only one-action paths are
+    looked at, so that a subgoal with none costs one more pass over its primitive skills, not
+    another search of every path."""
     if not found or not keep or not undone_goal(finder.effects, [("", "", keep)], found[1]):
         return found
     saved = walk.protected
@@ -206,6 +218,8 @@ def keeping(finder: PathFinder, walk: Walk, goal: Literal, keep: tuple[Literal, 
                     return other
     finally:
         walk.protected = saved
+    if made and len(found[2]) == 1 and undone_goal(finder.effects, [("", "", made)], found[1]):
+        return None
     return found
 
 
@@ -219,6 +233,23 @@ def next_conjunct(task: Task, conds: tuple[str, ...], pushes: tuple[str, ...],
     items = [c for c in agenda(task, conds, focus) if c not in on_stack
              and pushes.count(c) < MAX_PUSHES]
     return items[0] if items else next((c for c in conds if not task.holds(c)), None)
+
+
+def next_push(task: Task, entry: StackEntry, on_stack: list[str], focus: str = "") -> str | None:
+    """The subgoal the search's next decision on ``entry`` pushes (``decide``, not committed),
+    with the stack ``on_stack`` and the executive's ``focus`` (``advance``): what the solver's
+    agenda asks before dropping a conjunct (would the search push it straight back?), so that
+    its answer and the next push cannot differ. None when the decision pushes nothing."""
+    child = decide(task, entry, on_stack, focus=focus)[1]
+    return None if child is None else child.goal
+
+
+def focus(walk: Walk, goal_id: str) -> str:
+    """The goal the executive's last path for ``goal_id`` was for ("" when none): the focus
+    the search pushes a conjunct by (``advance``), and the one the solver's ``_refocus``
+    predicts with."""
+    prev = walk.state.path_of(goal_id)
+    return prev[0].goal if prev else ""
 
 
 def _short(reason: str, limit: int = 400) -> str:

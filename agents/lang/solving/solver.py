@@ -29,7 +29,7 @@ from ..reading.goals import GoalEntry
 from .landmarks import protected_landmark
 from .learner import canonical, learn
 from .ordering import agenda, excused, held_by, needs, one_step, pending_part, undoes_any
-from .search import MAX_PUSHES, advance, keeping, next_conjunct
+from .search import MAX_PUSHES, advance, focus, keeping, next_push
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal, pushable
 from .task import Task
@@ -118,8 +118,7 @@ class MeansEndsSolver(ImpasseHandler):
 
     def loop(self, finder: PathFinder, walk: Walk, entry: GoalEntry, reason: str) -> bool:
         """Back off after a circle (agents/lang/execution/loops.py): the top of the goal's stack
-        fails
-        with ``reason``, its parent's way given up as after any failed subgoal (under a
+        fails with ``reason``, its parent's way given up as after any failed subgoal (under a
         conjunction: that conjunct is not pushed again). False when there is no stack."""
         state: SolverState = walk.current("solver")
         stack = state.stack_of(entry.id)
@@ -142,17 +141,19 @@ class MeansEndsSolver(ImpasseHandler):
     @staticmethod
     def _refocus(task: Task, walk: Walk, stack: GoalStack, conds: tuple[str, ...],
                  current: str) -> bool:
-        """Drop what the stack of a conjunction does for ``current``, unless the search would
-        push it again at once (a livelock) or its way excuses its threats. Dropped: True."""
+        """Drop what the stack of a conjunction does for ``current``, unless the search's next
+        decision (``next_push``, with its focus) would push it again at once (a livelock) or
+        its way excuses its threats. Dropped: True."""
         bottom = stack.entries[0]
         pushes = list(bottom.pushes)
         if current in pushes:
             del pushes[len(pushes) - 1 - pushes[::-1].index(current)]
-        if next_conjunct(task, conds, tuple(pushes), [bottom.goal]) == current:
+        kept = replace(stack, entries=(replace(bottom, pushes=tuple(pushes)),))
+        if next_push(task, kept.entries[0], [bottom.goal], focus(walk, stack.goal_id)) == \
+                current:
             return False
         if excused(task, conds, current, stack):
             return False
-        kept = replace(stack, entries=(replace(bottom, pushes=tuple(pushes)),))
         state: SolverState = walk.current("solver")
         stacks = tuple(kept if s.goal_id == stack.goal_id else s for s in state.stacks)
         _publish(walk, stacks, (f"{stack.goal_id}: dropped {current}: achieving it now would "
@@ -202,13 +203,13 @@ class MeansEndsSolver(ImpasseHandler):
             stack = walk.current("solver").stack_of(entry.id) or stack
         prev = walk.state.path_of(entry.id)
 
-        def probe(goal: Literal, keep: tuple[Literal, ...]):
+        def probe(goal: Literal, keep: tuple[Literal, ...], made: tuple[Literal, ...]):
             memory = Remembered(prev, entry.id not in walk.state.active) \
                 if prev and prev[0].goal == str(goal) else NOTHING
             found = finder.achieve(walk, goal, memory, 0, frozenset())
-            return keeping(finder, walk, goal, keep, entry.id, found)
+            return keeping(finder, walk, goal, keep, entry.id, found, made)
 
-        step = advance(task, stack, probe, prev[0].goal if prev else "")
+        step = advance(task, stack, probe, focus(walk, entry.id))
         events += [f"{entry.id}: {e}" for e in step.events]
         conflicts = tuple(dict.fromkeys(stack.conflicts + tuple(
             f"{g} {text}" for g, text in task.conflicts.items())))

@@ -14,7 +14,18 @@ defect found on IPC domains teleo was not tuned on (issue 35), written from the 
   white (sanded first), the agenda dropped that way because it undoes the piece's being
   untreated, which the plan for glazed (glazing it black) needs; the executive then glazed
   it black, and round again. A threat to a need the way under way makes needless (it
-  achieves the goal the need is for) no longer drops it."""
+  achieves the goal the need is for) no longer drops it.
+* tugs: a plane is pushed back from its gate (engine off), then starts its engine, which ends
+  the pushing for good, and drives. Driving is written first, so the plan regressed for
+  being at the apron went by road, in program order, not by tow as the search ranks it; the
+  engine's start seemed to threaten nothing, was done first, and no tow was possible after.
+  The regression now ranks a goal's ways as the search does (the relaxed estimate).
+* lids: hoists whose bin must be opened before a crate is put away in it. The hoist lifts the
+  top crate to clear the lower one and must be free again; no one action frees it without
+  undoing what the ways below hold, so its first path (dropping the crate back on the crate
+  just cleared) went, and round in a circle. A subgoal's one-action path that undoes the
+  condition the way right below achieved last is now refused, and the subgoal chained
+  (open the bin, then stow the crate)."""
 
 from __future__ import annotations
 
@@ -29,6 +40,8 @@ from tools.cli import cli
 SWAPS = (FILES / "swaps-domain.pddl", FILES / "swaps-task01.pddl")
 HOISTS = (FILES / "hoists-domain.pddl", FILES / "hoists-task01.pddl")
 FINISH = (FILES / "finish-domain.pddl", FILES / "finish-task01.pddl")
+TUGS = (FILES / "tugs-domain.pddl", FILES / "tugs-task01.pddl")
+LIDS = (FILES / "lids-domain.pddl", FILES / "lids-task01.pddl")
 
 
 def _solve(files) -> dict:
@@ -63,3 +76,18 @@ def test_a_way_that_achieves_what_a_threatened_need_is_for_is_not_dropped():
     data = _solve(FINISH)
     assert data["status"] == "achieved", data["reason"]
     assert data["actions"][-1] == ["glaze", "p", "black", "white"]
+
+
+def test_the_plan_of_a_condition_is_regressed_through_the_way_the_search_ranks_first():
+    data = _solve(TUGS)
+    assert data["status"] == "achieved", data["reason"]
+    assert data["actions"] == [["push", "gate", "stand"], ["push", "stand", "apron"],
+                               ["start"], ["drive", "apron", "runway"], ["depart", "runway"]]
+
+
+def test_a_one_action_path_back_to_where_the_way_below_began_is_refused_and_chained():
+    data = _solve(LIDS)
+    assert data["status"] == "achieved", data["reason"]
+    assert data["actions"] == [["lift", "h", "b", "a"], ["unlid", "bin1"],
+                               ["stow", "h", "b", "bin1"], ["lift", "h", "a", "p1"],
+                               ["drop", "h", "a", "p2"]]
