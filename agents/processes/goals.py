@@ -85,8 +85,8 @@ class GoalEntry:
         self.saved_at = clock()
 
     def _commit(self, store: GoalStore) -> None:
-        """Make `store` current and save it before anyone is told (a request's change);
-        while scripted requests are applied (`_deferred`), only made current."""
+        """Make `store` current and save it before anyone is told; while `_deferred`, only
+        make it current."""
         if self._deferred:
             self.store, self.unsaved = store, True
             return
@@ -204,25 +204,24 @@ class GoalEntry:
         return ProcessStats(env, PROCESS, ms, 0)
 
     def _scripted(self, cycle: int) -> None:
-        """Apply the scenario's requests due at `cycle`, then save the store once: nobody
-        waits for a scripted request's answer, so one durable save before the cycle's goal
-        lists go out keeps them as safe as a save each (a failed save is retried by flush)."""
-        due = [(i, g) for i, g in enumerate(self.scenario.goals)
+        """Apply the scenario's requests due at `cycle`, then save the store once, before the
+        cycle's goal lists (nobody waits for their answers; a failed save: flush retries)."""
+        due = [i for i, g in enumerate(self.scenario.goals)
                if g.at_cycle <= cycle and i not in self.store.scripted_done]
         if not due:
             return
         self._deferred = True
         try:
-            for _, scripted in due:
-                self._run_scripted(scripted)
+            for i in due:
+                self._run_scripted(self.scenario.goals[i])
         finally:
             self._deferred = False
-        marked = self.store.mark_scripted(i for i, _ in due)   # a new store: always saved
+        marked = self.store.mark_scripted(due)   # a new store: always saved
         try:
             self._commit(marked)
         except GoalStoreError as exc:   # kept, done once, and saved by a later flush
             self.store, self.unsaved = marked, True
-            self.log.error("scripted requests %s: %s", [i for i, _ in due], exc)
+            self.log.error("scripted requests %s: %s", due, exc)
 
     def _run_scripted(self, g: ScriptedGoal) -> None:
         try:

@@ -6,16 +6,16 @@ from __future__ import annotations
 
 import re
 import subprocess
-import sys
 from pathlib import Path
+
+from tests.bench.scripts import run_script
 
 ROOT = Path(__file__).resolve().parents[2]
 BENCH = ROOT / "bench" / "ipc" / "agenda_cost.py"
 
 
 def bench(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, str(BENCH), *args], capture_output=True, text=True,
-                          timeout=240, cwd=ROOT)
+    return run_script(BENCH, *args, timeout=240)
 
 
 def test_a_grid_is_ordered_alike_by_both_and_the_ratio_printed():

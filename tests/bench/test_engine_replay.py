@@ -6,16 +6,16 @@ from __future__ import annotations
 
 import re
 import subprocess
-import sys
 from pathlib import Path
+
+from tests.bench.scripts import run_script
 
 ROOT = Path(__file__).resolve().parents[2]
 BENCH = ROOT / "bench" / "speed" / "engine_replay.py"
 
 
 def bench(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, str(BENCH), *args], capture_output=True, text=True,
-                          timeout=300, cwd=ROOT)
+    return run_script(BENCH, *args, timeout=300)
 
 
 def test_a_short_replay_alternates_the_trees_and_prints_their_ratio():

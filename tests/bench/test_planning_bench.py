@@ -4,7 +4,6 @@ and real simulated Blocks World runs), its program and scenario files, and its u
 from __future__ import annotations
 
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -12,14 +11,14 @@ import pytest
 from agents.lang import load_program_text
 from bench.planning import bw_teleo
 from bench.planning.bw_problems import problem
+from tests.bench.scripts import run_script
 
 ROOT = Path(__file__).resolve().parents[2]
 BENCH = ROOT / "bench" / "planning" / "planning.py"
 
 
 def bench(*args: str, timeout: float = 120) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, str(BENCH), *args], capture_output=True, text=True,
-                          timeout=timeout, cwd=ROOT)
+    return run_script(BENCH, *args, timeout=timeout)
 
 
 def test_a_quick_run_prints_every_table_the_seeds_and_every_target(tmp_path):
