@@ -70,7 +70,8 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     stack above (a skill's start: its plans go no way back through them). Empty when
     nothing can be pushed (every conjunct holds, or one that does not is a negation or a
     test)."""
-    key = ("agenda", task.situation, conds, current, task.protected, above)
+    key = ("agenda", task.situation, conds, current, task.protected, above, task.undone)
+    undone = task.undone
     if key in task.shared:
         return task.shared[key]
     unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
@@ -92,12 +93,17 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         # conjunct's plan goes on (not another's, which would move again what the
         # first would have put in its place): of those free, the one whose plan needs it
         # nearest
-        current = min((h for h in [*free, *unsat] if literal(current) in plans[h]),
-                      key=lambda h: (h not in free, _depth(plans[h], literal(current))),
+        # (not one whose plan would first put back what the step for it just undid:
+        # a crate lifted for a truck, to be dropped where it was for another conjunct)
+        cur = literal(current)
+        current = min((h for h in [*free, *unsat] if cur in plans[h]),
+                      key=lambda h: (h not in free, _restores(plans[h][cur], undone),
+                                     _depth(plans[h], cur)),
                       default=current)
     if free:
         now = [g for g in free if one_step(task, g)]
-        now += [p for p in promote if p not in now and one_step(task, p)]
+        now += [p for p in promote if p not in now and not _restores(p, undone)
+                and one_step(task, p)]
         out = now + [g for g in free if g == current and g not in now] + \
             [g for g in free if g not in now and g != current]
         out = [g for g in out if g not in later] + [g for g in out if g in later]
@@ -109,6 +115,12 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         task.shared.clear()
     task.shared[key] = out
     return out
+
+
+def _restores(goal: str, undone: tuple[Literal, ...]) -> bool:
+    """Whether ``goal`` (a goal of a plan; "" for none) is what the last cycle's actions
+    undid (``undone``): achieving it first would go straight back."""
+    return bool(goal and undone) and undone_by(literal(goal), undone)
 
 
 def _depth(plan: dict[Literal, str], need: Literal) -> int:
