@@ -74,21 +74,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     undone = task.undone
     if key in task.shared:
         return task.shared[key]
-    unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
-    plans = {h: needs(task, h, above) for h in unsat}
-    threats = Threats(task, unsat, plans)
-    # achieving a conjunct that another undoes outright is left for after it (the movie is
-    # rewound, which resets the counter, before the counter is reset); the one that undoes it
-    # is not held back for that (achieving it first is the way round)
-    later = threats.later
-    free: list[str] = []
-    promote: dict[str, None] = {}
-    for g in unsat:
-        verdict = threats.verdict(g)
-        if verdict == FREE:
-            free.append(g)
-        elif verdict == PROMOTE:
-            threats.promote(g, promote)
+    unsat, plans, free, promote, later, now = _parts(task, conds, above)
     if current and current not in conds:   # a part of a conjunct's plan, done first: that
         # conjunct's plan goes on (not another's, which would move again what the
         # first would have put in its place): of those free, the one whose plan needs it
@@ -101,8 +87,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
                                      _depth(plans[h], cur)),
                       default=current)
     if free:
-        now = [g for g in free if one_step(task, g)]
-        now += [p for p in promote if p not in now and not _restores(p, undone)
+        now = now + [p for p in promote if p not in now and not _restores(p, undone)
                 and one_step(task, p)]
         out = now + [g for g in free if g == current and g not in now] + \
             [g for g in free if g not in now and g != current]
@@ -111,6 +96,35 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         out = list(promote)
     else:
         out = unsat
+    if len(task.shared) >= MAX_SHARED:
+        task.shared.clear()
+    task.shared[key] = out
+    return out
+
+
+def _parts(task: Task, conds: tuple[str, ...], above: tuple[str, ...]) -> tuple:
+    """What ``agenda`` orders by, whatever the conjunct worked on and the last cycle's
+    actions: the unsatisfied conjuncts, their plans, those free, the parts of plans to be done
+    first, those left for later, and the free ones one action achieves now (kept across
+    cycles by situation, like the agendas)."""
+    key = ("parts", task.situation, conds, task.protected, above)
+    if key in task.shared:
+        return task.shared[key]
+    unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
+    plans = {h: needs(task, h, above) for h in unsat}
+    threats = Threats(task, unsat, plans)
+    # achieving a conjunct that another undoes outright is left for after it (the movie is
+    # rewound, which resets the counter, before the counter is reset); the one that undoes it
+    # is not held back for that (achieving it first is the way round)
+    free: list[str] = []
+    promote: dict[str, None] = {}
+    for g in unsat:
+        verdict = threats.verdict(g)
+        if verdict == FREE:
+            free.append(g)
+        elif verdict == PROMOTE:
+            threats.promote(g, promote)
+    out = unsat, plans, free, promote, threats.later, [g for g in free if one_step(task, g)]
     if len(task.shared) >= MAX_SHARED:
         task.shared.clear()
     task.shared[key] = out
