@@ -22,7 +22,10 @@ of h's needs false (agents/lang/execution/effects.py: ``(on A B)`` makes ``(clea
 
 A part of a plan to be done first (2.) that one action achieves now is done now even when some
 conjunct is free (B1 on B2, both to end on the table's side of things: lifting B1 off B2 first
-lets B3 go straight onto it later).
+lets B3 go straight onto it later), unless it puts back what the last cycle's actions undid
+(``Task.undone``: a crate lifted for the truck is not dropped where it was for another
+conjunct's plan); a part just done goes on with the conjunct whose plan would not first
+put it back.
 
 The threats are found by index (``Threats``), not pair by pair (``threatens``; n conjuncts
 whose plans need k literals each: n * n * k checks, 285,000 for visitall's 144 cells): the
@@ -40,17 +43,17 @@ as it was) in ``Task.shared``."""
 
 from __future__ import annotations
 
-from ..core.matcher import solve, unify_head
 from ..core.terms import Literal, Var
 from ..execution.effects import undone_by
 from .landmarks import (
-    MAX_PLAN,
     excused,
     held_by,
     key,
     landmarks,
     needs,
+    one_step,
     pending_part,
+    plan_depth,
     threatens,
     undoes_any,
 )
@@ -84,7 +87,7 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
         cur = literal(current)
         current = min((h for h in [*free, *unsat] if cur in plans[h]),
                       key=lambda h: (h not in free, _restores(plans[h][cur], undone),
-                                     _depth(plans[h], cur)),
+                                     plan_depth(plans[h], cur)),
                       default=current)
     if free:
         now = now + [p for p in promote if p not in now and not _restores(p, undone)
@@ -135,32 +138,6 @@ def _restores(goal: str, undone: tuple[Literal, ...]) -> bool:
     """Whether ``goal`` (a goal of a plan; "" for none) is what the last cycle's actions
     undid (``undone``): achieving it first would go straight back."""
     return bool(goal and undone) and undone_by(literal(goal), undone)
-
-
-def _depth(plan: dict[Literal, str], need: Literal) -> int:
-    """How many unsatisfied goals of ``plan`` (``needs``) lie between ``need`` and the
-    conjunct the plan is for: (clear B), which unstacking B for (on B D) needs, is nearer
-    (on B D) than (on A E), whose plan unstacks B off A to free A."""
-    depth, above = 0, plan.get(need, "")
-    while above and depth < MAX_PLAN:
-        depth, above = depth + 1, plan.get(literal(above), "")
-    return depth
-
-
-def one_step(task: Task, g: str) -> bool:
-    """True when one executable primitive skill achieves ``g`` now (its start holds and it
-    undoes no protected goal)."""
-    lit = literal(g)
-    for s in task.program.skills_for(lit.pred):
-        if s.kind != "primitive":
-            continue
-        b0 = unify_head(s.head, lit, {})
-        if b0 is None:
-            continue
-        for b in solve([*s.percepts, *s.start, *s.requires], b0, task.pidx, task.store):
-            if not task.undoes_skill(s, b):
-                return True
-    return False
 
 
 FREE, LANDMARK, PROMOTE = "free", "landmark", "promote"
