@@ -281,3 +281,29 @@ def pending_part(task, conds: tuple[str, ...], goal: str) -> bool:
         return False
     return any(literal(goal) in needs(task, c) for c in conds
                if pushable(condition(c)) and not task.holds(c))
+
+
+def plan_depth(plan: dict[Literal, str], need: Literal) -> int:
+    """How many unsatisfied goals of ``plan`` (``needs``) lie between ``need`` and the
+    conjunct the plan is for: (clear B), which unstacking B for (on B D) needs, is nearer
+    (on B D) than (on A E), whose plan unstacks B off A to free A."""
+    depth, above = 0, plan.get(need, "")
+    while above and depth < MAX_PLAN:
+        depth, above = depth + 1, plan.get(literal(above), "")
+    return depth
+
+
+def one_step(task, g: str) -> bool:
+    """True when one executable primitive skill achieves ``g`` now (its start holds and it
+    undoes no protected goal)."""
+    lit = literal(g)
+    for s in task.program.skills_for(lit.pred):
+        if s.kind != "primitive":
+            continue
+        b0 = unify_head(s.head, lit, {})
+        if b0 is None:
+            continue
+        for b in solve([*s.percepts, *s.start, *s.requires], b0, task.pidx, task.store):
+            if not task.undoes_skill(s, b):
+                return True
+    return False

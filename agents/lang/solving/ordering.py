@@ -22,7 +22,10 @@ of h's needs false (agents/lang/execution/effects.py: ``(on A B)`` makes ``(clea
 
 A part of a plan to be done first (2.) that one action achieves now is done now even when some
 conjunct is free (B1 on B2, both to end on the table's side of things: lifting B1 off B2 first
-lets B3 go straight onto it later).
+lets B3 go straight onto it later), unless it puts back what the last cycle's actions undid
+(``Task.undone``: a crate lifted for the truck is not dropped where it was for another
+conjunct's plan); a part just done goes on with the conjunct whose plan would not first
+put it back.
 
 The threats are found by index (``Threats``), not pair by pair (``threatens``; n conjuncts
 whose plans need k literals each: n * n * k checks, 285,000 for visitall's 144 cells): the
@@ -40,17 +43,17 @@ as it was) in ``Task.shared``."""
 
 from __future__ import annotations
 
-from ..core.matcher import solve, unify_head
 from ..core.terms import Literal, Var
 from ..execution.effects import undone_by
 from .landmarks import (
-    MAX_PLAN,
     excused,
     held_by,
     key,
     landmarks,
     needs,
+    one_step,
     pending_part,
+    plan_depth,
     threatens,
     undoes_any,
 )
@@ -70,34 +73,25 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     stack above (a skill's start: its plans go no way back through them). Empty when
     nothing can be pushed (every conjunct holds, or one that does not is a negation or a
     test)."""
-    key = ("agenda", task.situation, conds, current, task.protected, above)
+    key = ("agenda", task.situation, conds, current, task.protected, above, task.undone)
+    undone = task.undone
     if key in task.shared:
         return task.shared[key]
-    unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
-    plans = {h: needs(task, h, above) for h in unsat}
-    threats = Threats(task, unsat, plans)
-    # achieving a conjunct that another undoes outright is left for after it (the movie is
-    # rewound, which resets the counter, before the counter is reset); the one that undoes it
-    # is not held back for that (achieving it first is the way round)
-    later = threats.later
-    free: list[str] = []
-    promote: dict[str, None] = {}
-    for g in unsat:
-        verdict = threats.verdict(g)
-        if verdict == FREE:
-            free.append(g)
-        elif verdict == PROMOTE:
-            threats.promote(g, promote)
+    unsat, plans, free, promote, later, now = _parts(task, conds, above)
     if current and current not in conds:   # a part of a conjunct's plan, done first: that
         # conjunct's plan goes on (not another's, which would move again what the
         # first would have put in its place): of those free, the one whose plan needs it
         # nearest
-        current = min((h for h in [*free, *unsat] if literal(current) in plans[h]),
-                      key=lambda h: (h not in free, _depth(plans[h], literal(current))),
+        # (not one whose plan would first put back what the step for it just undid:
+        # a crate lifted for a truck, to be dropped where it was for another conjunct)
+        cur = literal(current)
+        current = min((h for h in [*free, *unsat] if cur in plans[h]),
+                      key=lambda h: (h not in free, _restores(plans[h][cur], undone),
+                                     plan_depth(plans[h], cur)),
                       default=current)
     if free:
-        now = [g for g in free if one_step(task, g)]
-        now += [p for p in promote if p not in now and one_step(task, p)]
+        now = now + [p for p in promote if p not in now and not _restores(p, undone)
+                and one_step(task, p)]
         out = now + [g for g in free if g == current and g not in now] + \
             [g for g in free if g not in now and g != current]
         out = [g for g in out if g not in later] + [g for g in out if g in later]
@@ -111,30 +105,39 @@ def agenda(task: Task, conds: tuple[str, ...], current: str = "",
     return out
 
 
-def _depth(plan: dict[Literal, str], need: Literal) -> int:
-    """How many unsatisfied goals of ``plan`` (``needs``) lie between ``need`` and the
-    conjunct the plan is for: (clear B), which unstacking B for (on B D) needs, is nearer
-    (on B D) than (on A E), whose plan unstacks B off A to free A."""
-    depth, above = 0, plan.get(need, "")
-    while above and depth < MAX_PLAN:
-        depth, above = depth + 1, plan.get(literal(above), "")
-    return depth
+def _parts(task: Task, conds: tuple[str, ...], above: tuple[str, ...]) -> tuple:
+    """What ``agenda`` orders by, whatever the conjunct worked on and the last cycle's
+    actions: the unsatisfied conjuncts, their plans, those free, the parts of plans to be done
+    first, those left for later, and the free ones one action achieves now (kept across
+    cycles by situation, like the agendas)."""
+    key = ("parts", task.situation, conds, task.protected, above)
+    if key in task.shared:
+        return task.shared[key]
+    unsat = [c for c in conds if pushable(condition(c)) and not task.holds(c)]
+    plans = {h: needs(task, h, above) for h in unsat}
+    threats = Threats(task, unsat, plans)
+    # achieving a conjunct that another undoes outright is left for after it (the movie is
+    # rewound, which resets the counter, before the counter is reset); the one that undoes it
+    # is not held back for that (achieving it first is the way round)
+    free: list[str] = []
+    promote: dict[str, None] = {}
+    for g in unsat:
+        verdict = threats.verdict(g)
+        if verdict == FREE:
+            free.append(g)
+        elif verdict == PROMOTE:
+            threats.promote(g, promote)
+    out = unsat, plans, free, promote, threats.later, [g for g in free if one_step(task, g)]
+    if len(task.shared) >= MAX_SHARED:
+        task.shared.clear()
+    task.shared[key] = out
+    return out
 
 
-def one_step(task: Task, g: str) -> bool:
-    """True when one executable primitive skill achieves ``g`` now (its start holds and it
-    undoes no protected goal)."""
-    lit = literal(g)
-    for s in task.program.skills_for(lit.pred):
-        if s.kind != "primitive":
-            continue
-        b0 = unify_head(s.head, lit, {})
-        if b0 is None:
-            continue
-        for b in solve([*s.percepts, *s.start, *s.requires], b0, task.pidx, task.store):
-            if not task.undoes_skill(s, b):
-                return True
-    return False
+def _restores(goal: str, undone: tuple[Literal, ...]) -> bool:
+    """Whether ``goal`` (a goal of a plan; "" for none) is what the last cycle's actions
+    undid (``undone``): achieving it first would go straight back."""
+    return bool(goal and undone) and undone_by(literal(goal), undone)
 
 
 FREE, LANDMARK, PROMOTE = "free", "landmark", "promote"

@@ -54,8 +54,9 @@ class MeansEndsSolver(ImpasseHandler):
             self._effects(finder).see(walk.pidx, walk.store)
         task = self._tasks.get(goal_id)
         if task is None or task.program is not finder.program:
+            effects = self._effects(finder)
             task = Task(finder.program, walk.pidx, walk.store, tuple(walk.protected),
-                        self._effects(finder), self._shared)
+                        effects, self._shared, _undone(effects, walk))
             self._tasks[goal_id] = task
         return task
 
@@ -108,6 +109,11 @@ class MeansEndsSolver(ImpasseHandler):
             items = [current, *items]   # so does one the executive's own path was for (a
             # learned skill clearing B: the hand it filled on the way no longer makes the
             # agenda promote (clear B), which the solver's stack would still work on)
+        elif current and not mine and items and current not in conds and \
+                items[0] in conds and task.holds(current) and \
+                literal(current) in needs(task, items[0]):
+            items = items[:1]   # a part of a plan just done: that plan goes on (to an
+            # impasse if no path goes on with it), not another conjunct's path from there
         return [literal(c) for c in items]
 
     def possible(self, finder: PathFinder, walk: Walk, inst: Literal) -> bool:
@@ -307,3 +313,10 @@ def _publish(walk: Walk, stacks: tuple[GoalStack, ...], events: tuple[str, ...],
     if stacks or events or learned:
         walk.sections.append(SolverSection(stacks, events, solving, learned))
 
+
+def _undone(effects: Effects, walk: Walk) -> tuple[Literal, ...]:
+    """What the last cycle's done actions undid (ground patterns of the effect model)."""
+    actions = [o.action for o in walk.outcomes if o.ok]
+    if not actions:
+        return ()
+    return tuple(p for p in effects.of_actions(actions)[1] if not p.variables())

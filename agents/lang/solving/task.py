@@ -104,12 +104,15 @@ class Task(Ways, WayFilters, BindingChoice, Ranking):
     """One cycle's view of the problem: ``program`` (with the skills learned so far), the
     percepts and the beliefs; ``protected``: (goal id, text, ground literals) of the goals
     that hold and come before the one solved for, which no way chained off may undo (seed 000,
-    "Adding Goal Priorities"), judged by ``effects`` (agents/lang/execution/effects.py)."""
+    "Adding Goal Priorities"), judged by ``effects`` (agents/lang/execution/effects.py);
+    ``undone``: what the last cycle's actions undid."""
 
     def __init__(self, program: Program, pidx: PerceptIndex, store: FactStore,
                  protected: tuple | list = (), effects: Effects | None = None,
-                 shared: dict | None = None):
+                 shared: dict | None = None, undone: tuple[Literal, ...] = ()):
         self.program = program
+        self.undone = undone   # what the last cycle's actions undid (ground patterns): the
+        #                        agenda puts none of it straight back (ordering.py)
         self.pidx = pidx
         self.store = store
         self.protected = tuple(protected)
