@@ -30,7 +30,8 @@ if str(ROOT) not in sys.path:
 from agents.lang import Engine, as_percepts, load_program_text  # noqa: E402
 from agents.lang.core.store import PerceptIndex, store_of  # noqa: E402
 from agents.lang.execution.effects import Effects  # noqa: E402
-from agents.lang.solving.ordering import agenda, needs  # noqa: E402
+from agents.lang.solving.landmarks import needs  # noqa: E402
+from agents.lang.solving.ordering import agenda  # noqa: E402
 from agents.lang.solving.state import condition, pushable  # noqa: E402
 from agents.lang.solving.task import Task  # noqa: E402
 from agents.lang.solving.typed import TypedEffects  # noqa: E402

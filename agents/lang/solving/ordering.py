@@ -46,24 +46,16 @@ from __future__ import annotations
 from ..core.terms import Literal, Var
 from ..execution.effects import undone_by
 from .landmarks import (
-    excused,
-    held_by,
     key,
     landmarks,
     needs,
     one_step,
-    pending_part,
     plan_depth,
-    threatens,
-    undoes_any,
 )
 from .state import condition, literal, pushable
 from .task import Task
 
 MAX_SHARED = 64    # agendas kept across cycles [agendas]
-
-__all__ = ["agenda", "excused", "held_by", "needs", "one_step", "pending_part", "threatens",
-           "undoes_any"]   # (the solver's helpers on the goal stack: landmarks.py)
 
 
 def agenda(task: Task, conds: tuple[str, ...], current: str = "",

@@ -26,9 +26,17 @@ from ..execution.effects import Effects
 from ..execution.executive import Impasse, ImpasseHandler
 from ..execution.paths import NOTHING, PathFinder, Remembered, Walk
 from ..reading.goals import GoalEntry
-from .landmarks import protected_landmark
+from .landmarks import (
+    excused,
+    held_by,
+    needs,
+    one_step,
+    pending_part,
+    protected_landmark,
+    undoes_any,
+)
 from .learner import canonical, learn
-from .ordering import agenda, excused, held_by, needs, one_step, pending_part, undoes_any
+from .ordering import agenda
 from .search import MAX_PUSHES, advance, focus, keeping, next_push
 from .section import SolverSection
 from .state import CONCEPT, CONJUNCTION, GoalStack, SolverState, StackEntry, literal, pushable

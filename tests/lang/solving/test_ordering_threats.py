@@ -14,9 +14,9 @@ from hypothesis import strategies as st
 from agents.lang import Engine, as_percepts, load_program, load_program_text
 from agents.lang.core.store import PerceptIndex, store_of
 from agents.lang.execution.effects import Effects
-from agents.lang.solving.landmarks import key, landmarks
+from agents.lang.solving.landmarks import key, landmarks, needs, one_step, threatens
 from agents.lang.solving.landmarks import plan_depth as _depth
-from agents.lang.solving.ordering import agenda, needs, one_step, threatens
+from agents.lang.solving.ordering import agenda
 from agents.lang.solving.state import condition, literal, pushable
 from agents.lang.solving.task import Task
 from agents.lang.solving.typed import TypedEffects
