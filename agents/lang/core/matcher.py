@@ -107,7 +107,15 @@ def solve(conds: list, b: dict, pidx: PerceptIndex, store: FactStore) -> Iterato
             i = _pick(conds, b)
             got = _PICKS[key] = (conds[i], (*conds[:i], *conds[i + 1:]), tuple(conds))
         cond, rest = got[0], got[1]
-    for nb in step(cond, b, pidx, store):
+    # a percept or a positive literal straight from its matcher, and the last condition's
+    # extensions without a further generator: the same extensions through fewer frames
+    ext = match_percept(cond, b, pidx) if cond.__class__ is PerceptPattern else \
+        match_fact(cond, b, store) if cond.__class__ is Literal and not cond.negated else \
+        step(cond, b, pidx, store)
+    if not rest:
+        yield from ext
+        return
+    for nb in ext:
         yield from solve(rest, nb, pidx, store)
 
 
