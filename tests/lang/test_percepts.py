@@ -95,7 +95,7 @@ def test_plans_match_as_the_plain_matcher(rs, queries, as_groups, few):
     try:
         for fresh in (True, False):
             if fresh:
-                percepts._PLANS.clear()
+                percepts._PVARS.clear()
             groups: dict = {}
             for r in rs:
                 groups.setdefault(r[0], []).append(r)

@@ -14,8 +14,7 @@ from .intake import MISSING, PerceptIndex
 from .terms import PerceptPattern, Var
 
 MAX_PLANS = 4096  # plans kept (cleared when full)
-_PVARS: dict[int, tuple] = {}   # id of a percept pattern -> (pattern, its variables)
-_PLANS: dict[tuple, tuple] = {}  # (id, which of its variables are bound) -> how to match
+_PVARS: dict[int, tuple] = {}   # id of a percept pattern -> (pattern, its variables, plans)
 _FEW = 8  # candidates filtered one by one; more are looked up by all their bound attributes
 
 
@@ -32,14 +31,16 @@ def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[di
     got = _PVARS.get(id(p))
     if got is None or got[0] is not p:
         got = _pattern_vars(p)
-    plan = _PLANS.get((id(p), *[v in b for v in got[1]]))
-    if plan is None or plan[0] is not p:
-        plan = _plan(p, b, got[1])
-    _, pid, key_attr, key_term, fixed, rest, bound = plan
-    for v in bound:   # a variable bound to a variable: the general matcher (rare)
-        if isinstance(b[v], Var):
-            yield from _match_any(p, b, pidx)
-            return
+    mask = tuple([v in b for v in got[1]])
+    plan = got[2].get(mask)
+    if plan is None:
+        plan = got[2][mask] = _plan(p, b, got[1])
+    pid, key_attr, key_term, fixed, rest, bound, fixed_vars = plan
+    if bound:
+        for v in bound:   # a variable bound to a variable: the general matcher (rare)
+            if isinstance(b[v], Var):
+                yield from _match_any(p, b, pidx)
+                return
     free = pid is MISSING
     key = ()
     if not free:
@@ -50,7 +51,8 @@ def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[di
     else:
         cands = pidx.attr_index(p.type, key_attr).get(
             b[key_term] if isinstance(key_term, Var) else key_term, ())
-    fx = [(a, b[t]) if isinstance(t, Var) else (a, t) for a, t in fixed]
+    fx = [(a, b[t]) if isinstance(t, Var) else (a, t) for a, t in fixed] if fixed_vars \
+        else fixed
     if len(cands) > _FEW and (len(fx) > 1 or fx and not free):   # by all at once
         cands = _by_attrs(pidx, p.type, fx, cands, key)
     pvar = p.id
@@ -92,28 +94,26 @@ def _by_attrs(pidx: PerceptIndex, type_: str, fx: list, cands: list, key: tuple)
 
 
 def _pattern_vars(p: PerceptPattern) -> tuple:
-    """(p, its distinct variables in written order), kept."""
+    """(p, its distinct variables in written order, its plans by which of them are bound),
+    kept."""
     if len(_PVARS) >= MAX_PLANS:
         _PVARS.clear()
     vs = tuple(dict.fromkeys(t for t in (p.id, *(t for _, t in p.attrs)) if isinstance(t, Var)))
-    got = _PVARS[id(p)] = (p, vs)
+    got = _PVARS[id(p)] = (p, vs, {})
     return got
 
 
 def _plan(p: PerceptPattern, b: dict, pvars: tuple) -> tuple:
-    """How ``p`` is matched when the variables of it that ``b`` binds are bound: (p, the id
+    """How ``p`` is matched when the variables of it that ``b`` binds are bound: (the id
     (MISSING when free), the attribute whose index gives the candidates and its term, the
     (attr, term) pairs compared before copying, the (attr, variable) pairs bound or compared
-    after, the variables of ``p`` bound in ``b``)."""
-    if len(_PLANS) >= MAX_PLANS:
-        _PLANS.clear()
+    after, the variables of ``p`` bound in ``b``, whether a compared term is a variable)."""
     bound = tuple(v for v in pvars if v in b)
     pid = MISSING if isinstance(p.id, Var) and p.id not in b else p.id
     first = next(((a, t) for a, t in p.attrs if not isinstance(t, Var) or t in b), (None, None))
     fixed = tuple((a, t) for a, t in p.attrs if not isinstance(t, Var) or t in b)
     rest = tuple((a, t) for a, t in p.attrs if isinstance(t, Var) and t not in b)
-    plan = _PLANS[(id(p), *[v in b for v in pvars])] = (p, pid, *first, fixed, rest, bound)
-    return plan
+    return (pid, *first, fixed, rest, bound, any(isinstance(t, Var) for _, t in fixed))
 
 
 def _match_any(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[dict]:
