@@ -31,7 +31,7 @@ def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[di
     got = _PVARS.get(id(p))
     if got is None or got[0] is not p:
         got = _pattern_vars(p)
-    mask = tuple([v in b for v in got[1]])
+    mask = tuple(map(b.__contains__, got[1]))
     plan = got[2].get(mask)
     if plan is None:
         plan = got[2][mask] = _plan(p, b, got[1])
@@ -42,10 +42,9 @@ def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[di
                 yield from _match_any(p, b, pidx)
                 return
     free = pid is MISSING
-    key = ()
     if not free:
-        key = (b[pid] if isinstance(pid, Var) else pid,)
-        cands = pidx.by_id.get((p.type, key[0]), ())
+        idv = b[pid] if isinstance(pid, Var) else pid
+        cands = pidx.by_id.get((p.type, idv), ())
     elif key_attr is None:
         cands = pidx.by_type.get(p.type, ())
     else:
@@ -54,7 +53,7 @@ def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[di
     fx = [(a, b[t]) if isinstance(t, Var) else (a, t) for a, t in fixed] if fixed_vars \
         else fixed
     if len(cands) > _FEW and (len(fx) > 1 or fx and not free):   # by all at once
-        cands = _by_attrs(pidx, p.type, fx, cands, key)
+        cands = _by_attrs(pidx, p.type, fx, cands, () if free else (idv,))
     pvar = p.id
     for per in cands:
         m = per._map
