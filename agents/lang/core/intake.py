@@ -83,7 +83,7 @@ class PerceptIndex:
     Built lazily: from Percept objects, or from a Frame's rows, making Percepts only for the
     types and ids the executive asks about (most cycles it asks about few objects)."""
 
-    __slots__ = ("_groups", "_percepts", "_by_type", "_by_id", "_attr")
+    __slots__ = ("_groups", "_percepts", "_by_type", "_by_id", "_attr", "_attrs")
 
     def __init__(self, percepts: Iterable[Percept] = ()):
         self._percepts: list[Percept] | None = list(percepts)
@@ -91,6 +91,7 @@ class PerceptIndex:
         self._by_type: Mapping[str, list[Percept]] | None = None
         self._by_id: Mapping[tuple, list[Percept]] | None = None
         self._attr: dict[tuple, dict] = {}
+        self._attrs: dict[tuple, dict | None] = {}
 
     @classmethod
     def of_groups(cls, groups: dict[str, list], cache: PerceptCache | None = None) -> PerceptIndex:
@@ -153,6 +154,29 @@ class PerceptIndex:
                 if v is not MISSING:
                     ix.setdefault(v, []).append(p)
             self._attr[key] = ix
+        return ix
+
+    def attrs_index(self, type_: str, attrs: tuple[str, ...], with_id: bool = False
+                    ) -> dict | None:
+        """(value, ...) -> percepts of ``type_`` with those values of ``attrs`` (each list in
+        the order of ``by_type``; ``with_id``: the key's first value is the id); None when some
+        value cannot be a key (unhashable)."""
+        key = (type_, attrs, with_id)
+        if key in self._attrs:
+            return self._attrs[key]
+        ix: dict | None = {}
+        for p in self.by_type.get(type_, ()):
+            m = p._map
+            vs = tuple([m.get(a, MISSING) for a in attrs])
+            if with_id:
+                vs = (p.id, *vs)
+            if MISSING not in vs:
+                try:
+                    ix.setdefault(vs, []).append(p)
+                except TypeError:
+                    ix = None
+                    break
+        self._attrs[key] = ix
         return ix
 
 

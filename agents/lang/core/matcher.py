@@ -8,7 +8,8 @@ from collections.abc import Iterator
 from itertools import islice
 
 from .arith import compile_test
-from .store import MISSING, FactStore, PerceptIndex
+from .percepts import match_percept
+from .store import FactStore, PerceptIndex
 from .terms import Literal, PerceptPattern, Test, Var, sort_key
 
 _TESTS: dict[int, object] = {}
@@ -24,31 +25,6 @@ def subst(term: object, b: dict) -> object:
 def ground(lit: Literal, b: dict) -> Literal:
     """``lit`` with bound variables replaced (unbound ones stay Vars)."""
     return Literal(lit.pred, tuple(subst(a, b) for a in lit.args), lit.negated, lit.loc)
-
-
-def match_percept(p: PerceptPattern, b: dict, pidx: PerceptIndex) -> Iterator[dict]:
-    """Extensions of ``b`` matching pattern ``p`` against one percept each."""
-    pid = subst(p.id, b)
-    free = isinstance(pid, Var)
-    if not free:
-        cands = pidx.by_id.get((p.type, pid), ())
-    else:
-        key = next(((a, subst(t, b)) for a, t in p.attrs if _bound(t, b)), None)
-        cands = pidx.by_type.get(p.type, ()) if key is None else \
-            pidx.attr_index(p.type, key[0]).get(key[1], ())
-    for per in cands:
-        nb = dict(b)
-        if free:
-            nb[pid] = per.id
-        for attr, t in p.attrs:
-            v = per._map.get(attr, MISSING)
-            t = subst(t, nb)
-            if v is MISSING or (not isinstance(t, Var) and t != v):
-                break
-            if isinstance(t, Var):
-                nb[t] = v
-        else:
-            yield nb
 
 
 def match_fact(lit: Literal, b: dict, store: FactStore) -> Iterator[dict]:
@@ -131,7 +107,15 @@ def solve(conds: list, b: dict, pidx: PerceptIndex, store: FactStore) -> Iterato
             i = _pick(conds, b)
             got = _PICKS[key] = (conds[i], (*conds[:i], *conds[i + 1:]), tuple(conds))
         cond, rest = got[0], got[1]
-    for nb in step(cond, b, pidx, store):
+    # a percept or a positive literal straight from its matcher, and the last condition's
+    # extensions without a further generator: the same extensions through fewer frames
+    ext = match_percept(cond, b, pidx) if cond.__class__ is PerceptPattern else \
+        match_fact(cond, b, store) if cond.__class__ is Literal and not cond.negated else \
+        step(cond, b, pidx, store)
+    if not rest:
+        yield from ext
+        return
+    for nb in ext:
         yield from solve(rest, nb, pidx, store)
 
 
