@@ -8,18 +8,13 @@ from collections.abc import Iterator
 from itertools import islice
 
 from .arith import compile_test
-from .percepts import match_percept
+from .percepts import match_percept, subst
 from .store import FactStore, PerceptIndex
 from .terms import Literal, PerceptPattern, Test, Var, sort_key
 
 _TESTS: dict[int, object] = {}
 _PICKS: dict[tuple, tuple] = {}  # (ids of the conditions, bound variables) -> (first, rest, conds)
 MAX_PICKS = 4096  # orders kept (cleared when full: a program's skills need a few hundred)
-
-
-def subst(term: object, b: dict) -> object:
-    """``term`` with bound variables replaced by their values."""
-    return b.get(term, term) if isinstance(term, Var) else term
 
 
 def ground(lit: Literal, b: dict) -> Literal:
